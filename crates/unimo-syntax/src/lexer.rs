@@ -1,0 +1,381 @@
+//! A hand-written scanner used around the pest parser: it finds lexical errors with
+//! precise spans, measures nesting depth before pest recurses, and gives token
+//! boundaries for error recovery and for naming the token an error was found at.
+
+/// What kind of token a [`Token`] is.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum TokenKind {
+    Ident,
+    QuotedIdent,
+    Keyword,
+    Number,
+    String,
+    /// Operators and punctuation.
+    Punct,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct Token {
+    pub kind: TokenKind,
+    pub start: usize,
+    pub end: usize,
+}
+
+/// A lexical error, with the byte range it covers.
+#[derive(Clone, PartialEq, Eq, Debug)]
+pub enum LexError {
+    UnexpectedChar { start: usize, end: usize, ch: char },
+    UnterminatedString { start: usize },
+    UnterminatedComment { start: usize },
+    UnterminatedQuotedIdent { start: usize },
+    BadEscape { start: usize, end: usize },
+    MalformedNumber { start: usize, end: usize },
+    TooDeep { start: usize, depth: usize },
+}
+
+/// Result of scanning a whole file.
+#[derive(Debug, Default)]
+pub struct Scan {
+    pub tokens: Vec<Token>,
+    pub errors: Vec<LexError>,
+    /// Deepest bracket/`if` nesting seen, and where it was first reached.
+    pub max_depth: usize,
+}
+
+/// Reserved words of Modelica (spec 2.3.3) plus the builtin-call names `der`,
+/// `initial` and `pure`, which the grammar treats as keywords too.
+pub const KEYWORDS: &[&str] = &[
+    "algorithm",
+    "and",
+    "annotation",
+    "block",
+    "break",
+    "class",
+    "connect",
+    "connector",
+    "constant",
+    "constrainedby",
+    "der",
+    "discrete",
+    "each",
+    "else",
+    "elseif",
+    "elsewhen",
+    "encapsulated",
+    "end",
+    "enumeration",
+    "equation",
+    "expandable",
+    "extends",
+    "external",
+    "false",
+    "final",
+    "flow",
+    "for",
+    "function",
+    "if",
+    "import",
+    "impure",
+    "in",
+    "initial",
+    "inner",
+    "input",
+    "loop",
+    "model",
+    "not",
+    "operator",
+    "or",
+    "outer",
+    "output",
+    "package",
+    "parameter",
+    "partial",
+    "protected",
+    "public",
+    "pure",
+    "record",
+    "redeclare",
+    "replaceable",
+    "return",
+    "stream",
+    "then",
+    "true",
+    "type",
+    "when",
+    "while",
+    "within",
+];
+
+pub fn is_keyword(word: &str) -> bool {
+    KEYWORDS.binary_search(&word).is_ok()
+}
+
+/// Nesting beyond this is refused before parsing (the parser is recursive).
+pub const MAX_DEPTH: usize = 200;
+
+fn is_ident_start(b: u8) -> bool {
+    b.is_ascii_alphabetic() || b == b'_'
+}
+
+fn is_ident_char(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+/// Scans `text` into tokens, collecting every lexical error.
+pub fn scan(text: &str) -> Scan {
+    let bytes = text.as_bytes();
+    let mut out = Scan::default();
+    let mut depth = 0usize;
+    let mut ifs_since_semi = 0usize;
+    let mut too_deep_reported = false;
+    let mut i = 0;
+    while i < bytes.len() {
+        let b = bytes[i];
+        let start = i;
+        match b {
+            b' ' | b'\t' | b'\r' | b'\n' => {
+                i += 1;
+                continue;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'/') => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'*') => {
+                match text[i + 2..].find("*/") {
+                    Some(k) => i += 2 + k + 2,
+                    None => {
+                        out.errors.push(LexError::UnterminatedComment { start });
+                        i = bytes.len();
+                    }
+                }
+                continue;
+            }
+            b'"' | b'\'' => {
+                let (end, ok, escapes) = scan_quoted(bytes, i, b);
+                for (s, e) in escapes {
+                    out.errors.push(LexError::BadEscape { start: s, end: e });
+                }
+                if !ok {
+                    out.errors.push(if b == b'"' {
+                        LexError::UnterminatedString { start }
+                    } else {
+                        LexError::UnterminatedQuotedIdent { start }
+                    });
+                }
+                let kind = if b == b'"' {
+                    TokenKind::String
+                } else {
+                    TokenKind::QuotedIdent
+                };
+                out.tokens.push(Token { kind, start, end });
+                i = end;
+                continue;
+            }
+            _ if is_ident_start(b) => {
+                while i < bytes.len() && is_ident_char(bytes[i]) {
+                    i += 1;
+                }
+                let word = &text[start..i];
+                let kind = if is_keyword(word) {
+                    TokenKind::Keyword
+                } else {
+                    TokenKind::Ident
+                };
+                if word == "if" {
+                    ifs_since_semi += 1;
+                }
+                out.tokens.push(Token {
+                    kind,
+                    start,
+                    end: i,
+                });
+            }
+            _ if b.is_ascii_digit()
+                || (b == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit())) =>
+            {
+                let (end, ok) = scan_number(bytes, i);
+                if !ok {
+                    out.errors.push(LexError::MalformedNumber { start, end });
+                }
+                out.tokens.push(Token {
+                    kind: TokenKind::Number,
+                    start,
+                    end,
+                });
+                i = end;
+            }
+            _ => {
+                let len = punct_len(bytes, i);
+                if len == 0 {
+                    let ch = text[i..].chars().next().unwrap_or('\u{FFFD}');
+                    let end = i + ch.len_utf8();
+                    // A byte-order mark is harmless whitespace.
+                    if ch != '\u{FEFF}' {
+                        out.errors.push(LexError::UnexpectedChar { start, end, ch });
+                    }
+                    i = end;
+                    continue;
+                }
+                match b {
+                    b'(' | b'[' | b'{' => depth += 1,
+                    b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+                    b';' => ifs_since_semi = 0,
+                    _ => {}
+                }
+                out.tokens.push(Token {
+                    kind: TokenKind::Punct,
+                    start,
+                    end: i + len,
+                });
+                i += len;
+            }
+        }
+        let d = depth + ifs_since_semi;
+        if d > out.max_depth {
+            out.max_depth = d;
+            if d > MAX_DEPTH && !too_deep_reported {
+                too_deep_reported = true;
+                out.errors.push(LexError::TooDeep { start, depth: d });
+            }
+        }
+    }
+    out
+}
+
+/// Scans a string or quoted identifier starting at `i` (the quote). Returns the end,
+/// whether it was terminated, and the ranges of invalid escapes.
+fn scan_quoted(bytes: &[u8], mut i: usize, quote: u8) -> (usize, bool, Vec<(usize, usize)>) {
+    let mut bad = Vec::new();
+    i += 1;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' => {
+                let valid = matches!(
+                    bytes.get(i + 1),
+                    Some(b'\'' | b'"' | b'?' | b'\\' | b'a' | b'b' | b'f' | b'n' | b'r' | b't' | b'v')
+                );
+                if !valid && i + 1 < bytes.len() {
+                    // Cover the whole (possibly multi-byte) escaped character.
+                    let mut e = i + 2;
+                    while e < bytes.len() && (bytes[e] & 0xC0) == 0x80 {
+                        e += 1;
+                    }
+                    bad.push((i, e));
+                }
+                i += 2;
+            }
+            c if c == quote => return (i + 1, true, bad),
+            // A quoted identifier ends at the line; a string may span lines.
+            b'\n' if quote == b'\'' => return (i, false, bad),
+            _ => i += 1,
+        }
+    }
+    (bytes.len().min(i), false, bad)
+}
+
+/// Scans a number starting at `i`; returns its end and whether it is well formed.
+fn scan_number(bytes: &[u8], mut i: usize) -> (usize, bool) {
+    let digits = |i: &mut usize| {
+        let s = *i;
+        while *i < bytes.len() && bytes[*i].is_ascii_digit() {
+            *i += 1;
+        }
+        *i - s
+    };
+    let mut ok = true;
+    let int_digits = digits(&mut i);
+    if i < bytes.len() && bytes[i] == b'.' {
+        i += 1;
+        let frac = digits(&mut i);
+        if int_digits == 0 && frac == 0 {
+            ok = false;
+        }
+    }
+    if i < bytes.len() && (bytes[i] == b'e' || bytes[i] == b'E') {
+        i += 1;
+        if i < bytes.len() && (bytes[i] == b'+' || bytes[i] == b'-') {
+            i += 1;
+        }
+        if digits(&mut i) == 0 {
+            ok = false;
+        }
+    }
+    // A number glued to letters (`12abc`, `1.5x`) is one malformed token.
+    while i < bytes.len() && (is_ident_char(bytes[i]) || (bytes[i] == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit()))) {
+        ok = false;
+        i += 1;
+    }
+    (i, ok)
+}
+
+/// Length of the operator or punctuation at `i`, 0 if none.
+fn punct_len(bytes: &[u8], i: usize) -> usize {
+    let two = |a: u8, b: u8| bytes[i] == a && bytes.get(i + 1) == Some(&b);
+    if two(b':', b'=')
+        || two(b'<', b'=')
+        || two(b'>', b'=')
+        || two(b'=', b'=')
+        || two(b'<', b'>')
+        || two(b'.', b'+')
+        || two(b'.', b'-')
+        || two(b'.', b'*')
+        || two(b'.', b'/')
+        || two(b'.', b'^')
+    {
+        return 2;
+    }
+    match bytes[i] {
+        b'(' | b')' | b'[' | b']' | b'{' | b'}' | b';' | b',' | b'.' | b':' | b'=' | b'<'
+        | b'>' | b'+' | b'-' | b'*' | b'/' | b'^' => 1,
+        _ => 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keywords_are_sorted_for_binary_search() {
+        let mut sorted = KEYWORDS.to_vec();
+        sorted.sort_unstable();
+        assert_eq!(sorted, KEYWORDS);
+    }
+
+    #[test]
+    fn finds_lexical_errors() {
+        let s = scan("x = \"abc");
+        assert_eq!(s.errors, vec![LexError::UnterminatedString { start: 4 }]);
+        let s = scan("/* open");
+        assert_eq!(s.errors, vec![LexError::UnterminatedComment { start: 0 }]);
+        let s = scan("x = 1e+;");
+        assert_eq!(s.errors, vec![LexError::MalformedNumber { start: 4, end: 7 }]);
+        let s = scan("x = 12abc;");
+        assert_eq!(s.errors, vec![LexError::MalformedNumber { start: 4, end: 9 }]);
+        let s = scan("x = \"a\\qb\";");
+        assert_eq!(s.errors, vec![LexError::BadEscape { start: 6, end: 8 }]);
+        let s = scan("x = 1 # 2;");
+        assert_eq!(
+            s.errors,
+            vec![LexError::UnexpectedChar { start: 6, end: 7, ch: '#' }]
+        );
+    }
+
+    #[test]
+    fn numbers_and_element_wise_operators() {
+        let s = scan("a = 2.*b + .5 + 1.e3 + 3.;");
+        assert!(s.errors.is_empty(), "{:?}", s.errors);
+        let texts: Vec<_> = s.tokens.iter().map(|t| &"a = 2.*b + .5 + 1.e3 + 3.;"[t.start..t.end]).collect();
+        assert_eq!(texts, ["a", "=", "2.", "*", "b", "+", ".5", "+", "1.e3", "+", "3.", ";"]);
+    }
+
+    #[test]
+    fn depth_is_measured() {
+        let deep = "(".repeat(300);
+        let s = scan(&deep);
+        assert!(s.errors.iter().any(|e| matches!(e, LexError::TooDeep { .. })));
+    }
+}

@@ -1,0 +1,24 @@
+//! The front end of unimo: Modelica-subset source text to an AST with spans.
+//!
+//! Invariants: parsing never panics and never stops at the first error — it returns the
+//! tree it could build together with every diagnostic it found. This crate does no name
+//! lookup, reads no files and prints nothing.
+
+pub mod ast;
+mod build;
+pub mod dump;
+mod grammar;
+pub mod lexer;
+mod parse;
+pub mod print;
+mod validate;
+
+pub use parse::{parse_expression, Parsed};
+use unimo_source::FileId;
+
+/// Parses and syntactically validates one file.
+pub fn parse(file: FileId, text: &str) -> Parsed {
+    let mut parsed = parse::parse(file, text);
+    validate::validate(&parsed.ast, &mut parsed.diagnostics);
+    parsed
+}

@@ -1,0 +1,512 @@
+//! The parse driver: a fast pest pass, and on failure a recovering loop that reports
+//! every lexical and syntax error it can find with a coded diagnostic.
+//!
+//! Recovery keeps byte offsets intact: a broken statement is blanked out (replaced by
+//! spaces, newlines kept) and the file is parsed again; a missing `;` is repaired by
+//! turning the whitespace where it belongs into a `;`.
+
+use crate::ast::{Expr, StoredDefinition};
+use crate::build::Builder;
+use crate::grammar::{describe, ModelicaParser, Rule};
+use crate::lexer::{self, LexError, Scan, Token, TokenKind};
+use pest::error::{ErrorVariant, InputLocation};
+use pest::Parser;
+use unimo_source::{Diagnostic, FileId, Span};
+
+/// Most errors reported for one file before giving up.
+const MAX_ERRORS: usize = 25;
+
+/// A parsed file: the tree (possibly partial) and every diagnostic found.
+#[derive(Debug)]
+pub struct Parsed {
+    pub ast: StoredDefinition,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Parsed {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(|d| d.is_error())
+    }
+}
+
+/// Parses one file. Never panics; returns every error it can find.
+pub fn parse(file: FileId, text: &str) -> Parsed {
+    // The grammar is recursive; give it a roomy stack whatever thread calls us.
+    stacker::maybe_grow(1 << 20, 64 << 20, || parse_inner(file, text))
+}
+
+/// Parses a single expression (used by tests and by the flat-model reader).
+pub fn parse_expression(file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic>> {
+    stacker::maybe_grow(1 << 20, 64 << 20, || {
+        let scan = lexer::scan(text);
+        if let Some(e) = scan.errors.first() {
+            return Err(vec![lex_diagnostic(file, text, e)]);
+        }
+        let mut diags = Vec::new();
+        match ModelicaParser::parse(Rule::expression_eof, text) {
+            Ok(mut pairs) => {
+                let top = pairs.next().and_then(|p| p.into_inner().next());
+                let mut b = Builder {
+                    file,
+                    diags: &mut diags,
+                };
+                let e = match top {
+                    Some(p) => b.expression(p),
+                    None => return Err(diags),
+                };
+                if diags.is_empty() {
+                    Ok(e)
+                } else {
+                    Err(diags)
+                }
+            }
+            Err(err) => Err(vec![syntax_diagnostic(file, text, &scan, &err).0]),
+        }
+    })
+}
+
+fn parse_inner(file: FileId, text: &str) -> Parsed {
+    let empty = StoredDefinition {
+        within: None,
+        classes: Vec::new(),
+        span: Span::new(file, 0, text.len()),
+    };
+    let mut diagnostics = Vec::new();
+
+    // Fast path: most files are fine. Depth is checked first: the parser recurses.
+    let scan = lexer::scan(text);
+    if let Some(LexError::TooDeep { .. }) = scan.errors.last() {
+        if let Some(e) = scan.errors.iter().find(|e| matches!(e, LexError::TooDeep { .. })) {
+            diagnostics.push(lex_diagnostic(file, text, e));
+        }
+        return Parsed {
+            ast: empty,
+            diagnostics,
+        };
+    }
+    if scan.errors.is_empty() {
+        if let Ok(mut pairs) = ModelicaParser::parse(Rule::stored_definition, text) {
+            let ast = match pairs.next() {
+                Some(p) => Builder {
+                    file,
+                    diags: &mut diagnostics,
+                }
+                .stored_definition(p),
+                None => empty,
+            };
+            return Parsed { ast, diagnostics };
+        }
+    }
+
+    // Slow path: recover. Error detail is switched on for good (never off again, so
+    // that concurrent parses give the same messages).
+    pest::set_error_detail(true);
+    let mut masked = text.as_bytes().to_vec();
+    let mut scan = scan;
+    // 1. Lexical errors, each blanked out with the rest of its statement.
+    let mut guard = 0;
+    while let Some(err) = scan.errors.first().cloned() {
+        diagnostics.push(lex_diagnostic(file, text, &err));
+        let (start, end) = lex_region(&masked, &scan.tokens, &err);
+        blank(&mut masked, start, end);
+        guard += 1;
+        if guard >= MAX_ERRORS {
+            return Parsed {
+                ast: empty,
+                diagnostics,
+            };
+        }
+        scan = lexer::scan(as_str(&masked));
+        scan.errors.retain(|e| !matches!(e, LexError::TooDeep { .. }));
+    }
+
+    // 2. Syntax errors, each repaired or blanked out, until the file parses.
+    let mut last_region: Option<(usize, usize)> = None;
+    loop {
+        let current = as_str(&masked).to_owned();
+        match ModelicaParser::parse(Rule::stored_definition, &current) {
+            Ok(mut pairs) => {
+                let ast = match pairs.next() {
+                    Some(p) => Builder {
+                        file,
+                        diags: &mut diagnostics,
+                    }
+                    .stored_definition(p),
+                    None => empty,
+                };
+                return Parsed { ast, diagnostics };
+            }
+            Err(err) => {
+                let scan = lexer::scan(&current);
+                let (diag, fix) = syntax_diagnostic(file, &current, &scan, &err);
+                let cascade = matches!(fix, Fix::Blank(s, _) if last_region.is_some_and(|(_, le)| s <= le));
+                let fix = match (fix, cascade, last_region) {
+                    (Fix::Blank(_, e), true, Some((ls, _))) => {
+                        // Follow-on error of the last repair: widen it to whole statements.
+                        Fix::Blank(statement_start(&scan.tokens, &current, ls, true), e)
+                    }
+                    (f, _, _) => {
+                        diagnostics.push(diag);
+                        f
+                    }
+                };
+                match fix {
+                    Fix::InsertSemicolon(at) => {
+                        masked[at] = b';';
+                        last_region = None;
+                    }
+                    Fix::Blank(s, e) => {
+                        let before: usize = masked[s..e].iter().filter(|b| !b.is_ascii_whitespace()).count();
+                        if before == 0 || diagnostics.len() >= MAX_ERRORS {
+                            return Parsed {
+                                ast: empty,
+                                diagnostics,
+                            };
+                        }
+                        blank(&mut masked, s, e);
+                        last_region = Some((s, e));
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn as_str(bytes: &[u8]) -> &str {
+    // Blanking only ever writes ASCII over whole characters, so this never fails; fall
+    // back to an empty text rather than panic if it somehow did.
+    std::str::from_utf8(bytes).unwrap_or("")
+}
+
+/// Replaces `[start, end)` by spaces, keeping newlines (and so every line:col).
+fn blank(bytes: &mut [u8], start: usize, end: usize) {
+    let end = end.min(bytes.len());
+    // Never cut a UTF-8 character in half: widen to character boundaries.
+    let mut s = start.min(end);
+    while s > 0 && (bytes[s] & 0xC0) == 0x80 {
+        s -= 1;
+    }
+    let mut e = end;
+    while e < bytes.len() && (bytes[e] & 0xC0) == 0x80 {
+        e += 1;
+    }
+    for b in &mut bytes[s..e] {
+        if *b != b'\n' {
+            *b = b' ';
+        }
+    }
+}
+
+/// How the driver continues after an error.
+enum Fix {
+    InsertSemicolon(usize),
+    Blank(usize, usize),
+}
+
+fn token_text<'t>(text: &'t str, t: &Token) -> &'t str {
+    &text[t.start..t.end]
+}
+
+fn is_punct(text: &str, t: &Token, p: &str) -> bool {
+    t.kind == TokenKind::Punct && token_text(text, t) == p
+}
+
+/// Start of the statement containing `pos`: after the last `;` (or, unless `only_semi`,
+/// after a keyword that opens a list) before it.
+fn statement_start(tokens: &[Token], text: &str, pos: usize, only_semi: bool) -> usize {
+    let mut start = 0;
+    for (i, t) in tokens.iter().enumerate() {
+        if t.start >= pos {
+            break;
+        }
+        let opens = is_punct(text, t, ";")
+            || (!only_semi
+                && t.kind == TokenKind::Keyword
+                && matches!(
+                    token_text(text, t),
+                    "equation" | "algorithm" | "public" | "protected" | "then" | "loop" | "else"
+                ));
+        if opens {
+            start = tokens.get(i + 1).map_or(t.end, |n| n.start.min(pos));
+        }
+    }
+    start
+}
+
+/// End of the statement containing `pos`: just past the next `;`, or the end of text.
+fn statement_end(tokens: &[Token], text: &str, pos: usize) -> usize {
+    tokens
+        .iter()
+        .find(|t| t.start >= pos && is_punct(text, t, ";"))
+        .map_or(text.len(), |t| t.end)
+}
+
+fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) {
+    let text = as_str(bytes);
+    let (start, end) = lex_span(err);
+    let line_end = text[end.min(text.len())..]
+        .find('\n')
+        .map_or(text.len(), |k| end + k);
+    match err {
+        LexError::UnterminatedComment { .. } => (start, text.len()),
+        LexError::UnterminatedString { .. } | LexError::UnterminatedQuotedIdent { .. } => {
+            // Everything after the quote is string: blank its statement up to the line end.
+            (statement_start(tokens, text, start, true), line_end)
+        }
+        _ => {
+            let s = statement_start(tokens, text, start, true);
+            let e = statement_end(tokens, text, end);
+            (s, e.max(end))
+        }
+    }
+}
+
+fn lex_span(err: &LexError) -> (usize, usize) {
+    match *err {
+        LexError::UnexpectedChar { start, end, .. }
+        | LexError::BadEscape { start, end }
+        | LexError::MalformedNumber { start, end } => (start, end),
+        LexError::UnterminatedString { start }
+        | LexError::UnterminatedComment { start }
+        | LexError::UnterminatedQuotedIdent { start } => (start, start + 1),
+        LexError::TooDeep { start, .. } => (start, start + 1),
+    }
+}
+
+pub(crate) fn lex_diagnostic(file: FileId, text: &str, err: &LexError) -> Diagnostic {
+    let (start, end) = lex_span(err);
+    let span = Span::new(file, start.min(text.len()), end.min(text.len()));
+    match err {
+        LexError::UnexpectedChar { ch, .. } => {
+            let d = Diagnostic::error("E1001", format!("unexpected character `{}`", ch.escape_debug()))
+                .at(span, "not part of Modelica's syntax");
+            match ch {
+                '#' | '%' | '$' | '@' | '!' | '&' | '|' | '?' | '~' | '`' => {
+                    d.with_help("comments start with `//` or `/*`; logical operators are `and`, `or`, `not`")
+                }
+                '\u{2013}' | '\u{2212}' => d.with_help("this is a typographic dash; use `-`"),
+                '\u{201c}' | '\u{201d}' => d.with_help("this is a typographic quote; use `\"`"),
+                _ => d,
+            }
+        }
+        LexError::UnterminatedString { .. } => Diagnostic::error("E1002", "unterminated string literal")
+            .at(span, "this string is never closed")
+            .with_help("add the closing `\"`; a `\"` inside a string is written `\\\"`"),
+        LexError::UnterminatedComment { .. } => Diagnostic::error("E1003", "unterminated block comment")
+            .at(Span::new(file, start, (start + 2).min(text.len())), "this comment is never closed")
+            .with_help("close it with `*/`"),
+        LexError::MalformedNumber { .. } => Diagnostic::error(
+            "E1004",
+            format!("malformed number `{}`", &text[start..end.min(text.len())]),
+        )
+        .at(span, "not a valid number")
+        .with_help("numbers look like `12`, `1.5`, `.5`, `2.`, `1e-3` or `6.02E23`; a name cannot start with a digit"),
+        LexError::BadEscape { .. } => Diagnostic::error(
+            "E1005",
+            format!("invalid escape `{}` in string", &text[start..end.min(text.len())]),
+        )
+        .at(span, "unknown escape sequence")
+        .with_help("valid escapes are \\' \\\" \\? \\\\ \\a \\b \\f \\n \\r \\t \\v"),
+        LexError::UnterminatedQuotedIdent { .. } => {
+            Diagnostic::error("E1006", "unterminated quoted identifier")
+                .at(span, "this `'` is never closed on its line")
+                .with_help("quoted identifiers look like `'my name'`")
+        }
+        LexError::TooDeep { depth, .. } => Diagnostic::error(
+            "E1008",
+            format!("nesting is too deep ({depth} levels; at most {} are supported)", lexer::MAX_DEPTH),
+        )
+        .at(span, "nesting exceeds the limit here"),
+    }
+}
+
+/// Turns a pest error into a diagnostic and the repair that lets parsing continue.
+fn syntax_diagnostic(
+    file: FileId,
+    text: &str,
+    scan: &Scan,
+    err: &pest::error::Error<Rule>,
+) -> (Diagnostic, Fix) {
+    let pos = match err.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    }
+    .min(text.len());
+    let expected = expected_set(err);
+    let tokens = &scan.tokens;
+    let found_idx = tokens.partition_point(|t| t.start < pos);
+    let found = tokens.get(found_idx).filter(|t| t.start == pos);
+    let prev = found_idx.checked_sub(1).map(|i| &tokens[i]);
+    let found_desc = match found {
+        Some(t) => format!("`{}`", token_text(text, t)),
+        None if text[pos..].trim().is_empty() => "end of file".to_owned(),
+        None => format!("`{}`", text[pos..].chars().next().unwrap_or(' ')),
+    };
+    let here = Span::new(file, pos, found.map_or(pos, |t| t.end));
+    let has = |s: &str| expected.iter().any(|e| e == s);
+
+    // Missing `;` at the end of a line.
+    if has("`;`") {
+        if let Some(prev) = prev {
+            let later_line = found.is_none_or(|t| text[prev.end..t.start].contains('\n'));
+            let ends_with_space = text.as_bytes().get(prev.end).is_some_and(|b| b.is_ascii_whitespace());
+            if later_line && ends_with_space && !is_punct(text, prev, ";") {
+                let at = Span::point(file, prev.end);
+                let d = Diagnostic::error("E1101", format!("expected `;`, found {found_desc}"))
+                    .at(at, "add `;` here")
+                    .with_label(here, "the next item starts here");
+                return (d, Fix::InsertSemicolon(prev.end));
+            }
+        }
+    }
+
+    let blank = Fix::Blank(
+        statement_start(tokens, text, pos, false),
+        statement_end(tokens, text, pos),
+    );
+
+    // The file ended inside a class.
+    if found.is_none() && text[pos..].trim().is_empty() {
+        if let Some((name, span)) = unclosed_class(tokens, text) {
+            let d = Diagnostic::error("E1102", format!("unexpected end of file: class `{name}` is not closed"))
+                .at(Span::point(file, text.len()), format!("expected `end {name};` before the end of the file"))
+                .with_label(Span::new(file, span.0, span.1), "class opened here");
+            return (d, blank);
+        }
+    }
+
+    // A reserved word where a name belongs.
+    if let Some(t) = found {
+        if t.kind == TokenKind::Keyword && has("identifier") && !matches!(token_text(text, t), "end" | "equation" | "algorithm") {
+            let word = token_text(text, t);
+            let d = Diagnostic::error("E1103", format!("`{word}` is a reserved word and cannot be used as a name"))
+                .at(here, "reserved word")
+                .with_help(format!("rename it, or quote it as `'{word}'`"));
+            return (d, blank);
+        }
+    }
+
+    // An opening bracket never closed before the statement ended.
+    let closers: Vec<&str> = ["`)`", "`]`", "`}`"].into_iter().filter(|c| has(c)).collect();
+    if !closers.is_empty() && found.is_none_or(|t| is_punct(text, t, ";") || t.kind == TokenKind::Keyword) {
+        if let Some((open, span)) = unclosed_bracket(tokens, text, pos) {
+            let close = match open {
+                "(" => ")",
+                "[" => "]",
+                _ => "}",
+            };
+            let d = Diagnostic::error("E1104", format!("unclosed `{open}`: expected `{close}`, found {found_desc}"))
+                .at(here, format!("expected `{close}` before this"))
+                .with_label(Span::new(file, span.0, span.1), "opened here");
+            return (d, blank);
+        }
+    }
+
+    let mut msg = if expected.is_empty() {
+        format!("unexpected {found_desc}")
+    } else {
+        format!("expected {}, found {found_desc}", join_expected(&expected))
+    };
+    if found.is_some_and(|t| token_text(text, t) == "when") {
+        msg.push_str(" (a `when` is not allowed here)");
+    }
+    let d = Diagnostic::error("E1100", msg).at(here, "unexpected here");
+    (d, blank)
+}
+
+/// The expected rules and tokens of a pest error as readable, ordered, deduplicated names.
+fn expected_set(err: &pest::error::Error<Rule>) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut push = |s: String| {
+        if !out.contains(&s) {
+            out.push(s);
+        }
+    };
+    if let ErrorVariant::ParsingError { positives, .. } = &err.variant {
+        for r in positives {
+            if let Some(d) = describe(*r) {
+                push(d.to_owned());
+            }
+        }
+    }
+    if let Some(attempts) = err.parse_attempts() {
+        for t in attempts.expected_tokens() {
+            {
+                let token = t.to_string();
+                let ok_punct = matches!(
+                    token.as_str(),
+                    "(" | ")" | "[" | "]" | "{" | "}" | "," | ";" | "=" | ":=" | ":" | "."
+                );
+                let ok_word = token.len() >= 2 && token.chars().all(|c| c.is_ascii_lowercase());
+                if ok_punct || ok_word {
+                    push(format!("`{token}`"));
+                }
+            }
+        }
+    }
+    // Most useful first.
+    let rank = |s: &str| match s {
+        "`;`" => 0,
+        "`)`" | "`]`" | "`}`" => 1,
+        "`=`" | "`:=`" => 2,
+        "identifier" | "expression" | "equation" | "statement" | "declaration" => 3,
+        "`end`" => 4,
+        _ => 5,
+    };
+    out.sort_by_key(|s| rank(s));
+    out
+}
+
+fn join_expected(items: &[String]) -> String {
+    const SHOWN: usize = 6;
+    let shown: Vec<&str> = items.iter().take(SHOWN).map(String::as_str).collect();
+    let mut s = match shown.len() {
+        1 => shown[0].to_owned(),
+        n => format!("{} or {}", shown[..n - 1].join(", "), shown[n - 1]),
+    };
+    if items.len() > SHOWN {
+        s.push_str(", ...");
+    }
+    s
+}
+
+/// The innermost class whose `end` was never reached: its name and header span.
+fn unclosed_class(tokens: &[Token], text: &str) -> Option<(String, (usize, usize))> {
+    let mut stack: Vec<(String, (usize, usize))> = Vec::new();
+    let word = |i: usize| tokens.get(i).map(|t| token_text(text, t));
+    for i in 0..tokens.len() {
+        let w = token_text(text, &tokens[i]);
+        let class_kw = matches!(
+            w,
+            "model" | "block" | "connector" | "record" | "package" | "function" | "type" | "class"
+        );
+        if class_kw && tokens[i].kind == TokenKind::Keyword {
+            if let Some(n) = tokens.get(i + 1).filter(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent)) {
+                if word(i + 2) != Some("=") {
+                    stack.push((token_text(text, n).to_owned(), (tokens[i].start, n.end)));
+                }
+            }
+        } else if w == "end" && tokens[i].kind == TokenKind::Keyword {
+            if tokens.get(i + 1).is_some_and(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent)) {
+                stack.pop();
+            }
+        }
+    }
+    stack.pop()
+}
+
+/// The innermost bracket still open at `pos`.
+fn unclosed_bracket<'t>(tokens: &[Token], text: &'t str, pos: usize) -> Option<(&'t str, (usize, usize))> {
+    let mut stack: Vec<(&str, (usize, usize))> = Vec::new();
+    for t in tokens.iter().take_while(|t| t.start < pos) {
+        match token_text(text, t) {
+            s @ ("(" | "[" | "{") if t.kind == TokenKind::Punct => stack.push((s, (t.start, t.end))),
+            ")" | "]" | "}" if t.kind == TokenKind::Punct => {
+                stack.pop();
+            }
+            ";" if t.kind == TokenKind::Punct => stack.clear(),
+            _ => {}
+        }
+    }
+    stack.pop()
+}

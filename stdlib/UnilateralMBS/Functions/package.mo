@@ -1,0 +1,3 @@
+within UnilateralMBS;
+package Functions "Quaternion helper functions"
+end Functions;

@@ -1,0 +1,44 @@
+// Operator precedence and associativity, unary operators, element-wise
+// operators, relational and logical operators.
+model Precedence
+  parameter Real a = 2;
+  parameter Real b = 3;
+  parameter Real c = 4;
+  parameter Integer n = 5;
+  parameter Real v1[3] = {1, 2, 3};
+  parameter Real v2[3] = {4, 5, 6};
+  parameter Real M[2, 2] = [1, 2; 3, 4];
+  Real r1 = a + b * c "a + (b * c) = 14";
+  Real r2 = (a + b) * c "20";
+  Real r3 = -a ^ 2 "-(a ^ 2) = -4";
+  Real r4 = a - b - c "(a - b) - c = -5";
+  Real r5 = a / b / c "(a / b) / c";
+  Real r6 = 2 * a ^ 2 / b "(2 * (a ^ 2)) / b";
+  Real r7 = (a ^ b) ^ 2 "chained powers need parentheses";
+  Real r8 = a * (-b) "unary minus inside parentheses";
+  Real r9 = -a + b "(-a) + b";
+  Real r10 = +a - b "unary plus";
+  Real r11 = a - (-b) * c;
+  Real e1[3] = v1 .+ v2;
+  Real e2[3] = v1 .- v2;
+  Real e3[3] = v1 .* v2;
+  Real e4[3] = v1 ./ v2;
+  Real e5[3] = v1 .^ 2;
+  Real e6[3] = 2 .* v1 .+ 1 "(2 .* v1) .+ 1";
+  Real e7[2, 2] = M .* M + M * M "element-wise and matrix product";
+  Real e8[3] = v1 .^ v2 ./ 10;
+  Real dot = v1 * v2 "scalar product";
+  Real scaled[3] = -v1 / 2 + a * v2;
+  Boolean l1 = a < b and b < c;
+  Boolean l2 = a <= b or not b >= c "not binds looser than relations";
+  Boolean l3 = a == 2 and b <> 2;
+  Boolean l4 = not a > b and c > b or a == c "((not (a > b)) and (c > b)) or (a == c)";
+  Boolean l5 = a + 1 > b * 2 "arithmetic binds tighter than relations";
+  Boolean l6 = not (a > b or c > b);
+  Boolean l7 = (a > b) == (c > b);
+  Real cond1 = if a > b then a else b + 1 "else branch is b + 1";
+  Real cond2 = 1 + (if a > b then a else b);
+  Integer rng1[3] = 1:n - 2 "1:(n - 2)";
+  Integer rng2[3] = 1:2:n;
+  Real rng3[4] = 0.5 * (1:4);
+end Precedence;
