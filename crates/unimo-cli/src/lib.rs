@@ -78,7 +78,19 @@ enum Stage {
 }
 
 /// Runs the command line and returns the process exit code.
+///
+/// The work runs on a thread with a large stack: the compiler's passes are recursive
+/// over expression trees, and generated models can nest deeply.
 pub fn run() -> i32 {
+    std::thread::Builder::new()
+        .name("unimo".into())
+        .stack_size(512 << 20)
+        .spawn(run_on_this_thread)
+        .map(|h| h.join().unwrap_or(EXIT_SIMULATION_FAILURE + 1))
+        .unwrap_or_else(|_| run_on_this_thread())
+}
+
+fn run_on_this_thread() -> i32 {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

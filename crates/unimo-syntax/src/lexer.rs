@@ -113,6 +113,9 @@ pub fn is_keyword(word: &str) -> bool {
 /// Nesting beyond this is refused before parsing (the parser is recursive).
 pub const MAX_DEPTH: usize = 200;
 
+/// Operators in one statement beyond this are refused (the tree they build is as deep).
+pub const MAX_OPERATORS: usize = 20_000;
+
 fn is_ident_start(b: u8) -> bool {
     b.is_ascii_alphabetic() || b == b'_'
 }
@@ -128,6 +131,11 @@ pub fn scan(text: &str) -> Scan {
     let mut depth = 0usize;
     let mut ifs_since_semi = 0usize;
     let mut too_deep_reported = false;
+    // Unary operators in a row (`- - - x`) nest like brackets; an operand ends the run.
+    let mut unary_run = 0usize;
+    let mut after_operand = false;
+    // Binary operators in one statement build one deep tree.
+    let mut ops_in_statement = 0usize;
     let mut i = 0;
     while i < bytes.len() {
         let b = bytes[i];
@@ -165,6 +173,8 @@ pub fn scan(text: &str) -> Scan {
                         LexError::UnterminatedQuotedIdent { start }
                     });
                 }
+                unary_run = 0;
+                after_operand = true;
                 let kind = if b == b'"' {
                     TokenKind::String
                 } else {
@@ -187,6 +197,17 @@ pub fn scan(text: &str) -> Scan {
                 if word == "if" {
                     ifs_since_semi += 1;
                 }
+                match word {
+                    "not" => unary_run += 1,
+                    "and" | "or" => {
+                        ops_in_statement += 1;
+                        after_operand = false;
+                    }
+                    _ => {
+                        unary_run = 0;
+                        after_operand = kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
+                    }
+                }
                 out.tokens.push(Token {
                     kind,
                     start,
@@ -196,6 +217,8 @@ pub fn scan(text: &str) -> Scan {
             _ if b.is_ascii_digit()
                 || (b == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit())) =>
             {
+                unary_run = 0;
+                after_operand = true;
                 let (end, ok) = scan_number(bytes, i);
                 if !ok {
                     out.errors.push(LexError::MalformedNumber { start, end });
@@ -222,9 +245,20 @@ pub fn scan(text: &str) -> Scan {
                 match b {
                     b'(' | b'[' | b'{' => depth += 1,
                     b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-                    b';' => ifs_since_semi = 0,
+                    b';' => {
+                        ifs_since_semi = 0;
+                        ops_in_statement = 0;
+                    }
                     _ => {}
                 }
+                if matches!(b, b'-' | b'+') && len == 1 && !after_operand {
+                    unary_run += 1;
+                } else if matches!(b, b')' | b']' | b'}') {
+                    unary_run = 0;
+                } else if !matches!(b, b'(' | b'[' | b'{' | b';' | b',') {
+                    ops_in_statement += 1;
+                }
+                after_operand = matches!(b, b')' | b']' | b'}');
                 out.tokens.push(Token {
                     kind: TokenKind::Punct,
                     start,
@@ -233,7 +267,11 @@ pub fn scan(text: &str) -> Scan {
                 i += len;
             }
         }
-        let d = depth + ifs_since_semi;
+        if ops_in_statement > MAX_OPERATORS && !too_deep_reported {
+            too_deep_reported = true;
+            out.errors.push(LexError::TooDeep { start, depth: ops_in_statement });
+        }
+        let d = depth + ifs_since_semi + unary_run;
         if d > out.max_depth {
             out.max_depth = d;
             if d > MAX_DEPTH && !too_deep_reported {

@@ -75,10 +75,8 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
 
     // Fast path: most files are fine. Depth is checked first: the parser recurses.
     let scan = lexer::scan(text);
-    if let Some(LexError::TooDeep { .. }) = scan.errors.last() {
-        if let Some(e) = scan.errors.iter().find(|e| matches!(e, LexError::TooDeep { .. })) {
-            diagnostics.push(lex_diagnostic(file, text, e));
-        }
+    if let Some(e) = scan.errors.iter().find(|e| matches!(e, LexError::TooDeep { .. })) {
+        diagnostics.push(lex_diagnostic(file, text, e));
         return Parsed {
             ast: empty,
             diagnostics,
@@ -110,7 +108,9 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
         let (start, end) = lex_region(&masked, &scan.tokens, &err);
         blank(&mut masked, start, end);
         guard += 1;
-        if guard >= MAX_ERRORS {
+        // Blanked to the end (an unclosed comment): anything further would be a
+        // consequence of this error, not a new one.
+        if guard >= MAX_ERRORS || end >= masked.len() {
             return Parsed {
                 ast: empty,
                 diagnostics,
@@ -139,7 +139,14 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
             Err(err) => {
                 let scan = lexer::scan(&current);
                 let (diag, fix) = syntax_diagnostic(file, &current, &scan, &err);
-                let cascade = matches!(fix, Fix::Blank(s, _) if last_region.is_some_and(|(_, le)| s <= le));
+                // An error whose statement starts where the last blanked region ended is
+                // a follow-on of that repair, not a new mistake.
+                // (A dangling `end`/`else` right after it is the tail of the blanked block.)
+                let cascade = matches!(fix, Fix::Blank(s, _) if last_region.is_some_and(|(_, le)| {
+                    s <= le
+                        || (masked[le..s.min(masked.len())].iter().all(u8::is_ascii_whitespace)
+                            && starts_block_tail(&current[s.min(current.len())..]))
+                }));
                 let fix = match (fix, cascade, last_region) {
                     (Fix::Blank(_, e), true, Some((ls, _))) => {
                         // Follow-on error of the last repair: widen it to whole statements.
@@ -170,6 +177,11 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
             }
         }
     }
+}
+
+fn starts_block_tail(rest: &str) -> bool {
+    let word: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+    matches!(word.as_str(), "end" | "else" | "elseif" | "elsewhen")
 }
 
 fn as_str(bytes: &[u8]) -> &str {
@@ -244,6 +256,7 @@ fn statement_end(tokens: &[Token], text: &str, pos: usize) -> usize {
 fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) {
     let text = as_str(bytes);
     let (start, end) = lex_span(err);
+    let line_start = text[..start.min(text.len())].rfind('\n').map_or(0, |k| k + 1);
     let line_end = text[end.min(text.len())..]
         .find('\n')
         .map_or(text.len(), |k| end + k);
@@ -251,10 +264,10 @@ fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) 
         LexError::UnterminatedComment { .. } => (start, text.len()),
         LexError::UnterminatedString { .. } | LexError::UnterminatedQuotedIdent { .. } => {
             // Everything after the quote is string: blank its statement up to the line end.
-            (statement_start(tokens, text, start, true), line_end)
+            (statement_start(tokens, text, start, false).max(line_start), line_end)
         }
         _ => {
-            let s = statement_start(tokens, text, start, true);
+            let s = statement_start(tokens, text, start, false).max(line_start);
             let e = statement_end(tokens, text, end);
             (s, e.max(end))
         }
@@ -312,6 +325,12 @@ pub(crate) fn lex_diagnostic(file: FileId, text: &str, err: &LexError) -> Diagno
                 .at(span, "this `'` is never closed on its line")
                 .with_help("quoted identifiers look like `'my name'`")
         }
+        LexError::TooDeep { depth, .. } if *depth > lexer::MAX_OPERATORS => Diagnostic::error(
+            "E1008",
+            format!("expression too long (more than {} operators in one statement)", lexer::MAX_OPERATORS),
+        )
+        .at(span, "the limit is exceeded here")
+        .with_help("split it with intermediate variables, or use `sum(...)` over an array"),
         LexError::TooDeep { depth, .. } => Diagnostic::error(
             "E1008",
             format!("nesting is too deep ({depth} levels; at most {} are supported)", lexer::MAX_DEPTH),
@@ -444,13 +463,29 @@ fn expected_set(err: &pest::error::Error<Rule>) -> Vec<String> {
             }
         }
     }
+    // Tokens that merely start an expression or a class add noise next to those words.
+    let has_expression = out.iter().any(|e| e == "expression");
+    let has_class = out.iter().any(|e| e == "class definition");
+    let has_operator = out.iter().any(|e| e == "operator");
+    if has_operator {
+        out.retain(|e| e != "`and`" && e != "`or`");
+    }
+    if has_expression {
+        let starts = ["`end`", "`(`", "`.`", "`[`", "`{`", "`der`", "`initial`", "`pure`", "`not`", "`true`", "`false`", "`if`", "`function`", "`-`", "`+`", "string", "number", "identifier", "component reference"];
+        out.retain(|e| !starts.contains(&e.as_str()));
+    }
+    if has_class {
+        let starts = ["`block`", "`class`", "`connector`", "`encapsulated`", "`final`", "`function`", "`model`", "`package`", "`partial`", "`record`", "`type`"];
+        out.retain(|e| !starts.contains(&e.as_str()));
+    }
     // Most useful first.
     let rank = |s: &str| match s {
         "`;`" => 0,
-        "`)`" | "`]`" | "`}`" => 1,
+        "`)`" | "`]`" | "`}`" | "`then`" | "`loop`" | "`in`" => 1,
         "`=`" | "`:=`" => 2,
         "identifier" | "expression" | "equation" | "statement" | "declaration" => 3,
         "`end`" => 4,
+        "operator" => 6,
         _ => 5,
     };
     out.sort_by_key(|s| rank(s));

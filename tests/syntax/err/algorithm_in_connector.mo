@@ -1,0 +1,5 @@
+connector C
+  Real v;
+algorithm
+  v := 1;
+end C;

@@ -1,0 +1,5 @@
+model A
+  Real x = 1;
+equation
+  assert(x > 0);
+end A;

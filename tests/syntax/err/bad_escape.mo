@@ -1,0 +1,3 @@
+model A
+  String s = "tab\qhere";
+end A;

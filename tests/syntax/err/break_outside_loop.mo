@@ -1,0 +1,7 @@
+function f
+  input Real x;
+  output Real y;
+algorithm
+  y := x;
+  break;
+end f;

@@ -1,0 +1,5 @@
+model A
+  Real x;
+equation
+  der(x, 2) = 1;
+end A;

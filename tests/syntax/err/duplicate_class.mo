@@ -1,0 +1,6 @@
+package P
+  model A
+  end A;
+  model A
+  end A;
+end P;

@@ -1,0 +1,1 @@
+type State = enumeration(Flight, Sliding, Flight);

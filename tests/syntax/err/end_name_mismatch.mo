@@ -1,0 +1,5 @@
+model Tank
+  Real h;
+equation
+  der(h) = -h;
+end Tnak;

@@ -1,0 +1,6 @@
+function f
+  input Real x;
+  output Real y;
+equation
+  y = 2 * x;
+end f;

@@ -1,0 +1,5 @@
+record R
+  Real a;
+equation
+  a = 1;
+end R;

@@ -1,0 +1,3 @@
+model A
+  Integer n = 99999999999999999999;
+end A;

@@ -1,0 +1,3 @@
+model A
+  Real loop;
+end A;

@@ -1,0 +1,4 @@
+model A
+  Real 2x;
+equation
+end A;

@@ -1,0 +1,3 @@
+model A
+  Real x = 1e999;
+end A;

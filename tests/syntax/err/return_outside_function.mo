@@ -1,0 +1,6 @@
+model A
+  Real x;
+algorithm
+  x := 1;
+  return;
+end A;

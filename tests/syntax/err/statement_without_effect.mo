@@ -1,0 +1,5 @@
+model A
+  Real x;
+algorithm
+  x;
+end A;

@@ -1,0 +1,3 @@
+model A
+  Real 'my var;
+end A;

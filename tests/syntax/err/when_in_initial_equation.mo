@@ -1,0 +1,9 @@
+model A
+  Real x;
+initial equation
+  when time > 1 then
+    x = 1;
+  end when;
+equation
+  der(x) = 0;
+end A;

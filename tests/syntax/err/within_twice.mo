@@ -1,0 +1,4 @@
+within A;
+within B;
+model M
+end M;
