@@ -16,7 +16,9 @@ fn manifest_dir() -> PathBuf {
 
 /// The path as written relative to the repository root (stable in snapshots).
 fn relative(path: &Path) -> PathBuf {
-    path.strip_prefix(manifest_dir()).unwrap_or(path).to_path_buf()
+    path.strip_prefix(manifest_dir())
+        .unwrap_or(path)
+        .to_path_buf()
 }
 
 fn load(path: &Path) -> (SourceMap, unimo_source::FileId) {
@@ -36,7 +38,12 @@ fn ok_corpus_parses_cleanly() {
             .iter()
             .map(|d| unimo_cli::render::render_plain(d, &map))
             .collect();
-        assert!(rendered.is_empty(), "{}:\n{}", path.display(), rendered.join("\n"));
+        assert!(
+            rendered.is_empty(),
+            "{}:\n{}",
+            path.display(),
+            rendered.join("\n")
+        );
         insta::assert_snapshot!(unimo_syntax::dump::dump(&parsed.ast, map.get(id)));
     });
 }
@@ -66,7 +73,9 @@ fn err_corpus_reports_the_right_code_at_the_right_place() {
             .diagnostics
             .iter()
             .map(|d| {
-                let span = d.primary_span().expect("every diagnostic has a primary label");
+                let span = d
+                    .primary_span()
+                    .expect("every diagnostic has a primary label");
                 format!("{} @{}", d.code, map.get(id).line_col(span.start as usize))
             })
             .collect();
@@ -82,7 +91,11 @@ fn err_corpus_reports_the_right_code_at_the_right_place() {
         insta::assert_snapshot!(rendered);
         seen += 1;
     });
-    assert_eq!(seen, manifest.len(), "expected.txt lists files that do not exist");
+    assert_eq!(
+        seen,
+        manifest.len(),
+        "expected.txt lists files that do not exist"
+    );
 }
 
 #[test]
@@ -96,16 +109,24 @@ fn err_corpus_covers_at_least_40_cases_and_20_codes() {
         .collect();
     codes.sort_unstable();
     codes.dedup();
-    assert!(codes.len() >= 20, "only {} distinct codes: {codes:?}", codes.len());
+    assert!(
+        codes.len() >= 20,
+        "only {} distinct codes: {codes:?}",
+        codes.len()
+    );
 }
 
 #[test]
 fn every_code_used_is_documented() {
-    let doc = std::fs::read_to_string(manifest_dir().join("docs/errors.md")).expect("docs/errors.md");
+    let doc =
+        std::fs::read_to_string(manifest_dir().join("docs/errors.md")).expect("docs/errors.md");
     for codes in expected_manifest().values() {
         for c in codes {
             let code = c.split_whitespace().next().unwrap();
-            assert!(doc.contains(&format!("`{code}`")), "{code} is not in docs/errors.md");
+            assert!(
+                doc.contains(&format!("`{code}`")),
+                "{code} is not in docs/errors.md"
+            );
         }
     }
 }
@@ -123,16 +144,29 @@ fn check_exits_1_on_every_error_file_and_0_on_the_ok_corpus() {
             .arg(err_dir.join(name))
             .output()
             .unwrap();
-        assert_eq!(out.status.code(), Some(1), "{name}: {}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!(
+            out.status.code(),
+            Some(1),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(stderr.contains(&format!("{name}:")), "{name}: no file:line:col in\n{stderr}");
+        assert!(
+            stderr.contains(&format!("{name}:")),
+            "{name}: no file:line:col in\n{stderr}"
+        );
     }
     let out = unimo()
         .args(["check", "stdlib", "models", "tests/syntax/ok"])
         .current_dir(manifest_dir())
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -158,7 +192,8 @@ fn expressions_round_trip_through_the_printer() {
                     ElementKind::Class(c) => collect(c, out),
                     ElementKind::Component(cc) => {
                         for d in &cc.components {
-                            if let Some(b) = d.modification.as_ref().and_then(|m| m.binding.clone()) {
+                            if let Some(b) = d.modification.as_ref().and_then(|m| m.binding.clone())
+                            {
                                 out.push(b);
                             }
                         }

@@ -88,7 +88,13 @@ pub fn check(paths: &[PathBuf], stats: bool, color: bool) -> i32 {
         let id = map.add(path.clone(), text);
         let parsed = unimo_syntax::parse(id, map.get(id).text());
         n_classes += count_classes(&parsed.ast);
-        report(&parsed.diagnostics, &map, color, &mut n_errors, &mut n_warnings);
+        report(
+            &parsed.diagnostics,
+            &map,
+            color,
+            &mut n_errors,
+            &mut n_warnings,
+        );
     }
     let elapsed = started.elapsed();
     if stats {
@@ -113,13 +119,23 @@ pub fn check(paths: &[PathBuf], stats: bool, color: bool) -> i32 {
         eprintln!(
             "checked {}: no errors{}",
             plural(files.len(), "file"),
-            if n_warnings > 0 { format!(", {}", plural(n_warnings, "warning")) } else { String::new() }
+            if n_warnings > 0 {
+                format!(", {}", plural(n_warnings, "warning"))
+            } else {
+                String::new()
+            }
         );
         EXIT_OK
     }
 }
 
-fn report(diags: &[Diagnostic], map: &SourceMap, color: bool, errors: &mut usize, warnings: &mut usize) {
+fn report(
+    diags: &[Diagnostic],
+    map: &SourceMap,
+    color: bool,
+    errors: &mut usize,
+    warnings: &mut usize,
+) {
     emit_stderr(diags, map, color);
     for d in diags {
         if d.is_error() {

@@ -17,6 +17,8 @@ pub const EXIT_OK: i32 = 0;
 pub const EXIT_MODEL_ERROR: i32 = 1;
 /// Exit code: the command line was wrong (unknown flag, missing file).
 pub const EXIT_USAGE: i32 = 2;
+/// Exit code: an internal error (a bug in unimo; the panic message says where).
+pub const EXIT_INTERNAL: i32 = 101;
 /// Exit code: a simulation failed.
 pub const EXIT_SIMULATION_FAILURE: i32 = 3;
 
@@ -86,7 +88,7 @@ pub fn run() -> i32 {
         .name("unimo".into())
         .stack_size(512 << 20)
         .spawn(run_on_this_thread)
-        .map(|h| h.join().unwrap_or(EXIT_SIMULATION_FAILURE + 1))
+        .map(|h| h.join().unwrap_or(EXIT_INTERNAL))
         .unwrap_or_else(|_| run_on_this_thread())
 }
 

@@ -1,7 +1,9 @@
 //! Renders [`unimo_source::Diagnostic`]s as text with the source line, a caret and
 //! `file:line:col` (codespan-reporting). The only place diagnostics become text.
 
-use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label as CsLabel, LabelStyle, Severity as CsSeverity};
+use codespan_reporting::diagnostic::{
+    Diagnostic as CsDiagnostic, Label as CsLabel, LabelStyle, Severity as CsSeverity,
+};
 use codespan_reporting::files::{Error as FilesError, Files};
 use codespan_reporting::term::{self, termcolor};
 use std::ops::Range;
@@ -28,7 +30,9 @@ impl<'m> Files<'m> for MapFiles<'m> {
     fn line_index(&'m self, id: FileId, byte_index: usize) -> Result<usize, FilesError> {
         self.check(id)?;
         let starts = self.0.get(id).line_starts();
-        Ok(starts.partition_point(|&s| s as usize <= byte_index).saturating_sub(1))
+        Ok(starts
+            .partition_point(|&s| s as usize <= byte_index)
+            .saturating_sub(1))
     }
 
     fn line_range(&'m self, id: FileId, line_index: usize) -> Result<Range<usize>, FilesError> {
@@ -95,8 +99,14 @@ fn config() -> term::Config {
 /// Renders one diagnostic without colour (for files, pipes and snapshot tests).
 pub fn render_plain(d: &Diagnostic, map: &SourceMap) -> String {
     let files = MapFiles(map);
-    term::emit_into_string(&config(), &files, &convert(d, map))
-        .unwrap_or_else(|e| format!("{}[{}]: {} (could not show source: {e})\n", severity_word(d.severity), d.code, d.message))
+    term::emit_into_string(&config(), &files, &convert(d, map)).unwrap_or_else(|e| {
+        format!(
+            "{}[{}]: {} (could not show source: {e})\n",
+            severity_word(d.severity),
+            d.code,
+            d.message
+        )
+    })
 }
 
 fn severity_word(s: Severity) -> &'static str {

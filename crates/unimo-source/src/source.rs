@@ -171,7 +171,11 @@ impl SourceMap {
     /// `path:line:col` of a span's start.
     pub fn location(&self, span: Span) -> String {
         let file = self.get(span.file);
-        format!("{}:{}", file.path().display(), file.line_col(span.start as usize))
+        format!(
+            "{}:{}",
+            file.path().display(),
+            file.line_col(span.start as usize)
+        )
     }
 }
 

@@ -313,13 +313,27 @@ pub struct Equation {
 #[derive(Clone, Debug, PartialEq)]
 pub enum EquationKind {
     /// `lhs = rhs`
-    Simple { lhs: Expr, rhs: Expr },
+    Simple {
+        lhs: Expr,
+        rhs: Expr,
+    },
     /// A bare call such as `reinit(x, 0)` or `assert(c, "msg")`.
     Call(Expr),
-    Connect { a: ComponentRef, b: ComponentRef },
-    If { branches: Vec<(Expr, Vec<Equation>)>, otherwise: Vec<Equation> },
-    For { indices: Vec<ForIndex>, body: Vec<Equation> },
-    When { branches: Vec<(Expr, Vec<Equation>)> },
+    Connect {
+        a: ComponentRef,
+        b: ComponentRef,
+    },
+    If {
+        branches: Vec<(Expr, Vec<Equation>)>,
+        otherwise: Vec<Equation>,
+    },
+    For {
+        indices: Vec<ForIndex>,
+        body: Vec<Equation>,
+    },
+    When {
+        branches: Vec<(Expr, Vec<Equation>)>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -338,15 +352,32 @@ pub struct Statement {
 #[derive(Clone, Debug, PartialEq)]
 pub enum StatementKind {
     /// `target := value`
-    Assign { target: ComponentRef, value: Expr },
+    Assign {
+        target: ComponentRef,
+        value: Expr,
+    },
     /// `(a, , b) := f(x)`
-    MultiAssign { targets: Vec<Option<Expr>>, value: Expr },
+    MultiAssign {
+        targets: Vec<Option<Expr>>,
+        value: Expr,
+    },
     /// `f(x);`
     Call(Expr),
-    If { branches: Vec<(Expr, Vec<Statement>)>, otherwise: Vec<Statement> },
-    For { indices: Vec<ForIndex>, body: Vec<Statement> },
-    While { condition: Expr, body: Vec<Statement> },
-    When { branches: Vec<(Expr, Vec<Statement>)> },
+    If {
+        branches: Vec<(Expr, Vec<Statement>)>,
+        otherwise: Vec<Statement>,
+    },
+    For {
+        indices: Vec<ForIndex>,
+        body: Vec<Statement>,
+    },
+    While {
+        condition: Expr,
+        body: Vec<Statement>,
+    },
+    When {
+        branches: Vec<(Expr, Vec<Statement>)>,
+    },
     Return,
     Break,
 }
@@ -430,15 +461,35 @@ pub enum ExprKind {
     String(String),
     Ref(ComponentRef),
     /// `f(args)`, including `der(x)` and `initial()`.
-    Call { func: Name, args: CallArgs },
-    Unary { op: UnaryOp, operand: Box<Expr> },
-    Binary { op: BinaryOp, lhs: Box<Expr>, rhs: Box<Expr> },
-    If { branches: Vec<(Expr, Expr)>, otherwise: Box<Expr> },
-    Range { start: Box<Expr>, step: Option<Box<Expr>>, stop: Box<Expr> },
+    Call {
+        func: Name,
+        args: CallArgs,
+    },
+    Unary {
+        op: UnaryOp,
+        operand: Box<Expr>,
+    },
+    Binary {
+        op: BinaryOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+    If {
+        branches: Vec<(Expr, Expr)>,
+        otherwise: Box<Expr>,
+    },
+    Range {
+        start: Box<Expr>,
+        step: Option<Box<Expr>>,
+        stop: Box<Expr>,
+    },
     /// `{a, b, c}`
     Array(Vec<Expr>),
     /// `{e for i in r}`
-    Comprehension { body: Box<Expr>, indices: Vec<ForIndex> },
+    Comprehension {
+        body: Box<Expr>,
+        indices: Vec<ForIndex>,
+    },
     /// `[a, b; c, d]`
     Matrix(Vec<Vec<Expr>>),
     /// `(a, , b)` — only as the target list of a multiple assignment or `(x)`.
@@ -446,7 +497,10 @@ pub enum ExprKind {
     /// `end` inside a subscript.
     End,
     /// `function f(a = 1)` passed as a functional argument.
-    PartialApplication { func: Name, args: Vec<NamedArg> },
+    PartialApplication {
+        func: Name,
+        args: Vec<NamedArg>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -91,7 +91,10 @@ impl Builder<'_> {
         self.diags.push(
             Diagnostic::error(
                 "E1999",
-                format!("internal error: unexpected `{:?}` in the parse tree", pair.as_rule()),
+                format!(
+                    "internal error: unexpected `{:?}` in the parse tree",
+                    pair.as_rule()
+                ),
             )
             .at(span, "here")
             .with_note("this is a bug in unimo; please report it with this file"),
@@ -545,7 +548,9 @@ impl Builder<'_> {
                         clause.components.push(self.component_declaration(d));
                     }
                 }
-                Rule::component_declaration1 => clause.components.push(self.component_declaration(p)),
+                Rule::component_declaration1 => {
+                    clause.components.push(self.component_declaration(p))
+                }
                 _ => self.internal(&p),
             }
         }
@@ -978,10 +983,7 @@ impl Builder<'_> {
             }
             Rule::multi_assign => {
                 let mut it = pair.into_inner();
-                let targets = it
-                    .next()
-                    .map(|p| self.output_list(p))
-                    .unwrap_or_default();
+                let targets = it.next().map(|p| self.output_list(p)).unwrap_or_default();
                 let func = it.next().map(|p| self.component_reference(p));
                 let args = it.next().map(|p| self.call_args(p)).unwrap_or_default();
                 let value = match func {
@@ -1099,7 +1101,8 @@ impl Builder<'_> {
                 }
             }
             Rule::simple_expression => {
-                let mut parts: Vec<Expr> = pair.into_inner().map(|p| self.operand_expr(p)).collect();
+                let mut parts: Vec<Expr> =
+                    pair.into_inner().map(|p| self.operand_expr(p)).collect();
                 match parts.len() {
                     1 => parts.pop().unwrap_or_else(|| empty(span)),
                     2 => {

@@ -81,14 +81,22 @@ impl Dumper<'_> {
         for s in &comp.sections {
             match s {
                 Section::Equation(es) => {
-                    let head = if es.initial { "initial equation" } else { "equation" };
+                    let head = if es.initial {
+                        "initial equation"
+                    } else {
+                        "equation"
+                    };
                     self.line(depth, head, Some(es.span));
                     for eq in &es.equations {
                         self.equation(eq, depth + 1);
                     }
                 }
                 Section::Algorithm(al) => {
-                    let head = if al.initial { "initial algorithm" } else { "algorithm" };
+                    let head = if al.initial {
+                        "initial algorithm"
+                    } else {
+                        "algorithm"
+                    };
                     self.line(depth, head, Some(al.span));
                     for st in &al.statements {
                         self.statement(st, depth + 1);
@@ -119,7 +127,11 @@ impl Dumper<'_> {
             }
         }
         let constrained = e.constrainedby.as_ref().map(|c| {
-            let m = c.modification.as_ref().map(print::class_modification).unwrap_or_default();
+            let m = c
+                .modification
+                .as_ref()
+                .map(print::class_modification)
+                .unwrap_or_default();
             format!(" constrainedby {}{m}", c.base.to_dotted())
         });
         match &e.kind {
@@ -138,7 +150,11 @@ impl Dumper<'_> {
                 self.line(depth, &format!("{prefix}{text}"), Some(e.span));
             }
             ElementKind::Extends(x) => {
-                let m = x.modification.as_ref().map(print::class_modification).unwrap_or_default();
+                let m = x
+                    .modification
+                    .as_ref()
+                    .map(print::class_modification)
+                    .unwrap_or_default();
                 let text = format!("{prefix}extends {}{m}", x.base.to_dotted());
                 self.line(depth, &text, Some(e.span));
             }
@@ -177,7 +193,10 @@ impl Dumper<'_> {
                 let text = format!("connect({}, {}){c}", print::cref(a), print::cref(b));
                 self.line(depth, &text, Some(eq.span));
             }
-            EquationKind::If { branches, otherwise } => {
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => {
                 for (i, (cond, body)) in branches.iter().enumerate() {
                     let kw = if i == 0 { "if" } else { "elseif" };
                     let span = (i == 0).then_some(eq.span);
@@ -234,7 +253,10 @@ impl Dumper<'_> {
                 let text = print::expr(e);
                 self.line(depth, &text, Some(st.span));
             }
-            StatementKind::If { branches, otherwise } => {
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => {
                 for (i, (cond, body)) in branches.iter().enumerate() {
                     let kw = if i == 0 { "if" } else { "elseif" };
                     let span = (i == 0).then_some(st.span);

@@ -205,7 +205,8 @@ pub fn scan(text: &str) -> Scan {
                     }
                     _ => {
                         unary_run = 0;
-                        after_operand = kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
+                        after_operand =
+                            kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
                     }
                 }
                 out.tokens.push(Token {
@@ -269,7 +270,10 @@ pub fn scan(text: &str) -> Scan {
         }
         if ops_in_statement > MAX_OPERATORS && !too_deep_reported {
             too_deep_reported = true;
-            out.errors.push(LexError::TooDeep { start, depth: ops_in_statement });
+            out.errors.push(LexError::TooDeep {
+                start,
+                depth: ops_in_statement,
+            });
         }
         let d = depth + ifs_since_semi + unary_run;
         if d > out.max_depth {
@@ -293,7 +297,19 @@ fn scan_quoted(bytes: &[u8], mut i: usize, quote: u8) -> (usize, bool, Vec<(usiz
             b'\\' => {
                 let valid = matches!(
                     bytes.get(i + 1),
-                    Some(b'\'' | b'"' | b'?' | b'\\' | b'a' | b'b' | b'f' | b'n' | b'r' | b't' | b'v')
+                    Some(
+                        b'\''
+                            | b'"'
+                            | b'?'
+                            | b'\\'
+                            | b'a'
+                            | b'b'
+                            | b'f'
+                            | b'n'
+                            | b'r'
+                            | b't'
+                            | b'v'
+                    )
                 );
                 if !valid && i + 1 < bytes.len() {
                     // Cover the whole (possibly multi-byte) escaped character.
@@ -342,7 +358,10 @@ fn scan_number(bytes: &[u8], mut i: usize) -> (usize, bool) {
         }
     }
     // A number glued to letters (`12abc`, `1.5x`) is one malformed token.
-    while i < bytes.len() && (is_ident_char(bytes[i]) || (bytes[i] == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit()))) {
+    while i < bytes.len()
+        && (is_ident_char(bytes[i])
+            || (bytes[i] == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit())))
+    {
         ok = false;
         i += 1;
     }
@@ -390,15 +409,25 @@ mod tests {
         let s = scan("/* open");
         assert_eq!(s.errors, vec![LexError::UnterminatedComment { start: 0 }]);
         let s = scan("x = 1e+;");
-        assert_eq!(s.errors, vec![LexError::MalformedNumber { start: 4, end: 7 }]);
+        assert_eq!(
+            s.errors,
+            vec![LexError::MalformedNumber { start: 4, end: 7 }]
+        );
         let s = scan("x = 12abc;");
-        assert_eq!(s.errors, vec![LexError::MalformedNumber { start: 4, end: 9 }]);
+        assert_eq!(
+            s.errors,
+            vec![LexError::MalformedNumber { start: 4, end: 9 }]
+        );
         let s = scan("x = \"a\\qb\";");
         assert_eq!(s.errors, vec![LexError::BadEscape { start: 6, end: 8 }]);
         let s = scan("x = 1 # 2;");
         assert_eq!(
             s.errors,
-            vec![LexError::UnexpectedChar { start: 6, end: 7, ch: '#' }]
+            vec![LexError::UnexpectedChar {
+                start: 6,
+                end: 7,
+                ch: '#'
+            }]
         );
     }
 
@@ -406,14 +435,24 @@ mod tests {
     fn numbers_and_element_wise_operators() {
         let s = scan("a = 2.*b + .5 + 1.e3 + 3.;");
         assert!(s.errors.is_empty(), "{:?}", s.errors);
-        let texts: Vec<_> = s.tokens.iter().map(|t| &"a = 2.*b + .5 + 1.e3 + 3.;"[t.start..t.end]).collect();
-        assert_eq!(texts, ["a", "=", "2.", "*", "b", "+", ".5", "+", "1.e3", "+", "3.", ";"]);
+        let texts: Vec<_> = s
+            .tokens
+            .iter()
+            .map(|t| &"a = 2.*b + .5 + 1.e3 + 3.;"[t.start..t.end])
+            .collect();
+        assert_eq!(
+            texts,
+            ["a", "=", "2.", "*", "b", "+", ".5", "+", "1.e3", "+", "3.", ";"]
+        );
     }
 
     #[test]
     fn depth_is_measured() {
         let deep = "(".repeat(300);
         let s = scan(&deep);
-        assert!(s.errors.iter().any(|e| matches!(e, LexError::TooDeep { .. })));
+        assert!(s
+            .errors
+            .iter()
+            .any(|e| matches!(e, LexError::TooDeep { .. })));
     }
 }

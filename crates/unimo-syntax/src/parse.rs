@@ -75,7 +75,11 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
 
     // Fast path: most files are fine. Depth is checked first: the parser recurses.
     let scan = lexer::scan(text);
-    if let Some(e) = scan.errors.iter().find(|e| matches!(e, LexError::TooDeep { .. })) {
+    if let Some(e) = scan
+        .errors
+        .iter()
+        .find(|e| matches!(e, LexError::TooDeep { .. }))
+    {
         diagnostics.push(lex_diagnostic(file, text, e));
         return Parsed {
             ast: empty,
@@ -117,7 +121,8 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
             };
         }
         scan = lexer::scan(as_str(&masked));
-        scan.errors.retain(|e| !matches!(e, LexError::TooDeep { .. }));
+        scan.errors
+            .retain(|e| !matches!(e, LexError::TooDeep { .. }));
     }
 
     // 2. Syntax errors, each repaired or blanked out, until the file parses.
@@ -163,7 +168,10 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
                         last_region = None;
                     }
                     Fix::Blank(s, e) => {
-                        let before: usize = masked[s..e].iter().filter(|b| !b.is_ascii_whitespace()).count();
+                        let before: usize = masked[s..e]
+                            .iter()
+                            .filter(|b| !b.is_ascii_whitespace())
+                            .count();
                         if before == 0 || diagnostics.len() >= MAX_ERRORS {
                             return Parsed {
                                 ast: empty,
@@ -180,7 +188,10 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
 }
 
 fn starts_block_tail(rest: &str) -> bool {
-    let word: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+    let word: String = rest
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
     matches!(word.as_str(), "end" | "else" | "elseif" | "elsewhen")
 }
 
@@ -256,7 +267,9 @@ fn statement_end(tokens: &[Token], text: &str, pos: usize) -> usize {
 fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) {
     let text = as_str(bytes);
     let (start, end) = lex_span(err);
-    let line_start = text[..start.min(text.len())].rfind('\n').map_or(0, |k| k + 1);
+    let line_start = text[..start.min(text.len())]
+        .rfind('\n')
+        .map_or(0, |k| k + 1);
     let line_end = text[end.min(text.len())..]
         .find('\n')
         .map_or(text.len(), |k| end + k);
@@ -264,7 +277,10 @@ fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) 
         LexError::UnterminatedComment { .. } => (start, text.len()),
         LexError::UnterminatedString { .. } | LexError::UnterminatedQuotedIdent { .. } => {
             // Everything after the quote is string: blank its statement up to the line end.
-            (statement_start(tokens, text, start, false).max(line_start), line_end)
+            (
+                statement_start(tokens, text, start, false).max(line_start),
+                line_end,
+            )
         }
         _ => {
             let s = statement_start(tokens, text, start, false).max(line_start);
@@ -368,7 +384,10 @@ fn syntax_diagnostic(
     if has("`;`") {
         if let Some(prev) = prev {
             let later_line = found.is_none_or(|t| text[prev.end..t.start].contains('\n'));
-            let ends_with_space = text.as_bytes().get(prev.end).is_some_and(|b| b.is_ascii_whitespace());
+            let ends_with_space = text
+                .as_bytes()
+                .get(prev.end)
+                .is_some_and(|b| b.is_ascii_whitespace());
             if later_line && ends_with_space && !is_punct(text, prev, ";") {
                 let at = Span::point(file, prev.end);
                 let d = Diagnostic::error("E1101", format!("expected `;`, found {found_desc}"))
@@ -387,36 +406,56 @@ fn syntax_diagnostic(
     // The file ended inside a class.
     if found.is_none() && text[pos..].trim().is_empty() {
         if let Some((name, span)) = unclosed_class(tokens, text) {
-            let d = Diagnostic::error("E1102", format!("unexpected end of file: class `{name}` is not closed"))
-                .at(Span::point(file, text.len()), format!("expected `end {name};` before the end of the file"))
-                .with_label(Span::new(file, span.0, span.1), "class opened here");
+            let d = Diagnostic::error(
+                "E1102",
+                format!("unexpected end of file: class `{name}` is not closed"),
+            )
+            .at(
+                Span::point(file, text.len()),
+                format!("expected `end {name};` before the end of the file"),
+            )
+            .with_label(Span::new(file, span.0, span.1), "class opened here");
             return (d, blank);
         }
     }
 
     // A reserved word where a name belongs.
     if let Some(t) = found {
-        if t.kind == TokenKind::Keyword && has("identifier") && !matches!(token_text(text, t), "end" | "equation" | "algorithm") {
+        if t.kind == TokenKind::Keyword
+            && has("identifier")
+            && !matches!(token_text(text, t), "end" | "equation" | "algorithm")
+        {
             let word = token_text(text, t);
-            let d = Diagnostic::error("E1103", format!("`{word}` is a reserved word and cannot be used as a name"))
-                .at(here, "reserved word")
-                .with_help(format!("rename it, or quote it as `'{word}'`"));
+            let d = Diagnostic::error(
+                "E1103",
+                format!("`{word}` is a reserved word and cannot be used as a name"),
+            )
+            .at(here, "reserved word")
+            .with_help(format!("rename it, or quote it as `'{word}'`"));
             return (d, blank);
         }
     }
 
     // An opening bracket never closed before the statement ended.
-    let closers: Vec<&str> = ["`)`", "`]`", "`}`"].into_iter().filter(|c| has(c)).collect();
-    if !closers.is_empty() && found.is_none_or(|t| is_punct(text, t, ";") || t.kind == TokenKind::Keyword) {
+    let closers: Vec<&str> = ["`)`", "`]`", "`}`"]
+        .into_iter()
+        .filter(|c| has(c))
+        .collect();
+    if !closers.is_empty()
+        && found.is_none_or(|t| is_punct(text, t, ";") || t.kind == TokenKind::Keyword)
+    {
         if let Some((open, span)) = unclosed_bracket(tokens, text, pos) {
             let close = match open {
                 "(" => ")",
                 "[" => "]",
                 _ => "}",
             };
-            let d = Diagnostic::error("E1104", format!("unclosed `{open}`: expected `{close}`, found {found_desc}"))
-                .at(here, format!("expected `{close}` before this"))
-                .with_label(Span::new(file, span.0, span.1), "opened here");
+            let d = Diagnostic::error(
+                "E1104",
+                format!("unclosed `{open}`: expected `{close}`, found {found_desc}"),
+            )
+            .at(here, format!("expected `{close}` before this"))
+            .with_label(Span::new(file, span.0, span.1), "opened here");
             return (d, blank);
         }
     }
@@ -471,11 +510,43 @@ fn expected_set(err: &pest::error::Error<Rule>) -> Vec<String> {
         out.retain(|e| e != "`and`" && e != "`or`");
     }
     if has_expression {
-        let starts = ["`end`", "`(`", "`.`", "`[`", "`{`", "`der`", "`initial`", "`pure`", "`not`", "`true`", "`false`", "`if`", "`function`", "`-`", "`+`", "string", "number", "identifier", "component reference"];
+        let starts = [
+            "`end`",
+            "`(`",
+            "`.`",
+            "`[`",
+            "`{`",
+            "`der`",
+            "`initial`",
+            "`pure`",
+            "`not`",
+            "`true`",
+            "`false`",
+            "`if`",
+            "`function`",
+            "`-`",
+            "`+`",
+            "string",
+            "number",
+            "identifier",
+            "component reference",
+        ];
         out.retain(|e| !starts.contains(&e.as_str()));
     }
     if has_class {
-        let starts = ["`block`", "`class`", "`connector`", "`encapsulated`", "`final`", "`function`", "`model`", "`package`", "`partial`", "`record`", "`type`"];
+        let starts = [
+            "`block`",
+            "`class`",
+            "`connector`",
+            "`encapsulated`",
+            "`final`",
+            "`function`",
+            "`model`",
+            "`package`",
+            "`partial`",
+            "`record`",
+            "`type`",
+        ];
         out.retain(|e| !starts.contains(&e.as_str()));
     }
     // Most useful first.
@@ -516,26 +587,38 @@ fn unclosed_class(tokens: &[Token], text: &str) -> Option<(String, (usize, usize
             "model" | "block" | "connector" | "record" | "package" | "function" | "type" | "class"
         );
         if class_kw && tokens[i].kind == TokenKind::Keyword {
-            if let Some(n) = tokens.get(i + 1).filter(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent)) {
+            if let Some(n) = tokens
+                .get(i + 1)
+                .filter(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent))
+            {
                 if word(i + 2) != Some("=") {
                     stack.push((token_text(text, n).to_owned(), (tokens[i].start, n.end)));
                 }
             }
-        } else if w == "end" && tokens[i].kind == TokenKind::Keyword {
-            if tokens.get(i + 1).is_some_and(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent)) {
-                stack.pop();
-            }
+        } else if w == "end"
+            && tokens[i].kind == TokenKind::Keyword
+            && tokens
+                .get(i + 1)
+                .is_some_and(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent))
+        {
+            stack.pop();
         }
     }
     stack.pop()
 }
 
 /// The innermost bracket still open at `pos`.
-fn unclosed_bracket<'t>(tokens: &[Token], text: &'t str, pos: usize) -> Option<(&'t str, (usize, usize))> {
+fn unclosed_bracket<'t>(
+    tokens: &[Token],
+    text: &'t str,
+    pos: usize,
+) -> Option<(&'t str, (usize, usize))> {
     let mut stack: Vec<(&str, (usize, usize))> = Vec::new();
     for t in tokens.iter().take_while(|t| t.start < pos) {
         match token_text(text, t) {
-            s @ ("(" | "[" | "{") if t.kind == TokenKind::Punct => stack.push((s, (t.start, t.end))),
+            s @ ("(" | "[" | "{") if t.kind == TokenKind::Punct => {
+                stack.push((s, (t.start, t.end)))
+            }
             ")" | "]" | "}" if t.kind == TokenKind::Punct => {
                 stack.pop();
             }

@@ -10,7 +10,9 @@ fn precedence(e: &Expr) -> u8 {
         ExprKind::If { .. } => 0,
         ExprKind::Range { .. } => 1,
         ExprKind::Binary { op, .. } => binary_precedence(*op),
-        ExprKind::Unary { op: UnaryOp::Not, .. } => 4,
+        ExprKind::Unary {
+            op: UnaryOp::Not, ..
+        } => 4,
         ExprKind::Unary { .. } => 6,
         _ => 10,
     }
@@ -115,7 +117,10 @@ fn write_expr(out: &mut String, e: &Expr) {
             let _ = write!(out, " {} ", op.symbol());
             write_paren(out, rhs, rparen);
         }
-        ExprKind::If { branches, otherwise } => {
+        ExprKind::If {
+            branches,
+            otherwise,
+        } => {
             for (i, (c, v)) in branches.iter().enumerate() {
                 out.push_str(if i == 0 { "if " } else { " elseif " });
                 write_expr(out, c);

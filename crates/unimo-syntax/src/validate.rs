@@ -76,7 +76,12 @@ impl Validator<'_> {
                     self.push(
                         Diagnostic::error(
                             "E1201",
-                            format!("`end {}` does not match `{} {}`", end_name.text, c.kind.keyword(), c.name.text),
+                            format!(
+                                "`end {}` does not match `{} {}`",
+                                end_name.text,
+                                c.kind.keyword(),
+                                c.name.text
+                            ),
                         )
                         .at(end_name.span, format!("expected `{}`", c.name.text))
                         .with_label(c.name.span, "class opened here"),
@@ -84,7 +89,12 @@ impl Validator<'_> {
                 }
                 self.composition(c, composition);
             }
-            ClassBody::Short { modification, comment, dims, .. } => {
+            ClassBody::Short {
+                modification,
+                comment,
+                dims,
+                ..
+            } => {
                 for d in dims {
                     self.subscript(d, Ctx::default());
                 }
@@ -98,9 +108,12 @@ impl Validator<'_> {
                 for l in literals {
                     if let Some(first) = seen.get(l.name.text.as_str()) {
                         self.push(
-                            Diagnostic::error("E1214", format!("enumeration literal `{}` appears twice", l.name.text))
-                                .at(l.name.span, "duplicate literal")
-                                .with_label(*first, "first here"),
+                            Diagnostic::error(
+                                "E1214",
+                                format!("enumeration literal `{}` appears twice", l.name.text),
+                            )
+                            .at(l.name.span, "duplicate literal")
+                            .with_label(*first, "first here"),
                         );
                     } else {
                         seen.insert(&l.name.text, l.name.span);
@@ -134,7 +147,14 @@ impl Validator<'_> {
         for s in &comp.sections {
             match s {
                 Section::Equation(es) => {
-                    if matches!(c.kind, ClassKind::Function | ClassKind::Record | ClassKind::Connector | ClassKind::Type | ClassKind::Package) {
+                    if matches!(
+                        c.kind,
+                        ClassKind::Function
+                            | ClassKind::Record
+                            | ClassKind::Connector
+                            | ClassKind::Type
+                            | ClassKind::Package
+                    ) {
                         self.push(
                             Diagnostic::error(
                                 "E1221",
@@ -159,14 +179,23 @@ impl Validator<'_> {
                     }
                 }
                 Section::Algorithm(al) => {
-                    if matches!(c.kind, ClassKind::Record | ClassKind::Connector | ClassKind::Type | ClassKind::Package) {
+                    if matches!(
+                        c.kind,
+                        ClassKind::Record
+                            | ClassKind::Connector
+                            | ClassKind::Type
+                            | ClassKind::Package
+                    ) {
                         self.push(
                             Diagnostic::error(
                                 "E1222",
                                 format!("a {} cannot have algorithm sections", c.kind.keyword()),
                             )
                             .at(al.span, "algorithm section not allowed here")
-                            .with_label(c.name.span, format!("in {} `{}`", c.kind.keyword(), c.name.text)),
+                            .with_label(
+                                c.name.span,
+                                format!("in {} `{}`", c.kind.keyword(), c.name.text),
+                            ),
                         );
                     }
                     let ctx = Ctx {
@@ -217,16 +246,24 @@ impl Validator<'_> {
         let mut seen: HashMap<String, Span> = HashMap::new();
         for a in &cm.args {
             match a {
-                Argument::Modify { name, modification, span, .. } => {
+                Argument::Modify {
+                    name,
+                    modification,
+                    span,
+                    ..
+                } => {
                     let key = name.to_dotted();
                     // `a(x = 1)` and `a(y = 2)` written as `a.x = 1, a.y = 2` are fine; the
                     // same full name twice is not (spec 7.2.4).
                     if let Some(first) = seen.get(&key) {
                         if modification.as_ref().is_some_and(|m| m.binding.is_some()) {
                             self.push(
-                                Diagnostic::error("E1242", format!("`{key}` is modified twice in one modification"))
-                                    .at(*span, "second modification")
-                                    .with_label(*first, "first here"),
+                                Diagnostic::error(
+                                    "E1242",
+                                    format!("`{key}` is modified twice in one modification"),
+                                )
+                                .at(*span, "second modification")
+                                .with_label(*first, "first here"),
                             );
                         }
                     } else if modification.as_ref().is_some_and(|m| m.binding.is_some()) {
@@ -276,7 +313,10 @@ impl Validator<'_> {
                     self.cref(r, ctx);
                 }
             }
-            EquationKind::If { branches, otherwise } => {
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => {
                 for (c, body) in branches {
                     self.expr(c, ctx);
                     for e in body {
@@ -295,7 +335,10 @@ impl Validator<'_> {
             }
             EquationKind::When { branches } => {
                 if self.when_allowed(eq.span, ctx) {
-                    let inner = Ctx { in_when: true, ..ctx };
+                    let inner = Ctx {
+                        in_when: true,
+                        ..ctx
+                    };
                     for (c, body) in branches {
                         self.expr(c, ctx);
                         for e in body {
@@ -345,15 +388,20 @@ impl Validator<'_> {
                     self.push(
                         Diagnostic::error("E1204", "`reinit` outside a `when`")
                             .at(func.span, "reinit is only allowed in the body of a `when`")
-                            .with_help("wrap it: `when condition then reinit(x, value); end when;`"),
+                            .with_help(
+                                "wrap it: `when condition then reinit(x, value); end when;`",
+                            ),
                     );
                 }
                 if let Some(first) = args.positional.first() {
                     if !matches!(first.kind, ExprKind::Ref(_)) {
                         self.push(
-                            Diagnostic::error("E1205", "the first argument of `reinit` must be a variable")
-                                .at(first.span, "not a variable reference")
-                                .with_help("write `reinit(x, expr)` where `x` is a state"),
+                            Diagnostic::error(
+                                "E1205",
+                                "the first argument of `reinit` must be a variable",
+                            )
+                            .at(first.span, "not a variable reference")
+                            .with_help("write `reinit(x, expr)` where `x` is a state"),
                         );
                     }
                 }
@@ -372,8 +420,11 @@ impl Validator<'_> {
                 for t in targets.iter().flatten() {
                     if !matches!(t.kind, ExprKind::Ref(_)) {
                         self.push(
-                            Diagnostic::error("E1220", "the targets of `(...) :=` must be variables")
-                                .at(t.span, "not a variable reference"),
+                            Diagnostic::error(
+                                "E1220",
+                                "the targets of `(...) :=` must be variables",
+                            )
+                            .at(t.span, "not a variable reference"),
                         );
                     }
                 }
@@ -384,7 +435,10 @@ impl Validator<'_> {
                     self.call_statement(e, ctx);
                 }
             }
-            StatementKind::If { branches, otherwise } => {
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => {
                 for (c, body) in branches {
                     self.expr(c, ctx);
                     for s in body {
@@ -397,14 +451,20 @@ impl Validator<'_> {
             }
             StatementKind::For { indices, body } => {
                 self.indices(indices, ctx);
-                let inner = Ctx { in_loop: true, ..ctx };
+                let inner = Ctx {
+                    in_loop: true,
+                    ..ctx
+                };
                 for s in body {
                     self.statement(s, inner);
                 }
             }
             StatementKind::While { condition, body } => {
                 self.expr(condition, ctx);
-                let inner = Ctx { in_loop: true, ..ctx };
+                let inner = Ctx {
+                    in_loop: true,
+                    ..ctx
+                };
                 for s in body {
                     self.statement(s, inner);
                 }
@@ -492,7 +552,10 @@ impl Validator<'_> {
                 self.expr_in(lhs, ctx, in_subscript);
                 self.expr_in(rhs, ctx, in_subscript);
             }
-            ExprKind::If { branches, otherwise } => {
+            ExprKind::If {
+                branches,
+                otherwise,
+            } => {
                 for (c, v) in branches {
                     self.expr_in(c, ctx, in_subscript);
                     self.expr_in(v, ctx, in_subscript);
@@ -547,7 +610,12 @@ impl Validator<'_> {
         for (side, sub) in [(false, lhs), (true, rhs)] {
             // The parser keeps explicit parentheses in the span only; a parenthesized
             // operand has a span wider than its operator's operands, so skip those.
-            if let ExprKind::Binary { op: inner, lhs: il, rhs: ir } = &sub.kind {
+            if let ExprKind::Binary {
+                op: inner,
+                lhs: il,
+                rhs: ir,
+            } = &sub.kind
+            {
                 let parenthesized = sub.span != il.span.to(ir.span);
                 if parenthesized {
                     continue;
@@ -577,17 +645,27 @@ impl Validator<'_> {
             if let Some((lo, hi)) = operator_arity(name) {
                 let n = args.positional.len() + args.named.len();
                 if n < lo || n > hi {
-                    let want = if lo == hi { format!("{lo}") } else { format!("{lo} to {hi}") };
+                    let want = if lo == hi {
+                        format!("{lo}")
+                    } else {
+                        format!("{lo} to {hi}")
+                    };
                     self.push(
                         Diagnostic::error(
                             "E1211",
-                            format!("`{name}` takes {want} argument{}, found {n}", if hi == 1 { "" } else { "s" }),
+                            format!(
+                                "`{name}` takes {want} argument{}, found {n}",
+                                if hi == 1 { "" } else { "s" }
+                            ),
                         )
                         .at(args.span, "wrong number of arguments"),
                     );
                 }
             }
-            let event_op = matches!(name, "der" | "pre" | "edge" | "change" | "reinit" | "initial" | "terminal" | "sample");
+            let event_op = matches!(
+                name,
+                "der" | "pre" | "edge" | "change" | "reinit" | "initial" | "terminal" | "sample"
+            );
             if ctx.in_function && event_op {
                 self.push(
                     Diagnostic::error("E1210", format!("`{name}` cannot be used in a function"))
@@ -598,7 +676,13 @@ impl Validator<'_> {
             match name {
                 "der" => {
                     if let Some(a) = args.positional.first() {
-                        if matches!(a.kind, ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_)) {
+                        if matches!(
+                            a.kind,
+                            ExprKind::Integer(_)
+                                | ExprKind::Real(_)
+                                | ExprKind::Bool(_)
+                                | ExprKind::String(_)
+                        ) {
                             self.push(
                                 Diagnostic::error("E1203", "`der` of a literal")
                                     .at(a.span, "a constant has no time derivative to take")
@@ -611,9 +695,14 @@ impl Validator<'_> {
                     if let Some(a) = args.positional.first() {
                         if !matches!(a.kind, ExprKind::Ref(_)) {
                             self.push(
-                                Diagnostic::error("E1212", format!("the argument of `{name}` must be a variable"))
-                                    .at(a.span, "not a variable reference")
-                                    .with_help(format!("introduce a variable `v = ...;` and write `{name}(v)`")),
+                                Diagnostic::error(
+                                    "E1212",
+                                    format!("the argument of `{name}` must be a variable"),
+                                )
+                                .at(a.span, "not a variable reference")
+                                .with_help(format!(
+                                    "introduce a variable `v = ...;` and write `{name}(v)`"
+                                )),
                             );
                         }
                     }

@@ -27,8 +27,8 @@ end Ball;
 "#;
 
 const TOKENS: &[&str] = &[
-    ";", "(", ")", "[", "]", "{", "}", "=", ":=", "end", "model", "when", "if", "then", "\"",
-    "'", "/*", "*/", "//", "\n", "der", "1e", ".", ",", "loop", "for", "elsewhen", "\\",
+    ";", "(", ")", "[", "]", "{", "}", "=", ":=", "end", "model", "when", "if", "then", "\"", "'",
+    "/*", "*/", "//", "\n", "der", "1e", ".", ",", "loop", "for", "elsewhen", "\\",
 ];
 
 fn check(text: &str) {
@@ -114,8 +114,15 @@ fn seed_model_is_valid() {
 #[test]
 fn deep_nesting_is_refused_not_overflowed() {
     for text in [
-        format!("model A Real x = {}1{}; end A;", "(".repeat(100_000), ")".repeat(100_000)),
-        format!("model A Real x = {}1; end A;", "if true then 1 else ".repeat(50_000)),
+        format!(
+            "model A Real x = {}1{}; end A;",
+            "(".repeat(100_000),
+            ")".repeat(100_000)
+        ),
+        format!(
+            "model A Real x = {}1; end A;",
+            "if true then 1 else ".repeat(50_000)
+        ),
         format!("model A Real x = {}1; end A;", "-".repeat(100_000)),
         format!("model A Real x = {}1; end A;", "not ".repeat(100_000)),
         format!("model A Real x = 1{}; end A;", " + 1".repeat(100_000)),
