@@ -162,6 +162,22 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
                         f
                     }
                 };
+                if diagnostics.len() >= MAX_ERRORS {
+                    diagnostics.push(
+                        Diagnostic::error(
+                            "E1105",
+                            format!("too many errors; stopped after {MAX_ERRORS}"),
+                        )
+                        .at(
+                            Span::point(file, err_pos(&err).min(text.len())),
+                            "parsing stopped here",
+                        ),
+                    );
+                    return Parsed {
+                        ast: empty,
+                        diagnostics,
+                    };
+                }
                 match fix {
                     Fix::InsertSemicolon(at) => {
                         masked[at] = b';';
@@ -172,7 +188,7 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
                             .iter()
                             .filter(|b| !b.is_ascii_whitespace())
                             .count();
-                        if before == 0 || diagnostics.len() >= MAX_ERRORS {
+                        if before == 0 {
                             return Parsed {
                                 ast: empty,
                                 diagnostics,
@@ -352,6 +368,13 @@ pub(crate) fn lex_diagnostic(file: FileId, text: &str, err: &LexError) -> Diagno
             format!("nesting is too deep ({depth} levels; at most {} are supported)", lexer::MAX_DEPTH),
         )
         .at(span, "nesting exceeds the limit here"),
+    }
+}
+
+fn err_pos(err: &pest::error::Error<Rule>) -> usize {
+    match err.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
     }
 }
 
