@@ -7,6 +7,10 @@ use divan::Bencher;
 use std::fmt::Write;
 use unimo_source::FileId;
 
+/// The same allocator as the `unimo` binary, so the figures are what users get.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() {
     divan::main();
 }
@@ -72,5 +76,36 @@ fn scan_only_10mb(bencher: Bencher) {
         unimo_syntax::lexer::scan(divan::black_box(&text))
             .tokens
             .len()
+    });
+}
+
+#[divan::bench(sample_count = 10)]
+fn parse_without_validation_10mb(bencher: Bencher) {
+    let text = generated_source(10 << 20);
+    bencher.counter(BytesCount::of_str(&text)).bench(|| {
+        unimo_syntax::differential::fast_only_unvalidated(FileId(0), divan::black_box(&text))
+            .map(|p| p.ast.classes.len())
+    });
+}
+
+/// The pest grammar alone (what the fast path saves), on 1 MiB: same input shape.
+#[divan::bench(sample_count = 5)]
+fn pest_only_1mb(bencher: Bencher) {
+    let text = generated_source(1 << 20);
+    bencher.counter(BytesCount::of_str(&text)).bench(|| {
+        unimo_syntax::differential::pest_only(FileId(0), divan::black_box(&text))
+            .ast
+            .classes
+            .len()
+    });
+}
+
+/// The fast path alone on the same 1 MiB, for the ratio against pest in one run.
+#[divan::bench(sample_count = 5)]
+fn fast_only_1mb(bencher: Bencher) {
+    let text = generated_source(1 << 20);
+    bencher.counter(BytesCount::of_str(&text)).bench(|| {
+        unimo_syntax::differential::fast_only(FileId(0), divan::black_box(&text))
+            .map(|p| p.ast.classes.len())
     });
 }

@@ -463,7 +463,7 @@ pub enum ExprKind {
     /// `f(args)`, including `der(x)` and `initial()`.
     Call {
         func: Name,
-        args: CallArgs,
+        args: Box<CallArgs>,
     },
     Unary {
         op: UnaryOp,
@@ -498,7 +498,7 @@ pub enum ExprKind {
     End,
     /// `function f(a = 1)` passed as a functional argument.
     PartialApplication {
-        func: Name,
+        func: Box<Name>,
         args: Vec<NamedArg>,
     },
 }

@@ -6,6 +6,7 @@
 
 use crate::ast::*;
 use crate::grammar::Rule;
+use crate::lexer::Token;
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 use smol_str::SmolStr;
@@ -26,9 +27,11 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
         .op(Op::infix(Rule::add_op, Assoc::Left)
             | Op::infix(Rule::sub_op, Assoc::Left)
             | Op::infix(Rule::ew_add, Assoc::Left)
-            | Op::infix(Rule::ew_sub, Assoc::Left)
-            | Op::prefix(Rule::neg_op)
-            | Op::prefix(Rule::pos_op))
+            | Op::infix(Rule::ew_sub, Assoc::Left))
+        // pest binds a prefix operator's operand at one level below the operator's own
+        // level, so unary minus gets a level of its own above `+`: `-a + b` is
+        // `(-a) + b`, while `-a * b` is `-(a * b)` and `-a ^ 2` is `-(a ^ 2)`.
+        .op(Op::prefix(Rule::neg_op) | Op::prefix(Rule::pos_op))
         .op(Op::infix(Rule::mul_op, Assoc::Left)
             | Op::infix(Rule::div_op, Assoc::Left)
             | Op::infix(Rule::ew_mul, Assoc::Left)
@@ -40,6 +43,8 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 pub(crate) struct Builder<'d> {
     pub file: FileId,
     pub diags: &'d mut Vec<Diagnostic>,
+    /// The scanner's tokens of the text being built, to make spans token-tight.
+    pub tokens: &'d [Token],
 }
 
 fn is_token(rule: Rule) -> bool {
@@ -81,9 +86,18 @@ fn kids(pair: Pair<'_, Rule>) -> impl Iterator<Item = Pair<'_, Rule>> {
 }
 
 impl Builder<'_> {
+    /// The pair's span without the whitespace and comments pest includes after its last
+    /// token when it ends in an empty optional part: spans run from the first token's
+    /// start to the last token's end.
     fn span(&self, pair: &Pair<'_, Rule>) -> Span {
         let s = pair.as_span();
-        Span::new(self.file, s.start(), s.end())
+        let end = s.end();
+        let last = self.tokens.partition_point(|t| t.end() <= end);
+        let tight = last
+            .checked_sub(1)
+            .map_or(s.start(), |i| self.tokens[i].end())
+            .clamp(s.start(), end);
+        Span::new(self.file, s.start(), tight)
     }
 
     fn internal(&mut self, pair: &Pair<'_, Rule>) {
@@ -102,7 +116,8 @@ impl Builder<'_> {
     }
 
     pub fn stored_definition(&mut self, pair: Pair<'_, Rule>) -> StoredDefinition {
-        let span = self.span(&pair);
+        let s = pair.as_span();
+        let span = Span::new(self.file, s.start(), s.end());
         let mut within = None;
         let mut classes = Vec::new();
         for p in kids(pair) {
@@ -1139,11 +1154,11 @@ impl Builder<'_> {
                 let args = it.next().map(|p| self.named_args(p)).unwrap_or_default();
                 Expr {
                     kind: ExprKind::PartialApplication {
-                        func: func.unwrap_or(Name {
+                        func: Box::new(func.unwrap_or(Name {
                             global: false,
                             parts: Vec::new(),
                             span,
-                        }),
+                        })),
                         args,
                     },
                     span,
@@ -1393,7 +1408,7 @@ impl Builder<'_> {
             .collect()
     }
 
-    fn call_args(&mut self, pair: Pair<'_, Rule>) -> CallArgs {
+    fn call_args(&mut self, pair: Pair<'_, Rule>) -> Box<CallArgs> {
         let span = self.span(&pair);
         let mut args = CallArgs {
             span,
@@ -1416,7 +1431,7 @@ impl Builder<'_> {
                 None => {}
             }
         }
-        args
+        Box::new(args)
     }
 
     fn named_args(&mut self, pair: Pair<'_, Rule>) -> Vec<NamedArg> {

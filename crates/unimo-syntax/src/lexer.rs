@@ -14,11 +14,257 @@ pub enum TokenKind {
     Punct,
 }
 
+/// What a keyword or punctuation token is, so parsers compare integers, not text.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+#[repr(u8)]
+pub enum Sym {
+    /// Names, numbers and strings.
+    None,
+    KwAlgorithm,
+    KwAnd,
+    KwAnnotation,
+    KwBlock,
+    KwBreak,
+    KwClass,
+    KwConnect,
+    KwConnector,
+    KwConstant,
+    KwConstrainedby,
+    KwDer,
+    KwDiscrete,
+    KwEach,
+    KwElse,
+    KwElseif,
+    KwElsewhen,
+    KwEncapsulated,
+    KwEnd,
+    KwEnumeration,
+    KwEquation,
+    KwExpandable,
+    KwExtends,
+    KwExternal,
+    KwFalse,
+    KwFinal,
+    KwFlow,
+    KwFor,
+    KwFunction,
+    KwIf,
+    KwImport,
+    KwImpure,
+    KwIn,
+    KwInitial,
+    KwInner,
+    KwInput,
+    KwLoop,
+    KwModel,
+    KwNot,
+    KwOperator,
+    KwOr,
+    KwOuter,
+    KwOutput,
+    KwPackage,
+    KwParameter,
+    KwPartial,
+    KwProtected,
+    KwPublic,
+    KwPure,
+    KwRecord,
+    KwRedeclare,
+    KwReplaceable,
+    KwReturn,
+    KwStream,
+    KwThen,
+    KwTrue,
+    KwType,
+    KwWhen,
+    KwWhile,
+    KwWithin,
+    /// `(`
+    LParen,
+    /// `)`
+    RParen,
+    /// `[`
+    LBracket,
+    /// `]`
+    RBracket,
+    /// `{`
+    LBrace,
+    /// `}`
+    RBrace,
+    /// `;`
+    Semi,
+    /// `,`
+    Comma,
+    /// `.`
+    Dot,
+    /// `:`
+    Colon,
+    /// `=`
+    Equals,
+    /// `<`
+    Lt,
+    /// `>`
+    Gt,
+    /// `+`
+    Plus,
+    /// `-`
+    Minus,
+    /// `*`
+    Star,
+    /// `/`
+    Slash,
+    /// `^`
+    Caret,
+    /// `:=`
+    Assign,
+    /// `<=`
+    Le,
+    /// `>=`
+    Ge,
+    /// `==`
+    EqEq,
+    /// `<>`
+    Ne,
+    /// `.+`
+    DotPlus,
+    /// `.-`
+    DotMinus,
+    /// `.*`
+    DotStar,
+    /// `./`
+    DotSlash,
+    /// `.^`
+    DotCaret,
+}
+
+/// The keyword a word is, if any.
+pub fn keyword_sym(word: &str) -> Option<Sym> {
+    Some(match word {
+        "algorithm" => Sym::KwAlgorithm,
+        "and" => Sym::KwAnd,
+        "annotation" => Sym::KwAnnotation,
+        "block" => Sym::KwBlock,
+        "break" => Sym::KwBreak,
+        "class" => Sym::KwClass,
+        "connect" => Sym::KwConnect,
+        "connector" => Sym::KwConnector,
+        "constant" => Sym::KwConstant,
+        "constrainedby" => Sym::KwConstrainedby,
+        "der" => Sym::KwDer,
+        "discrete" => Sym::KwDiscrete,
+        "each" => Sym::KwEach,
+        "else" => Sym::KwElse,
+        "elseif" => Sym::KwElseif,
+        "elsewhen" => Sym::KwElsewhen,
+        "encapsulated" => Sym::KwEncapsulated,
+        "end" => Sym::KwEnd,
+        "enumeration" => Sym::KwEnumeration,
+        "equation" => Sym::KwEquation,
+        "expandable" => Sym::KwExpandable,
+        "extends" => Sym::KwExtends,
+        "external" => Sym::KwExternal,
+        "false" => Sym::KwFalse,
+        "final" => Sym::KwFinal,
+        "flow" => Sym::KwFlow,
+        "for" => Sym::KwFor,
+        "function" => Sym::KwFunction,
+        "if" => Sym::KwIf,
+        "import" => Sym::KwImport,
+        "impure" => Sym::KwImpure,
+        "in" => Sym::KwIn,
+        "initial" => Sym::KwInitial,
+        "inner" => Sym::KwInner,
+        "input" => Sym::KwInput,
+        "loop" => Sym::KwLoop,
+        "model" => Sym::KwModel,
+        "not" => Sym::KwNot,
+        "operator" => Sym::KwOperator,
+        "or" => Sym::KwOr,
+        "outer" => Sym::KwOuter,
+        "output" => Sym::KwOutput,
+        "package" => Sym::KwPackage,
+        "parameter" => Sym::KwParameter,
+        "partial" => Sym::KwPartial,
+        "protected" => Sym::KwProtected,
+        "public" => Sym::KwPublic,
+        "pure" => Sym::KwPure,
+        "record" => Sym::KwRecord,
+        "redeclare" => Sym::KwRedeclare,
+        "replaceable" => Sym::KwReplaceable,
+        "return" => Sym::KwReturn,
+        "stream" => Sym::KwStream,
+        "then" => Sym::KwThen,
+        "true" => Sym::KwTrue,
+        "type" => Sym::KwType,
+        "when" => Sym::KwWhen,
+        "while" => Sym::KwWhile,
+        "within" => Sym::KwWithin,
+        _ => return None,
+    })
+}
+
+fn punct_sym(text: &str) -> Sym {
+    match text {
+        "(" => Sym::LParen,
+        ")" => Sym::RParen,
+        "[" => Sym::LBracket,
+        "]" => Sym::RBracket,
+        "{" => Sym::LBrace,
+        "}" => Sym::RBrace,
+        ";" => Sym::Semi,
+        "," => Sym::Comma,
+        "." => Sym::Dot,
+        ":" => Sym::Colon,
+        "=" => Sym::Equals,
+        "<" => Sym::Lt,
+        ">" => Sym::Gt,
+        "+" => Sym::Plus,
+        "-" => Sym::Minus,
+        "*" => Sym::Star,
+        "/" => Sym::Slash,
+        "^" => Sym::Caret,
+        ":=" => Sym::Assign,
+        "<=" => Sym::Le,
+        ">=" => Sym::Ge,
+        "==" => Sym::EqEq,
+        "<>" => Sym::Ne,
+        ".+" => Sym::DotPlus,
+        ".-" => Sym::DotMinus,
+        ".*" => Sym::DotStar,
+        "./" => Sym::DotSlash,
+        ".^" => Sym::DotCaret,
+        _ => Sym::None,
+    }
+}
+
+/// A token: 12 bytes (files are limited to 4 GiB, as spans are).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub struct Token {
     pub kind: TokenKind,
-    pub start: usize,
-    pub end: usize,
+    pub sym: Sym,
+    lo: u32,
+    hi: u32,
+}
+
+impl Token {
+    fn new(kind: TokenKind, sym: Sym, start: usize, end: usize) -> Token {
+        Token {
+            kind,
+            sym,
+            lo: start as u32,
+            hi: end as u32,
+        }
+    }
+
+    /// Byte offset of the first byte.
+    pub fn start(&self) -> usize {
+        self.lo as usize
+    }
+
+    /// Byte offset just past the last byte.
+    pub fn end(&self) -> usize {
+        self.hi as usize
+    }
 }
 
 /// A lexical error, with the byte range it covers.
@@ -107,7 +353,7 @@ pub const KEYWORDS: &[&str] = &[
 ];
 
 pub fn is_keyword(word: &str) -> bool {
-    KEYWORDS.binary_search(&word).is_ok()
+    keyword_sym(word).is_some()
 }
 
 /// Nesting beyond this is refused before parsing (the parser is recursive).
@@ -127,7 +373,11 @@ fn is_ident_char(b: u8) -> bool {
 /// Scans `text` into tokens, collecting every lexical error.
 pub fn scan(text: &str) -> Scan {
     let bytes = text.as_bytes();
-    let mut out = Scan::default();
+    // About one token per five bytes of typical Modelica: reserve once, not by doubling.
+    let mut out = Scan {
+        tokens: Vec::with_capacity(text.len() / 5 + 16),
+        ..Scan::default()
+    };
     let mut depth = 0usize;
     let mut ifs_since_semi = 0usize;
     let mut too_deep_reported = false;
@@ -180,7 +430,7 @@ pub fn scan(text: &str) -> Scan {
                 } else {
                     TokenKind::QuotedIdent
                 };
-                out.tokens.push(Token { kind, start, end });
+                out.tokens.push(Token::new(kind, Sym::None, start, end));
                 i = end;
                 continue;
             }
@@ -189,10 +439,15 @@ pub fn scan(text: &str) -> Scan {
                     i += 1;
                 }
                 let word = &text[start..i];
-                let kind = if is_keyword(word) {
-                    TokenKind::Keyword
+                // Every keyword is 2 to 13 lower-case letters: most names fail cheaply.
+                let sym = if (2..=13).contains(&word.len()) && b.is_ascii_lowercase() {
+                    keyword_sym(word)
                 } else {
-                    TokenKind::Ident
+                    None
+                };
+                let (kind, sym) = match sym {
+                    Some(k) => (TokenKind::Keyword, k),
+                    None => (TokenKind::Ident, Sym::None),
                 };
                 if word == "if" {
                     ifs_since_semi += 1;
@@ -209,11 +464,7 @@ pub fn scan(text: &str) -> Scan {
                             kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
                     }
                 }
-                out.tokens.push(Token {
-                    kind,
-                    start,
-                    end: i,
-                });
+                out.tokens.push(Token::new(kind, sym, start, i));
             }
             _ if b.is_ascii_digit()
                 || (b == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit())) =>
@@ -224,11 +475,8 @@ pub fn scan(text: &str) -> Scan {
                 if !ok {
                     out.errors.push(LexError::MalformedNumber { start, end });
                 }
-                out.tokens.push(Token {
-                    kind: TokenKind::Number,
-                    start,
-                    end,
-                });
+                out.tokens
+                    .push(Token::new(TokenKind::Number, Sym::None, start, end));
                 i = end;
             }
             _ => {
@@ -260,11 +508,12 @@ pub fn scan(text: &str) -> Scan {
                     ops_in_statement += 1;
                 }
                 after_operand = matches!(b, b')' | b']' | b'}');
-                out.tokens.push(Token {
-                    kind: TokenKind::Punct,
+                out.tokens.push(Token::new(
+                    TokenKind::Punct,
+                    punct_sym(&text[start..i + len]),
                     start,
-                    end: i + len,
-                });
+                    i + len,
+                ));
                 i += len;
             }
         }
@@ -438,7 +687,7 @@ mod tests {
         let texts: Vec<_> = s
             .tokens
             .iter()
-            .map(|t| &"a = 2.*b + .5 + 1.e3 + 3.;"[t.start..t.end])
+            .map(|t| &"a = 2.*b + .5 + 1.e3 + 3.;"[t.start()..t.end()])
             .collect();
         assert_eq!(
             texts,

@@ -7,6 +7,7 @@
 pub mod ast;
 mod build;
 pub mod dump;
+mod fast;
 mod grammar;
 pub mod lexer;
 mod parse;
@@ -21,4 +22,27 @@ pub fn parse(file: FileId, text: &str) -> Parsed {
     let mut parsed = parse::parse(file, text);
     validate::validate(&parsed.ast, &mut parsed.diagnostics);
     parsed
+}
+
+/// The two parsers separately, for differential tests: the pest grammar alone, and the
+/// hand-written fast path alone (`None` where it defers to pest). Both validated.
+#[doc(hidden)]
+pub mod differential {
+    use super::*;
+
+    pub fn pest_only(file: FileId, text: &str) -> Parsed {
+        let mut parsed = parse::parse_with_pest(file, text);
+        validate::validate(&parsed.ast, &mut parsed.diagnostics);
+        parsed
+    }
+
+    pub fn fast_only_unvalidated(file: FileId, text: &str) -> Option<Parsed> {
+        parse::parse_fast_only(file, text)
+    }
+
+    pub fn fast_only(file: FileId, text: &str) -> Option<Parsed> {
+        let mut parsed = parse::parse_fast_only(file, text)?;
+        validate::validate(&parsed.ast, &mut parsed.diagnostics);
+        Some(parsed)
+    }
 }

@@ -7,6 +7,7 @@
 
 use crate::ast::{Expr, StoredDefinition};
 use crate::build::Builder;
+use crate::fast;
 use crate::grammar::{describe, ModelicaParser, Rule};
 use crate::lexer::{self, LexError, Scan, Token, TokenKind};
 use pest::error::{ErrorVariant, InputLocation};
@@ -32,7 +33,25 @@ impl Parsed {
 /// Parses one file. Never panics; returns every error it can find.
 pub fn parse(file: FileId, text: &str) -> Parsed {
     // The grammar is recursive; give it a roomy stack whatever thread calls us.
-    stacker::maybe_grow(1 << 20, 64 << 20, || parse_inner(file, text))
+    stacker::maybe_grow(1 << 20, 64 << 20, || parse_inner(file, text, true))
+}
+
+/// Parses with the pest grammar only (no fast path): for differential tests.
+pub fn parse_with_pest(file: FileId, text: &str) -> Parsed {
+    stacker::maybe_grow(1 << 20, 64 << 20, || parse_inner(file, text, false))
+}
+
+/// The fast path alone: `None` where it defers to pest. For differential tests.
+pub fn parse_fast_only(file: FileId, text: &str) -> Option<Parsed> {
+    stacker::maybe_grow(1 << 20, 64 << 20, || {
+        let scan = lexer::scan(text);
+        if !scan.errors.is_empty() {
+            return None;
+        }
+        let mut diagnostics = Vec::new();
+        let ast = fast::parse_file(file, text, &scan.tokens, &mut diagnostics)?;
+        Some(Parsed { ast, diagnostics })
+    })
 }
 
 /// Parses a single expression (used by tests and by the flat-model reader).
@@ -49,6 +68,7 @@ pub fn parse_expression(file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic
                 let mut b = Builder {
                     file,
                     diags: &mut diags,
+                    tokens: &scan.tokens,
                 };
                 let e = match top {
                     Some(p) => b.expression(p),
@@ -65,7 +85,7 @@ pub fn parse_expression(file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic
     })
 }
 
-fn parse_inner(file: FileId, text: &str) -> Parsed {
+fn parse_inner(file: FileId, text: &str, try_fast: bool) -> Parsed {
     let empty = StoredDefinition {
         within: None,
         classes: Vec::new(),
@@ -86,12 +106,20 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
             diagnostics,
         };
     }
+    if scan.errors.is_empty() && try_fast {
+        if let Some(ast) = fast::parse_file(file, text, &scan.tokens, &mut diagnostics) {
+            return Parsed { ast, diagnostics };
+        }
+        // The fast path declined: pest decides, and reports.
+        diagnostics.clear();
+    }
     if scan.errors.is_empty() {
         if let Ok(mut pairs) = ModelicaParser::parse(Rule::stored_definition, text) {
             let ast = match pairs.next() {
                 Some(p) => Builder {
                     file,
                     diags: &mut diagnostics,
+                    tokens: &scan.tokens,
                 }
                 .stored_definition(p),
                 None => empty,
@@ -131,10 +159,12 @@ fn parse_inner(file: FileId, text: &str) -> Parsed {
         let current = as_str(&masked).to_owned();
         match ModelicaParser::parse(Rule::stored_definition, &current) {
             Ok(mut pairs) => {
+                let tokens = lexer::scan(&current).tokens;
                 let ast = match pairs.next() {
                     Some(p) => Builder {
                         file,
                         diags: &mut diagnostics,
+                        tokens: &tokens,
                     }
                     .stored_definition(p),
                     None => empty,
@@ -243,7 +273,7 @@ enum Fix {
 }
 
 fn token_text<'t>(text: &'t str, t: &Token) -> &'t str {
-    &text[t.start..t.end]
+    &text[t.start()..t.end()]
 }
 
 fn is_punct(text: &str, t: &Token, p: &str) -> bool {
@@ -255,7 +285,7 @@ fn is_punct(text: &str, t: &Token, p: &str) -> bool {
 fn statement_start(tokens: &[Token], text: &str, pos: usize, only_semi: bool) -> usize {
     let mut start = 0;
     for (i, t) in tokens.iter().enumerate() {
-        if t.start >= pos {
+        if t.start() >= pos {
             break;
         }
         let opens = is_punct(text, t, ";")
@@ -266,7 +296,7 @@ fn statement_start(tokens: &[Token], text: &str, pos: usize, only_semi: bool) ->
                     "equation" | "algorithm" | "public" | "protected" | "then" | "loop" | "else"
                 ));
         if opens {
-            start = tokens.get(i + 1).map_or(t.end, |n| n.start.min(pos));
+            start = tokens.get(i + 1).map_or(t.end(), |n| n.start().min(pos));
         }
     }
     start
@@ -276,8 +306,8 @@ fn statement_start(tokens: &[Token], text: &str, pos: usize, only_semi: bool) ->
 fn statement_end(tokens: &[Token], text: &str, pos: usize) -> usize {
     tokens
         .iter()
-        .find(|t| t.start >= pos && is_punct(text, t, ";"))
-        .map_or(text.len(), |t| t.end)
+        .find(|t| t.start() >= pos && is_punct(text, t, ";"))
+        .map_or(text.len(), |t| t.end())
 }
 
 fn lex_region(bytes: &[u8], tokens: &[Token], err: &LexError) -> (usize, usize) {
@@ -392,31 +422,31 @@ fn syntax_diagnostic(
     .min(text.len());
     let expected = expected_set(err);
     let tokens = &scan.tokens;
-    let found_idx = tokens.partition_point(|t| t.start < pos);
-    let found = tokens.get(found_idx).filter(|t| t.start == pos);
+    let found_idx = tokens.partition_point(|t| t.start() < pos);
+    let found = tokens.get(found_idx).filter(|t| t.start() == pos);
     let prev = found_idx.checked_sub(1).map(|i| &tokens[i]);
     let found_desc = match found {
         Some(t) => format!("`{}`", token_text(text, t)),
         None if text[pos..].trim().is_empty() => "end of file".to_owned(),
         None => format!("`{}`", text[pos..].chars().next().unwrap_or(' ')),
     };
-    let here = Span::new(file, pos, found.map_or(pos, |t| t.end));
+    let here = Span::new(file, pos, found.map_or(pos, |t| t.end()));
     let has = |s: &str| expected.iter().any(|e| e == s);
 
     // Missing `;` at the end of a line.
     if has("`;`") {
         if let Some(prev) = prev {
-            let later_line = found.is_none_or(|t| text[prev.end..t.start].contains('\n'));
+            let later_line = found.is_none_or(|t| text[prev.end()..t.start()].contains('\n'));
             let ends_with_space = text
                 .as_bytes()
-                .get(prev.end)
+                .get(prev.end())
                 .is_some_and(|b| b.is_ascii_whitespace());
             if later_line && ends_with_space && !is_punct(text, prev, ";") {
-                let at = Span::point(file, prev.end);
+                let at = Span::point(file, prev.end());
                 let d = Diagnostic::error("E1101", format!("expected `;`, found {found_desc}"))
                     .at(at, "add `;` here")
                     .with_label(here, "the next item starts here");
-                return (d, Fix::InsertSemicolon(prev.end));
+                return (d, Fix::InsertSemicolon(prev.end()));
             }
         }
     }
@@ -615,7 +645,7 @@ fn unclosed_class(tokens: &[Token], text: &str) -> Option<(String, (usize, usize
                 .filter(|t| matches!(t.kind, TokenKind::Ident | TokenKind::QuotedIdent))
             {
                 if word(i + 2) != Some("=") {
-                    stack.push((token_text(text, n).to_owned(), (tokens[i].start, n.end)));
+                    stack.push((token_text(text, n).to_owned(), (tokens[i].start(), n.end())));
                 }
             }
         } else if w == "end"
@@ -637,10 +667,10 @@ fn unclosed_bracket<'t>(
     pos: usize,
 ) -> Option<(&'t str, (usize, usize))> {
     let mut stack: Vec<(&str, (usize, usize))> = Vec::new();
-    for t in tokens.iter().take_while(|t| t.start < pos) {
+    for t in tokens.iter().take_while(|t| t.start() < pos) {
         match token_text(text, t) {
             s @ ("(" | "[" | "{") if t.kind == TokenKind::Punct => {
-                stack.push((s, (t.start, t.end)))
+                stack.push((s, (t.start(), t.end())))
             }
             ")" | "]" | "}" if t.kind == TokenKind::Punct => {
                 stack.pop();

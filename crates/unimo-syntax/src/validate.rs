@@ -49,7 +49,7 @@ impl Validator<'_> {
         self.diags.push(d);
     }
 
-    fn classes(&mut self, classes: &[ClassDef]) {
+    fn classes<'c>(&mut self, classes: impl IntoIterator<Item = &'c ClassDef>) {
         let mut seen: HashMap<&str, Span> = HashMap::new();
         for c in classes {
             if let Some(first) = seen.get(c.name.text.as_str()) {
@@ -124,10 +124,9 @@ impl Validator<'_> {
     }
 
     fn composition(&mut self, c: &ClassDef, comp: &Composition) {
-        let mut nested = Vec::new();
         for e in &comp.elements {
             match &e.kind {
-                ElementKind::Class(cd) => nested.push(cd.as_ref().clone()),
+                ElementKind::Class(_) => {}
                 ElementKind::Component(cc) => self.component_clause(cc),
                 ElementKind::Extends(ext) => {
                     if let Some(m) = &ext.modification {
@@ -142,7 +141,10 @@ impl Validator<'_> {
                 }
             }
         }
-        self.classes(&nested);
+        self.classes(comp.elements.iter().filter_map(|e| match &e.kind {
+            ElementKind::Class(cd) => Some(cd.as_ref()),
+            _ => None,
+        }));
         let in_function = c.kind == ClassKind::Function;
         for s in &comp.sections {
             match s {

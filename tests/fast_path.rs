@@ -1,0 +1,176 @@
+//! Differential tests: the hand-written fast path and the pest grammar must build the
+//! same tree and the same diagnostics wherever the fast path answers, and the fast path
+//! must answer on every valid file we ship.
+
+use std::path::{Path, PathBuf};
+use unimo_source::FileId;
+use unimo_syntax::differential::{fast_only, pest_only};
+
+fn files_below(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for e in entries {
+        if e.is_dir() {
+            files_below(&e, out);
+        } else if e.extension().is_some_and(|x| x == "mo") {
+            out.push(e);
+        }
+    }
+}
+
+/// The first place two trees differ, as pretty-printed Debug lines with context.
+fn first_difference<T: std::fmt::Debug>(a: &T, b: &T) -> Option<String> {
+    let (a, b) = (format!("{a:#?}"), format!("{b:#?}"));
+    let (la, lb): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
+    let i = la
+        .iter()
+        .zip(&lb)
+        .position(|(x, y)| x != y)
+        .or_else(|| (la.len() != lb.len()).then(|| la.len().min(lb.len())))?;
+    let from = i.saturating_sub(12);
+    Some(format!(
+        "fast:\n{}\npest:\n{}",
+        la[from..(i + 3).min(la.len())].join("\n"),
+        lb[from..(i + 3).min(lb.len())].join("\n")
+    ))
+}
+
+fn corpus(dirs: &[&str]) -> Vec<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut out = Vec::new();
+    for d in dirs {
+        files_below(&root.join(d), &mut out);
+    }
+    out
+}
+
+#[test]
+fn fast_path_answers_and_agrees_on_every_valid_file() {
+    let files = corpus(&["tests/syntax/ok", "stdlib", "models"]);
+    assert!(files.len() > 50);
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let fast = fast_only(FileId(0), &text)
+            .unwrap_or_else(|| panic!("fast path declined {}", f.display()));
+        let pest = pest_only(FileId(0), &text);
+        if let Some(d) = first_difference(&fast.ast, &pest.ast) {
+            panic!("{}: trees differ\n{d}", f.display());
+        }
+        assert_eq!(fast.diagnostics, pest.diagnostics, "{}", f.display());
+    }
+}
+
+#[test]
+fn fast_path_agrees_or_declines_on_every_error_file() {
+    let mut answered = 0;
+    for f in corpus(&["tests/syntax/err"]) {
+        let text = std::fs::read_to_string(&f).unwrap();
+        if let Some(fast) = fast_only(FileId(0), &text) {
+            let pest = pest_only(FileId(0), &text);
+            assert_eq!(fast.ast, pest.ast, "{}", f.display());
+            assert_eq!(fast.diagnostics, pest.diagnostics, "{}", f.display());
+            answered += 1;
+        }
+    }
+    // The files with only post-parse errors (validation) parse fine and must be answered.
+    assert!(
+        answered >= 25,
+        "fast path answered only {answered} error files"
+    );
+}
+
+/// Mutations of every valid corpus file: wherever the fast path answers, it agrees.
+#[test]
+fn fast_path_agrees_on_mutated_files() {
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, TestRunner};
+    let texts: Vec<String> = corpus(&["tests/syntax/ok", "stdlib"])
+        .iter()
+        .map(|f| std::fs::read_to_string(f).unwrap())
+        .collect();
+    const TOKENS: &[&str] = &[
+        ";",
+        "(",
+        ")",
+        "[",
+        "]",
+        "{",
+        "}",
+        "=",
+        ":=",
+        "end",
+        "model",
+        "when",
+        "if",
+        "then",
+        ".",
+        ",",
+        "loop",
+        "for",
+        "-",
+        "+",
+        "*",
+        "^",
+        ".*",
+        ":",
+        "not",
+        "and",
+        "x",
+        "1",
+        "2.5",
+        "\"s\"",
+        "der",
+        "initial",
+        "annotation",
+        "each",
+        "final",
+        "redeclare",
+        "replaceable",
+        "elseif",
+        "else",
+        "equation",
+        "algorithm",
+        "protected",
+        " ",
+        "\n",
+    ];
+    let mut runner = TestRunner::new(Config {
+        cases: 400,
+        ..Config::default()
+    });
+    let strategy = (
+        0..texts.len(),
+        proptest::collection::vec((any::<usize>(), 0..TOKENS.len(), any::<bool>()), 1..4),
+    );
+    runner
+        .run(&strategy, |(which, edits)| {
+            let mut text = texts[which].clone();
+            for (at, tok, delete) in edits {
+                let mut at = at % text.len().max(1);
+                while !text.is_char_boundary(at) {
+                    at -= 1;
+                }
+                if delete {
+                    let mut end = (at + 3).min(text.len());
+                    while !text.is_char_boundary(end) {
+                        end += 1;
+                    }
+                    text.replace_range(at..end, "");
+                } else {
+                    text.insert_str(at, TOKENS[tok]);
+                }
+            }
+            if let Some(fast) = fast_only(FileId(0), &text) {
+                let pest = pest_only(FileId(0), &text);
+                if let Some(d) = first_difference(&fast.ast, &pest.ast) {
+                    prop_assert!(false, "trees differ on text:\n{}\n{}", text, d);
+                }
+                prop_assert_eq!(&fast.diagnostics, &pest.diagnostics, "text:\n{}", text);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
