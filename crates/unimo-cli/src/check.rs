@@ -1,9 +1,11 @@
 //! `unimo check` and `unimo emit --stage ast`: read files, parse, report.
 
+use crate::provider::CliProvider;
 use crate::render::emit_stderr;
 use crate::{EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use unimo_flat::ClassTree;
 use unimo_source::{Diagnostic, SourceMap};
 use unimo_syntax::ast::{ClassBody, ElementKind, StoredDefinition};
 
@@ -54,7 +56,7 @@ fn count_classes(def: &StoredDefinition) -> usize {
     def.classes.iter().map(rec).sum()
 }
 
-pub fn check(paths: &[PathBuf], stats: bool, color: bool) -> i32 {
+pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, color: bool) -> i32 {
     let started = Instant::now();
     let files = match collect(paths) {
         Ok(f) => f,
@@ -63,46 +65,67 @@ pub fn check(paths: &[PathBuf], stats: bool, color: bool) -> i32 {
             return EXIT_USAGE;
         }
     };
-    let mut map = SourceMap::new();
-    let mut n_errors = 0;
-    let mut n_warnings = 0;
+    let provider = CliProvider::new(libs);
+    let mut tree = ClassTree::new(&provider);
+    let mut diags: Vec<Diagnostic> = Vec::new();
     let mut n_classes = 0;
     let mut bytes = 0;
+    let mut read_errors = 0;
+    let mut user_classes = Vec::new();
+    let mut parsed_files = Vec::new();
     for path in &files {
         let text = match std::fs::read(path) {
             Ok(b) => match String::from_utf8(b) {
                 Ok(t) => t,
                 Err(_) => {
                     eprintln!("error[E0002]: `{}` is not UTF-8 text", path.display());
-                    n_errors += 1;
+                    read_errors += 1;
                     continue;
                 }
             },
             Err(e) => {
                 eprintln!("error[E0001]: cannot read `{}`: {e}", path.display());
-                n_errors += 1;
+                read_errors += 1;
                 continue;
             }
         };
         bytes += text.len();
-        let id = map.add(path.clone(), text);
-        let parsed = unimo_syntax::parse(id, map.get(id).text());
+        let id = tree.sources.add(path.clone(), text);
+        let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
         n_classes += count_classes(&parsed.ast);
-        report(
-            &parsed.diagnostics,
-            &map,
-            color,
-            &mut n_errors,
-            &mut n_warnings,
-        );
+        let clean = !parsed.has_errors();
+        diags.extend(parsed.diagnostics);
+        // Names are checked only in files that parse: a broken file would only add
+        // follow-on errors.
+        if clean {
+            parsed_files.push((id, parsed.ast));
+        }
     }
+    // Enclosing packages before their members: a file `within A.B;` needs `A.B`.
+    parsed_files.sort_by_key(|(_, ast)| match &ast.within {
+        Some(Some(n)) => n.parts.len(),
+        _ => 0,
+    });
+    for (id, ast) in parsed_files {
+        user_classes.extend(tree.add_user_file(id, ast));
+    }
+    for c in user_classes {
+        diags.extend(unimo_flat::resolve::check_names(&mut tree, c));
+    }
+    diags.append(&mut tree.diagnostics);
+    let (mut n_errors, mut n_warnings) = (read_errors, 0);
+    report(&diags, &tree.sources, color, &mut n_errors, &mut n_warnings);
     let elapsed = started.elapsed();
     if stats {
+        let s = tree.stats;
         eprintln!(
-            "stats: files={} classes={} bytes={} time_ms={:.1}",
+            "stats: files={} classes={} bytes={} library_files_loaded={} library_bytes_loaded={} classes_in_tree={} time_ms={:.1}",
             files.len(),
             n_classes,
             bytes,
+            s.library_files,
+            s.library_bytes,
+            s.classes,
             elapsed.as_secs_f64() * 1e3
         );
     }

@@ -5,6 +5,7 @@
 //! (bad flags, missing files), 3 simulation failure.
 
 mod check;
+mod provider;
 pub mod render;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -58,9 +59,13 @@ enum Command {
         /// Files or folders to check.
         #[arg(required = true, value_name = "PATH")]
         paths: Vec<PathBuf>,
-        /// Print counts (files, classes, bytes, time) after checking.
+        /// Print counts after checking: files, classes, bytes, library files and
+        /// classes loaded (the library is loaded lazily: only what the files use), time.
         #[arg(long)]
         stats: bool,
+        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        #[arg(long = "lib", value_name = "DIR")]
+        libs: Vec<PathBuf>,
     },
     /// Print an intermediate representation of a file.
     Emit {
@@ -106,7 +111,7 @@ fn run_on_this_thread() -> i32 {
         ColorWhen::Auto => std::io::stderr().is_terminal(),
     };
     match cli.command {
-        Command::Check { paths, stats } => check::check(&paths, stats, color),
+        Command::Check { paths, stats, libs } => check::check(&paths, &libs, stats, color),
         Command::Emit { stage, file } => match stage {
             Stage::Ast => check::emit_ast(&file, color),
         },

@@ -145,10 +145,7 @@ impl<'a> P<'a, '_> {
             self.pos += 1;
         }
         let mut parts = vec![self.ident()?];
-        loop {
-            let (Some(dot), Some(next)) = (self.tok(self.pos), self.tok(self.pos + 1)) else {
-                break;
-            };
+        while let (Some(dot), Some(next)) = (self.tok(self.pos), self.tok(self.pos + 1)) {
             let adjacent =
                 dot.start() == self.toks[self.pos - 1].end() && next.start() == dot.end();
             if adjacent

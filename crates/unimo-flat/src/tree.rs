@@ -1,0 +1,313 @@
+//! The class tree: every class the current run knows, with typed ids, loaded lazily.
+//!
+//! A class comes from a user file, from a nested class definition, or from a library
+//! folder laid out as Modelica packages (`P/package.mo`, `P/Q.mo`, `P/R/package.mo`).
+//! A library file is read and parsed only when a name inside it is looked up, so a
+//! scene pays only for the classes it uses (`LoadStats` counts them).
+
+use crate::provider::{LibLocation, SourceProvider};
+use smol_str::SmolStr;
+use std::collections::HashMap;
+use std::sync::Arc;
+use unimo_source::{Diagnostic, FileId, SourceMap};
+use unimo_syntax::ast::{ClassDef, ElementKind, StoredDefinition};
+
+/// Index of a class in the [`ClassTree`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct ClassId(pub u32);
+
+/// One class: its definition and where it sits.
+#[derive(Debug)]
+pub struct ClassEntry {
+    pub name: SmolStr,
+    pub parent: Option<ClassId>,
+    pub def: Arc<ClassDef>,
+    pub file: FileId,
+    /// The library folder holding this package's children, if it is a package folder.
+    pub location: Option<LibLocation>,
+    /// Child classes resolved so far (`None`: known not to exist).
+    children: HashMap<SmolStr, Option<ClassId>>,
+}
+
+/// How much the lazy loader read.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadStats {
+    /// Library files read and parsed (user files not counted).
+    pub library_files: usize,
+    /// Bytes of those files.
+    pub library_bytes: usize,
+    /// Classes entered in the tree (user and library).
+    pub classes: usize,
+}
+
+/// All classes known to this run, plus the sources they came from.
+pub struct ClassTree<'p> {
+    provider: &'p dyn SourceProvider,
+    pub sources: SourceMap,
+    classes: Vec<ClassEntry>,
+    /// Top-level classes of user files (no `within`, or `within;`), by name; several
+    /// files may define the same name (each is checked in its own file's context).
+    user_top: HashMap<SmolStr, Vec<ClassId>>,
+    /// Library top-level names looked up so far.
+    library_top: HashMap<SmolStr, Option<ClassId>>,
+    /// Parse errors of library files, reported once.
+    pub diagnostics: Vec<Diagnostic>,
+    pub stats: LoadStats,
+}
+
+impl<'p> ClassTree<'p> {
+    pub fn new(provider: &'p dyn SourceProvider) -> ClassTree<'p> {
+        ClassTree {
+            provider,
+            sources: SourceMap::new(),
+            classes: Vec::new(),
+            user_top: HashMap::new(),
+            library_top: HashMap::new(),
+            diagnostics: Vec::new(),
+            stats: LoadStats::default(),
+        }
+    }
+
+    pub fn get(&self, id: ClassId) -> &ClassEntry {
+        &self.classes[id.0 as usize]
+    }
+
+    fn add(&mut self, entry: ClassEntry) -> ClassId {
+        let id = ClassId(self.classes.len() as u32);
+        self.classes.push(entry);
+        self.stats.classes += 1;
+        id
+    }
+
+    /// The full dotted name of a class (`Modelica.Units.SI.Length`).
+    pub fn full_name(&self, id: ClassId) -> String {
+        let mut parts = vec![self.get(id).name.to_string()];
+        let mut cur = self.get(id).parent;
+        while let Some(p) = cur {
+            parts.push(self.get(p).name.to_string());
+            cur = self.get(p).parent;
+        }
+        parts.reverse();
+        parts.join(".")
+    }
+
+    /// Adds a parsed user file. Its classes are placed under their `within` package
+    /// (looked up in the library) or at the top level. Returns the new classes.
+    pub fn add_user_file(&mut self, file: FileId, def: StoredDefinition) -> Vec<ClassId> {
+        let parent = match &def.within {
+            Some(Some(name)) => {
+                let parts: Vec<&str> = name.parts.iter().map(|p| p.text.as_str()).collect();
+                self.lookup_global(&parts)
+            }
+            _ => None,
+        };
+        let mut out = Vec::new();
+        for c in def.classes {
+            let name = c.name.text.clone();
+            // A user file that is also in the library (`unimo check stdlib`) is checked
+            // in place, but lookups keep using the library's copy, which knows its
+            // package folder.
+            let in_library = match parent {
+                Some(p) => self.child_class(p, &name).is_some(),
+                None => self.library_top_level(&name).is_some(),
+            };
+            let id = self.add(ClassEntry {
+                name: name.clone(),
+                parent,
+                def: Arc::new(c),
+                file,
+                location: None,
+                children: HashMap::new(),
+            });
+            if !in_library {
+                match parent {
+                    Some(p) => {
+                        self.classes[p.0 as usize].children.insert(name, Some(id));
+                    }
+                    None => self.user_top.entry(name).or_default().push(id),
+                }
+            }
+            out.push(id);
+        }
+        out
+    }
+
+    /// Looks up a dotted name from the top level (user files first, then the library).
+    pub fn lookup_global(&mut self, parts: &[&str]) -> Option<ClassId> {
+        let (first, rest) = parts.split_first()?;
+        let mut cur = self.top_level(first)?;
+        for p in rest {
+            cur = self.child_class(cur, p)?;
+        }
+        Some(cur)
+    }
+
+    /// A top-level class by name: a user file's class, or a library root's package.
+    pub fn top_level(&mut self, name: &str) -> Option<ClassId> {
+        self.top_level_in(name, None)
+    }
+
+    /// As [`ClassTree::top_level`], preferring the user classes of file `prefer` when
+    /// several user files define the name.
+    pub fn top_level_in(&mut self, name: &str, prefer: Option<FileId>) -> Option<ClassId> {
+        if let Some(ids) = self.user_top.get(name) {
+            let pick = ids
+                .iter()
+                .find(|id| Some(self.get(**id).file) == prefer)
+                .or(ids.first());
+            if let Some(&id) = pick {
+                return Some(id);
+            }
+        }
+        self.library_top_level(name)
+    }
+
+    fn library_top_level(&mut self, name: &str) -> Option<ClassId> {
+        if let Some(&cached) = self.library_top.get(name) {
+            return cached;
+        }
+        let mut found = None;
+        for root in 0..self.provider.roots() {
+            let here = LibLocation {
+                root,
+                dir: String::new(),
+            };
+            if let Some(id) = self.load_child(None, &here, name) {
+                found = Some(id);
+                break;
+            }
+        }
+        self.library_top.insert(SmolStr::new(name), found);
+        found
+    }
+
+    /// The directly declared child class `name` of `class` (nested definition or file
+    /// in its package folder), loading it if needed. Inherited classes are not here:
+    /// see [`crate::lookup`].
+    pub fn child_class(&mut self, class: ClassId, name: &str) -> Option<ClassId> {
+        if let Some(&cached) = self.get(class).children.get(name) {
+            return cached;
+        }
+        let found = self.find_child(class, name);
+        self.classes[class.0 as usize]
+            .children
+            .insert(SmolStr::new(name), found);
+        found
+    }
+
+    fn find_child(&mut self, class: ClassId, name: &str) -> Option<ClassId> {
+        let entry = self.get(class);
+        let nested = nested_class(&entry.def, name);
+        if let Some(def) = nested {
+            let file = entry.file;
+            return Some(self.add(ClassEntry {
+                name: SmolStr::new(name),
+                parent: Some(class),
+                def: Arc::new(def),
+                file,
+                location: None,
+                children: HashMap::new(),
+            }));
+        }
+        let location = entry.location.clone()?;
+        self.load_child(Some(class), &location, name)
+    }
+
+    /// Loads `name` from the library folder `here`: `name/package.mo` or `name.mo`.
+    fn load_child(
+        &mut self,
+        parent: Option<ClassId>,
+        here: &LibLocation,
+        name: &str,
+    ) -> Option<ClassId> {
+        let sub = here.join(name);
+        let package_file = sub.file("package.mo");
+        let (file_loc, location) = if self.provider.exists(&package_file) {
+            (package_file, Some(sub))
+        } else {
+            let single = here.file(&format!("{name}.mo"));
+            if !self.provider.exists(&single) {
+                return None;
+            }
+            (single, None)
+        };
+        let text = match self.provider.read(&file_loc) {
+            Ok(t) => t,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::error(
+                    "E0001",
+                    format!(
+                        "cannot read `{}`: {e}",
+                        self.provider.display(&file_loc).display()
+                    ),
+                ));
+                return None;
+            }
+        };
+        self.stats.library_files += 1;
+        self.stats.library_bytes += text.len();
+        let file = self.sources.add(self.provider.display(&file_loc), text);
+        let parsed = unimo_syntax::parse(file, self.sources.get(file).text());
+        self.diagnostics.extend(parsed.diagnostics);
+        let def = parsed
+            .ast
+            .classes
+            .into_iter()
+            .find(|c| c.name.text == name)?;
+        Some(self.add(ClassEntry {
+            name: SmolStr::new(name),
+            parent,
+            def: Arc::new(def),
+            file,
+            location,
+            children: HashMap::new(),
+        }))
+    }
+
+    /// Names of the classes declared directly in `class` and in its package folder:
+    /// candidates for "did you mean".
+    pub fn child_names(&self, class: ClassId) -> Vec<String> {
+        let entry = self.get(class);
+        let mut names: Vec<String> = match &entry.def.body {
+            unimo_syntax::ast::ClassBody::Long { composition, .. } => composition
+                .elements
+                .iter()
+                .filter_map(|e| match &e.kind {
+                    ElementKind::Class(c) => Some(c.name.text.to_string()),
+                    ElementKind::Component(cc) => {
+                        Some(cc.components.first()?.name.text.to_string())
+                    }
+                    _ => None,
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        if let Some(loc) = &entry.location {
+            names.extend(self.provider.list(loc));
+        }
+        names
+    }
+
+    /// Names at the top level: user classes and library root entries.
+    pub fn top_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = self.user_top.keys().map(|k| k.to_string()).collect();
+        for root in 0..self.provider.roots() {
+            names.extend(self.provider.list(&LibLocation {
+                root,
+                dir: String::new(),
+            }));
+        }
+        names
+    }
+}
+
+/// The nested class `name` declared in `def`, if any.
+fn nested_class(def: &ClassDef, name: &str) -> Option<ClassDef> {
+    let unimo_syntax::ast::ClassBody::Long { composition, .. } = &def.body else {
+        return None;
+    };
+    composition.elements.iter().find_map(|e| match &e.kind {
+        ElementKind::Class(c) if c.name.text == name => Some((**c).clone()),
+        _ => None,
+    })
+}

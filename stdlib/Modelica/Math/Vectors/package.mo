@@ -1,0 +1,3 @@
+within Modelica.Math;
+package Vectors "Library of functions operating on vectors"
+end Vectors;

@@ -1,0 +1,86 @@
+//! Name-resolution tests: `unimo check` on `tests/names/ok` must pass; each file in
+//! `tests/names/err` must fail with the codes at the line:col listed in `expected.txt`,
+//! and its rendered diagnostics (with "did you mean") are snapshot-tested.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn check(args: &[&str]) -> (Option<i32>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .arg("check")
+        .args(["--color", "never"])
+        .args(args)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn expected() -> BTreeMap<String, Vec<String>> {
+    std::fs::read_to_string(root().join("tests/names/err/expected.txt"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let (f, codes) = l.split_once(':').unwrap();
+            (
+                f.trim().to_owned(),
+                codes.split(',').map(|c| c.trim().to_owned()).collect(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn valid_names_resolve() {
+    let (code, stderr) = check(&["tests/names/ok", "stdlib", "models"]);
+    assert_eq!(code, Some(0), "{stderr}");
+}
+
+#[test]
+fn unknown_names_are_reported_where_they_are() {
+    let manifest = expected();
+    assert!(manifest.len() >= 10);
+    for (file, want) in &manifest {
+        let rel = format!("tests/names/err/{file}");
+        let (code, stderr) = check(&[&rel]);
+        assert_eq!(code, Some(1), "{file}: {stderr}");
+        let got: Vec<String> = stderr
+            .lines()
+            .collect::<Vec<_>>()
+            .windows(2)
+            .filter_map(|w| {
+                let code = w[0].strip_prefix("error[")?.split(']').next()?;
+                let loc = w[1].rsplit(':').take(2).collect::<Vec<_>>();
+                Some(format!("{code} @{}:{}", loc[1], loc[0]))
+            })
+            .collect();
+        assert_eq!(&got, want, "{file}:\n{stderr}");
+        insta::assert_snapshot!(format!("names_{}", file.trim_end_matches(".mo")), stderr);
+    }
+}
+
+/// The library is read lazily: checking one model reads only the packages it names.
+#[test]
+fn library_is_loaded_lazily() {
+    let (code, stderr) = check(&["--stats", "tests/names/ok/enumerations_and_functions.mo"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let loaded: usize = stderr
+        .split_whitespace()
+        .find_map(|w| w.strip_prefix("library_files_loaded="))
+        .and_then(|n| n.parse().ok())
+        .expect("stats line");
+    let total = 48;
+    assert!(
+        loaded > 0 && loaded < total / 4,
+        "loaded {loaded} library files\n{stderr}"
+    );
+}

@@ -1,0 +1,5 @@
+model A
+  Rael x;
+equation
+  x = 1;
+end A;

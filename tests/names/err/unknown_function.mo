@@ -1,0 +1,5 @@
+model A
+  Real x;
+equation
+  x = sinn(time);
+end A;
