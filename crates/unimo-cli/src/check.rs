@@ -189,3 +189,106 @@ pub fn emit_ast(file: &Path, color: bool) -> i32 {
         EXIT_OK
     }
 }
+
+/// Picks the model to flatten: `--model`, or the one non-partial model of the file.
+fn pick_model(
+    tree: &mut ClassTree<'_>,
+    classes: &[unimo_flat::ClassId],
+    wanted: Option<&str>,
+) -> Result<unimo_flat::ClassId, String> {
+    use unimo_syntax::ast::ClassKind;
+    if let Some(w) = wanted {
+        for &c in classes {
+            if tree.full_name(c) == w || tree.get(c).name == w {
+                return Ok(c);
+            }
+        }
+        let parts: Vec<&str> = w.split('.').collect();
+        return tree
+            .lookup_global(&parts)
+            .ok_or_else(|| format!("no class `{w}` in the file or the library"));
+    }
+    let candidates: Vec<_> = classes
+        .iter()
+        .copied()
+        .filter(|&c| {
+            let d = &tree.get(c).def;
+            !d.partial
+                && matches!(
+                    d.kind,
+                    ClassKind::Model | ClassKind::Block | ClassKind::Class
+                )
+        })
+        .collect();
+    match candidates.as_slice() {
+        [one] => Ok(*one),
+        [] => Err("the file has no non-partial model; name one with --model".into()),
+        many => {
+            let names: Vec<String> = many.iter().map(|c| tree.full_name(*c)).collect();
+            Err(format!(
+                "the file has several models ({}); choose one with --model",
+                names.join(", ")
+            ))
+        }
+    }
+}
+
+pub fn flatten(
+    file: &Path,
+    model: Option<&str>,
+    libs: &[PathBuf],
+    stats: bool,
+    color: bool,
+) -> i32 {
+    let text = match std::fs::read_to_string(file) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: cannot read `{}`: {e}", file.display());
+            return EXIT_USAGE;
+        }
+    };
+    let started = Instant::now();
+    let provider = CliProvider::new(libs);
+    let mut tree = ClassTree::new(&provider);
+    let id = tree.sources.add(file.to_path_buf(), text);
+    let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
+    if parsed.has_errors() {
+        let (mut e, mut w) = (0, 0);
+        report(&parsed.diagnostics, &tree.sources, color, &mut e, &mut w);
+        return EXIT_MODEL_ERROR;
+    }
+    let classes = tree.add_user_file(id, parsed.ast);
+    let class = match pick_model(&mut tree, &classes, model) {
+        Ok(c) => c,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return EXIT_USAGE;
+        }
+    };
+    let (flat, mut diags) = unimo_flat::flatten(&mut tree, class);
+    let has_errors = diags.iter().any(|d| d.is_error());
+    if !has_errors {
+        let span = tree.get(class).def.name.span;
+        diags.extend(unimo_flat::balance::check(&flat, span));
+    }
+    diags.append(&mut tree.diagnostics);
+    let (mut e, mut w) = (0, 0);
+    report(&diags, &tree.sources, color, &mut e, &mut w);
+    if e > 0 {
+        return EXIT_MODEL_ERROR;
+    }
+    print!("{}", flat.to_modelica());
+    if stats {
+        let b = unimo_flat::balance::count(&flat);
+        eprintln!(
+            "stats: variables={} scalars={} equations={} unknowns={} library_files_loaded={} time_ms={:.1}",
+            flat.vars.len(),
+            flat.vars.iter().map(|v| v.size()).sum::<usize>(),
+            b.equations,
+            b.unknowns,
+            tree.stats.library_files,
+            started.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    EXIT_OK
+}

@@ -67,6 +67,26 @@ enum Command {
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
     },
+    /// Instantiate a model and print it as flat Modelica.
+    ///
+    /// Variables get their full instance names (quoted when dotted), modifiers are
+    /// merged, `for` equations unrolled and connections turned into equations. The
+    /// output parses back with unimo.
+    Flatten {
+        /// The Modelica file.
+        #[arg(value_name = "FILE")]
+        file: PathBuf,
+        /// The model to flatten (full dotted name); may be omitted when the file has
+        /// exactly one non-partial model.
+        #[arg(long, value_name = "NAME")]
+        model: Option<String>,
+        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        #[arg(long = "lib", value_name = "DIR")]
+        libs: Vec<PathBuf>,
+        /// Print equation and unknown counts to stderr.
+        #[arg(long)]
+        stats: bool,
+    },
     /// Print an intermediate representation of a file.
     Emit {
         /// Which stage to print.
@@ -112,6 +132,12 @@ fn run_on_this_thread() -> i32 {
     };
     match cli.command {
         Command::Check { paths, stats, libs } => check::check(&paths, &libs, stats, color),
+        Command::Flatten {
+            file,
+            model,
+            libs,
+            stats,
+        } => check::flatten(&file, model.as_deref(), &libs, stats, color),
         Command::Emit { stage, file } => match stage {
             Stage::Ast => check::emit_ast(&file, color),
         },

@@ -1,0 +1,313 @@
+//! The balance check (Modelica spec 4.7): as many scalar equations as scalar unknowns.
+//! Unknowns are continuous and discrete variables other than top-level inputs;
+//! equations are counted by the size of their left side, `if`-equations by one branch,
+//! `when`-equations by their body, algorithms by the variables they assign.
+
+use crate::eval::var_key;
+use crate::flat::{FlatModel, Variability};
+use std::collections::{BTreeSet, HashMap};
+use unimo_source::Diagnostic;
+use unimo_syntax::ast::*;
+
+/// Counts of one model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Balance {
+    pub equations: usize,
+    pub unknowns: usize,
+}
+
+struct Shapes<'m> {
+    dims: HashMap<String, &'m [usize]>,
+}
+
+impl Shapes<'_> {
+    fn of(&self, e: &Expr) -> Vec<usize> {
+        match &e.kind {
+            ExprKind::Ref(r) => {
+                let Some(d) = self.dims.get(&var_key(r)) else {
+                    return Vec::new();
+                };
+                let subs = r
+                    .parts
+                    .last()
+                    .map(|p| p.subscripts.as_slice())
+                    .unwrap_or(&[]);
+                let mut out = Vec::new();
+                for (k, n) in d.iter().enumerate() {
+                    match subs.get(k) {
+                        None | Some(Subscript::Colon(_)) => out.push(*n),
+                        Some(Subscript::Expr(x)) => {
+                            if let ExprKind::Range {
+                                start,
+                                step: None,
+                                stop,
+                            } = &x.kind
+                            {
+                                if let (ExprKind::Integer(a), ExprKind::Integer(b)) =
+                                    (&start.kind, &stop.kind)
+                                {
+                                    out.push((b - a + 1).max(0) as usize);
+                                }
+                            }
+                        }
+                    }
+                }
+                out
+            }
+            ExprKind::Call { func, args } => {
+                let name = func.to_dotted();
+                let arg = |k: usize| {
+                    args.positional
+                        .get(k)
+                        .map(|a| self.of(a))
+                        .unwrap_or_default()
+                };
+                match name.as_str() {
+                    "der" | "pre" | "noEvent" | "abs" | "sqrt" | "sin" | "cos" | "tan" | "exp"
+                    | "log" | "sign" | "asin" | "acos" | "atan" | "sinh" | "cosh" | "tanh"
+                    | "floor" | "ceil" => arg(0),
+                    "smooth" => arg(1),
+                    "cross" => vec![3],
+                    "transpose" => {
+                        let mut d = arg(0);
+                        d.reverse();
+                        d
+                    }
+                    "zeros" | "ones" | "fill" => {
+                        let skip = usize::from(name == "fill");
+                        args.positional
+                            .iter()
+                            .skip(skip)
+                            .filter_map(|a| match a.kind {
+                                ExprKind::Integer(n) => Some(n.max(0) as usize),
+                                _ => None,
+                            })
+                            .collect()
+                    }
+                    "identity" => match args.positional.first().map(|a| &a.kind) {
+                        Some(ExprKind::Integer(n)) => vec![*n as usize; 2],
+                        _ => Vec::new(),
+                    },
+                    _ => Vec::new(),
+                }
+            }
+            ExprKind::Unary { operand, .. } => self.of(operand),
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (a, b) = (self.of(lhs), self.of(rhs));
+                match op {
+                    BinaryOp::Mul => match (a.len(), b.len()) {
+                        (0, _) => b,
+                        (_, 0) => a,
+                        (1, 1) => Vec::new(),
+                        (2, 1) => vec![a[0]],
+                        (1, 2) => vec![b[1]],
+                        _ => vec![a[0], b[b.len() - 1]],
+                    },
+                    BinaryOp::Div => a,
+                    BinaryOp::Lt
+                    | BinaryOp::Le
+                    | BinaryOp::Gt
+                    | BinaryOp::Ge
+                    | BinaryOp::Eq
+                    | BinaryOp::Ne
+                    | BinaryOp::And
+                    | BinaryOp::Or => Vec::new(),
+                    _ => {
+                        if a.len() >= b.len() {
+                            a
+                        } else {
+                            b
+                        }
+                    }
+                }
+            }
+            ExprKind::Array(items) => {
+                let mut d = vec![items.len()];
+                if let Some(f) = items.first() {
+                    d.extend(self.of(f));
+                }
+                d
+            }
+            ExprKind::Matrix(rows) => vec![rows.len(), rows.first().map_or(0, |r| r.len())],
+            ExprKind::If { branches, .. } => branches
+                .first()
+                .map(|(_, v)| self.of(v))
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        }
+    }
+
+    fn size(&self, e: &Expr) -> usize {
+        self.of(e).iter().product()
+    }
+
+    fn count(&self, eqs: &[Equation]) -> usize {
+        eqs.iter().map(|e| self.count_one(e)).sum()
+    }
+
+    fn count_one(&self, e: &Equation) -> usize {
+        match &e.kind {
+            EquationKind::Simple { lhs, rhs } => self.size(lhs).max(self.size(rhs)),
+            // assert, terminate and reinit are not equations for counting.
+            EquationKind::Call(_) | EquationKind::Connect { .. } => 0,
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => branches
+                .first()
+                .map(|(_, b)| self.count(b))
+                .unwrap_or_else(|| self.count(otherwise)),
+            EquationKind::For { body, .. } => self.count(body),
+            EquationKind::When { branches } => {
+                branches.first().map(|(_, b)| self.count(b)).unwrap_or(0)
+            }
+        }
+    }
+}
+
+fn assigned(stmts: &[Statement], out: &mut BTreeSet<String>) {
+    for s in stmts {
+        match &s.kind {
+            StatementKind::Assign { target, .. } => {
+                out.insert(var_key(target));
+            }
+            StatementKind::MultiAssign { targets, .. } => {
+                for t in targets.iter().flatten() {
+                    if let ExprKind::Ref(r) = &t.kind {
+                        out.insert(var_key(r));
+                    }
+                }
+            }
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => {
+                branches.iter().for_each(|(_, b)| assigned(b, out));
+                assigned(otherwise, out);
+            }
+            StatementKind::For { body, .. } | StatementKind::While { body, .. } => {
+                assigned(body, out)
+            }
+            StatementKind::When { branches } => branches.iter().for_each(|(_, b)| assigned(b, out)),
+            _ => {}
+        }
+    }
+}
+
+/// Counts the scalar equations and unknowns of `model`.
+pub fn count(model: &FlatModel) -> Balance {
+    let shapes = Shapes {
+        dims: model
+            .vars
+            .iter()
+            .map(|v| (v.name.clone(), v.dims.as_slice()))
+            .collect(),
+    };
+    let unknowns = model
+        .vars
+        .iter()
+        .filter(|v| {
+            matches!(
+                v.variability,
+                Variability::Continuous | Variability::Discrete
+            )
+        })
+        .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
+        .map(|v| v.size())
+        .sum();
+    let mut equations = shapes.count(&model.equations);
+    for alg in &model.algorithms {
+        let mut names = BTreeSet::new();
+        assigned(alg, &mut names);
+        equations += names
+            .iter()
+            .map(|n| shapes.dims.get(n).map_or(1, |d| d.iter().product()))
+            .sum::<usize>();
+    }
+    Balance {
+        equations,
+        unknowns,
+    }
+}
+
+/// `E2010` when the counts differ, naming the unknowns no equation mentions.
+pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> {
+    let b = count(model);
+    if b.equations == b.unknowns {
+        return None;
+    }
+    let mut mentioned = BTreeSet::new();
+    let mut note = |e: &Expr| {
+        let mut e = e.clone();
+        crate::flat::rewrite_refs(&mut e, &mut |r| {
+            mentioned.insert(var_key(r));
+        });
+    };
+    fn walk(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
+        for e in eqs {
+            match &e.kind {
+                EquationKind::Simple { lhs, rhs } => {
+                    note(lhs);
+                    note(rhs);
+                }
+                EquationKind::Call(c) => note(c),
+                EquationKind::If {
+                    branches,
+                    otherwise,
+                } => {
+                    branches.iter().for_each(|(c, b)| {
+                        note(c);
+                        walk(b, note)
+                    });
+                    walk(otherwise, note);
+                }
+                EquationKind::When { branches } => branches.iter().for_each(|(c, b)| {
+                    note(c);
+                    walk(b, note)
+                }),
+                EquationKind::For { body, .. } => walk(body, note),
+                EquationKind::Connect { .. } => {}
+            }
+        }
+    }
+    walk(&model.equations, &mut note);
+    let mut assigned_names = BTreeSet::new();
+    for alg in &model.algorithms {
+        assigned(alg, &mut assigned_names);
+    }
+    let orphans: Vec<&str> = model
+        .vars
+        .iter()
+        .filter(|v| {
+            matches!(
+                v.variability,
+                Variability::Continuous | Variability::Discrete
+            )
+        })
+        .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
+        .filter(|v| !mentioned.contains(&v.name) && !assigned_names.contains(&v.name))
+        .map(|v| v.name.as_str())
+        .collect();
+    let (more, what) = if b.equations < b.unknowns {
+        (b.unknowns - b.equations, "too few equations")
+    } else {
+        (b.equations - b.unknowns, "too many equations")
+    };
+    let mut d = Diagnostic::error(
+        "E2010",
+        format!(
+            "model `{}` is not balanced: {} equations for {} unknowns ({what}, {more} off)",
+            model.name, b.equations, b.unknowns
+        ),
+    )
+    .at(span, "this model");
+    if !orphans.is_empty() && b.equations < b.unknowns {
+        d = d.with_note(format!(
+            "unknowns that no equation mentions: {}",
+            orphans.join(", ")
+        ));
+    }
+    Some(d.with_help(
+        "each unknown needs one equation; parameters, constants and top-level inputs are known",
+    ))
+}

@@ -1,0 +1,282 @@
+//! Connection sets (Modelica spec 9.2): connected potential variables are equal, flow
+//! variables sum to zero with inside connectors counted `+` and outside ones `-`, and an
+//! unconnected flow variable is zero.
+
+use crate::eval::var_key;
+use crate::flat::FlatModel;
+use crate::instantiate::Connect;
+use std::collections::HashMap;
+use unimo_source::{Diagnostic, Span};
+use unimo_syntax::ast::{
+    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart,
+};
+
+/// A node of the connection graph: a primitive variable seen from one side.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+struct Node {
+    var: usize,
+    outside: bool,
+}
+
+fn find(parent: &mut Vec<usize>, x: usize) -> usize {
+    let mut r = x;
+    while parent[r] != r {
+        r = parent[r];
+    }
+    let mut c = x;
+    while parent[c] != r {
+        let next = parent[c];
+        parent[c] = r;
+        c = next;
+    }
+    r
+}
+
+fn var_ref(name: &str, span: Span) -> Expr {
+    Expr {
+        kind: ExprKind::Ref(ComponentRef {
+            global: false,
+            parts: vec![RefPart {
+                name: Ident {
+                    text: name.into(),
+                    span,
+                },
+                subscripts: Vec::new(),
+            }],
+            span,
+        }),
+        span,
+    }
+}
+
+/// The primitive variables inside the connector instance `key`: (suffix, var index).
+fn members(model: &FlatModel, key: &str) -> Vec<(String, usize)> {
+    model
+        .vars
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| {
+            let rest = v.name.strip_prefix(key)?;
+            (rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
+                .then(|| (rest.to_owned(), i))
+        })
+        .collect()
+}
+
+/// Adds the connection equations to `model`; returns diagnostics for mismatches.
+pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) -> Vec<Diagnostic> {
+    let mut diags = Vec::new();
+    let mut nodes: Vec<Node> = Vec::new();
+    let mut index: HashMap<Node, usize> = HashMap::new();
+    let mut parent: Vec<usize> = Vec::new();
+    let mut node = |n: Node, nodes: &mut Vec<Node>, parent: &mut Vec<usize>| -> usize {
+        *index.entry(n.clone()).or_insert_with(|| {
+            nodes.push(n);
+            parent.push(parent.len());
+            parent.len() - 1
+        })
+    };
+    let mut spans: HashMap<usize, Span> = HashMap::new();
+    for c in connects {
+        let (ka, kb) = (var_key_full(&c.a), var_key_full(&c.b));
+        // A connection to an absent conditional component is dropped (spec 4.4.5).
+        if absent
+            .iter()
+            .any(|a| ka.starts_with(a.as_str()) || kb.starts_with(a.as_str()))
+        {
+            continue;
+        }
+        let (ma, mb) = (members(model, &ka), members(model, &kb));
+        if ma.is_empty() || mb.is_empty() {
+            let which = if ma.is_empty() { &ka } else { &kb };
+            diags.push(
+                Diagnostic::error("E2006", format!("`{which}` is not a connector instance"))
+                    .at(c.span, "in this connect"),
+            );
+            continue;
+        }
+        let sa: Vec<&str> = ma.iter().map(|(s, _)| s.as_str()).collect();
+        let sb: Vec<&str> = mb.iter().map(|(s, _)| s.as_str()).collect();
+        if sa != sb {
+            let missing: Vec<&str> = sa
+                .iter()
+                .filter(|s| !sb.contains(s))
+                .chain(sb.iter().filter(|s| !sa.contains(s)))
+                .copied()
+                .collect();
+            diags.push(
+                Diagnostic::error(
+                    "E2006",
+                    format!("connectors `{ka}` and `{kb}` do not match"),
+                )
+                .at(c.span, "in this connect")
+                .with_note(format!(
+                    "variables on one side only: {}",
+                    missing.join(", ")
+                )),
+            );
+            continue;
+        }
+        for ((_, va), (_, vb)) in ma.iter().zip(&mb) {
+            let (xa, xb) = (&model.vars[*va], &model.vars[*vb]);
+            if xa.flow != xb.flow || xa.dims != xb.dims {
+                diags.push(
+                    Diagnostic::error(
+                        "E2006",
+                        format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
+                    )
+                    .at(c.span, "in this connect")
+                    .with_note("a flow variable connects only to a flow variable of the same size"),
+                );
+                continue;
+            }
+            let both_outputs = xa.causality == Some(unimo_syntax::ast::Causality::Output)
+                && xb.causality == Some(unimo_syntax::ast::Causality::Output)
+                && !c.a_outside
+                && !c.b_outside;
+            if both_outputs {
+                diags.push(
+                    Diagnostic::error(
+                        "E2007",
+                        format!("two outputs connected: `{}` and `{}`", xa.name, xb.name),
+                    )
+                    .at(c.span, "in this connect")
+                    .with_help(
+                        "an output may drive several inputs, but two outputs cannot be connected",
+                    ),
+                );
+                continue;
+            }
+            let na = node(
+                Node {
+                    var: *va,
+                    outside: c.a_outside,
+                },
+                &mut nodes,
+                &mut parent,
+            );
+            let nb = node(
+                Node {
+                    var: *vb,
+                    outside: c.b_outside,
+                },
+                &mut nodes,
+                &mut parent,
+            );
+            let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
+            if ra != rb {
+                parent[ra] = rb;
+            }
+            spans.entry(na).or_insert(c.span);
+        }
+    }
+    // Group the nodes by set, in order of first appearance.
+    let mut sets: Vec<Vec<usize>> = Vec::new();
+    let mut set_of_root: HashMap<usize, usize> = HashMap::new();
+    for n in 0..nodes.len() {
+        let r = find(&mut parent, n);
+        let k = *set_of_root.entry(r).or_insert_with(|| {
+            sets.push(Vec::new());
+            sets.len() - 1
+        });
+        sets[k].push(n);
+    }
+    let mut connected_inside = vec![false; model.vars.len()];
+    for n in &nodes {
+        if !n.outside {
+            connected_inside[n.var] = true;
+        }
+    }
+    let mut new_eqs = Vec::new();
+    for set in &sets {
+        let span = set
+            .iter()
+            .find_map(|n| spans.get(n))
+            .copied()
+            .unwrap_or_default();
+        let first = &nodes[set[0]];
+        if model.vars[first.var].flow {
+            // Sum of inside minus outside flows is zero.
+            let mut sum: Option<Expr> = None;
+            for &n in set {
+                let v = var_ref(&model.vars[nodes[n].var].name, span);
+                sum = Some(match (sum, nodes[n].outside) {
+                    (None, false) => v,
+                    (None, true) => Expr {
+                        kind: ExprKind::Unary {
+                            op: unimo_syntax::ast::UnaryOp::Neg,
+                            operand: Box::new(v),
+                        },
+                        span,
+                    },
+                    (Some(acc), outside) => Expr {
+                        kind: ExprKind::Binary {
+                            op: if outside {
+                                BinaryOp::Sub
+                            } else {
+                                BinaryOp::Add
+                            },
+                            lhs: Box::new(acc),
+                            rhs: Box::new(v),
+                        },
+                        span,
+                    },
+                });
+            }
+            if let Some(sum) = sum {
+                new_eqs.push(eq(
+                    sum,
+                    Expr {
+                        kind: ExprKind::Real(0.0),
+                        span,
+                    },
+                    span,
+                ));
+            }
+        } else {
+            let mut seen = vec![first.var];
+            for &n in &set[1..] {
+                let v = nodes[n].var;
+                if seen.contains(&v) {
+                    continue;
+                }
+                seen.push(v);
+                new_eqs.push(eq(
+                    var_ref(&model.vars[first.var].name, span),
+                    var_ref(&model.vars[v].name, span),
+                    span,
+                ));
+            }
+        }
+    }
+    for (i, v) in model.vars.iter().enumerate() {
+        if v.flow && !connected_inside[i] {
+            new_eqs.push(eq(
+                var_ref(&v.name, v.origin),
+                Expr {
+                    kind: ExprKind::Real(0.0),
+                    span: v.origin,
+                },
+                v.origin,
+            ));
+        }
+    }
+    model.equations.extend(new_eqs);
+    diags
+}
+
+fn var_key_full(r: &ComponentRef) -> String {
+    let mut s = var_key(r);
+    if let Some(last) = r.parts.last() {
+        s.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+    }
+    s
+}
+
+fn eq(lhs: Expr, rhs: Expr, span: Span) -> Equation {
+    Equation {
+        kind: EquationKind::Simple { lhs, rhs },
+        comment: Default::default(),
+        span,
+    }
+}

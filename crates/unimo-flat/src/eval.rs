@@ -1,0 +1,608 @@
+//! Compile-time evaluation of flat expressions: parameters and constants for array
+//! sizes, `for` ranges, conditions of conditional components and structural `if`s.
+
+use unimo_source::Span;
+use unimo_syntax::ast::{BinaryOp, ComponentRef, Expr, ExprKind, Subscript, UnaryOp};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Int(i64),
+    Real(f64),
+    Bool(bool),
+    Str(String),
+    /// An enumeration literal: its 1-based index and its full name.
+    Enum(i64, String),
+    Array(Vec<Value>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum EvalError {
+    /// The expression depends on something that is not a known constant or parameter.
+    NotConstant { span: Span, what: String },
+    /// A construct the evaluator does not handle (yet).
+    Unsupported { span: Span, what: String },
+    /// A parameter whose value depends on itself.
+    Cycle { span: Span, name: String },
+}
+
+/// Values of variables, by flat name (the reference without its last subscripts).
+pub trait Env {
+    fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError>;
+}
+
+impl Value {
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Int(i) => Some(*i as f64),
+            Value::Real(r) => Some(*r),
+            Value::Enum(i, _) => Some(*i as f64),
+            _ => None,
+        }
+    }
+
+    pub fn as_int(&self) -> Option<i64> {
+        match self {
+            Value::Int(i) | Value::Enum(i, _) => Some(*i),
+            Value::Real(r) if r.fract() == 0.0 && r.abs() < 9.0e15 => Some(*r as i64),
+            _ => None,
+        }
+    }
+
+    pub fn as_bool(&self) -> Option<bool> {
+        match self {
+            Value::Bool(b) => Some(*b),
+            _ => None,
+        }
+    }
+
+    /// Sizes along each dimension of a (rectangular) array value.
+    pub fn dims(&self) -> Vec<usize> {
+        match self {
+            Value::Array(items) => {
+                let mut d = vec![items.len()];
+                if let Some(first) = items.first() {
+                    d.extend(first.dims());
+                }
+                d
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The value as a literal expression.
+    pub fn to_expr(&self, span: Span) -> Expr {
+        let kind = match self {
+            Value::Int(i) => ExprKind::Integer(*i),
+            Value::Real(r) => ExprKind::Real(*r),
+            Value::Bool(b) => ExprKind::Bool(*b),
+            Value::Str(s) => ExprKind::String(s.clone()),
+            Value::Enum(_, name) => ExprKind::Ref(ComponentRef {
+                global: false,
+                parts: name
+                    .split('.')
+                    .map(|p| unimo_syntax::ast::RefPart {
+                        name: unimo_syntax::ast::Ident {
+                            text: p.into(),
+                            span,
+                        },
+                        subscripts: Vec::new(),
+                    })
+                    .collect(),
+                span,
+            }),
+            Value::Array(items) => ExprKind::Array(items.iter().map(|v| v.to_expr(span)).collect()),
+        };
+        Expr { kind, span }
+    }
+}
+
+/// The key of a flat reference: all parts with their subscripts, but the last part's.
+pub fn var_key(r: &ComponentRef) -> String {
+    let mut s = String::new();
+    for (i, p) in r.parts.iter().enumerate() {
+        if i > 0 {
+            s.push('.');
+        }
+        s.push_str(&p.name.text);
+        if i + 1 < r.parts.len() {
+            s.push_str(&unimo_syntax::print::subscripts(&p.subscripts));
+        }
+    }
+    s
+}
+
+fn unsupported(e: &Expr, what: &str) -> EvalError {
+    EvalError::Unsupported {
+        span: e.span,
+        what: what.to_owned(),
+    }
+}
+
+fn num(e: &Expr, v: &Value) -> Result<f64, EvalError> {
+    v.as_f64()
+        .ok_or_else(|| unsupported(e, "a number is needed here"))
+}
+
+/// Evaluates `e`; `iterators` are the values of enclosing `for` indices.
+pub fn eval(
+    e: &Expr,
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    match &e.kind {
+        ExprKind::Integer(i) => Ok(Value::Int(*i)),
+        ExprKind::Real(r) => Ok(Value::Real(*r)),
+        ExprKind::Bool(b) => Ok(Value::Bool(*b)),
+        ExprKind::String(s) => Ok(Value::Str(s.clone())),
+        ExprKind::Ref(r) => {
+            if r.parts.len() == 1 {
+                let n = r.parts[0].name.text.as_str();
+                if let Some((_, v)) = iterators.iter().rev().find(|(k, _)| k == n) {
+                    let v = v.clone();
+                    return index(e, v, &r.parts[0].subscripts, env, iterators);
+                }
+                if n == "time" {
+                    return Err(EvalError::NotConstant {
+                        span: e.span,
+                        what: "time".into(),
+                    });
+                }
+            }
+            let v = env.var(&var_key(r), e.span)?;
+            let subs = &r
+                .parts
+                .last()
+                .map(|p| p.subscripts.clone())
+                .unwrap_or_default();
+            index(e, v, subs, env, iterators)
+        }
+        ExprKind::Unary { op, operand } => {
+            let v = eval(operand, env, iterators)?;
+            match op {
+                UnaryOp::Not => Ok(Value::Bool(
+                    !v.as_bool()
+                        .ok_or_else(|| unsupported(e, "`not` needs a Boolean"))?,
+                )),
+                UnaryOp::Plus => Ok(v),
+                UnaryOp::Neg => map_num(e, &v, &|x| -x),
+            }
+        }
+        ExprKind::Binary { op, lhs, rhs } => {
+            let a = eval(lhs, env, iterators)?;
+            let b = eval(rhs, env, iterators)?;
+            binary(e, *op, &a, &b)
+        }
+        ExprKind::If {
+            branches,
+            otherwise,
+        } => {
+            for (c, v) in branches {
+                let cv = eval(c, env, iterators)?;
+                if cv
+                    .as_bool()
+                    .ok_or_else(|| unsupported(c, "a condition must be Boolean"))?
+                {
+                    return eval(v, env, iterators);
+                }
+            }
+            eval(otherwise, env, iterators)
+        }
+        ExprKind::Range { start, step, stop } => {
+            let a = eval(start, env, iterators)?;
+            let b = eval(stop, env, iterators)?;
+            let s = match step {
+                Some(s) => Some(eval(s, env, iterators)?),
+                None => None,
+            };
+            range(e, &a, s.as_ref(), &b)
+        }
+        ExprKind::Array(items) => Ok(Value::Array(
+            items
+                .iter()
+                .map(|i| eval(i, env, iterators))
+                .collect::<Result<_, _>>()?,
+        )),
+        ExprKind::Matrix(rows) => {
+            let rows: Vec<Value> = rows
+                .iter()
+                .map(|r| {
+                    Ok(Value::Array(
+                        r.iter()
+                            .map(|i| eval(i, env, iterators))
+                            .collect::<Result<_, _>>()?,
+                    ))
+                })
+                .collect::<Result<_, EvalError>>()?;
+            Ok(Value::Array(rows))
+        }
+        ExprKind::Comprehension { body, indices } => comprehension(body, indices, env, iterators),
+        ExprKind::Call { func, args } => call(e, func, args, env, iterators),
+        _ => Err(unsupported(e, "this expression")),
+    }
+}
+
+fn comprehension(
+    body: &Expr,
+    indices: &[unimo_syntax::ast::ForIndex],
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    let Some((first, rest)) = indices.split_first() else {
+        return eval(body, env, iterators);
+    };
+    let range = match &first.range {
+        Some(r) => eval(r, env, iterators)?,
+        None => return Err(unsupported(body, "an iterator without a range")),
+    };
+    let Value::Array(items) = range else {
+        return Err(unsupported(body, "an iterator range must be an array"));
+    };
+    let mut out = Vec::with_capacity(items.len());
+    for v in items {
+        iterators.push((first.name.text.to_string(), v));
+        let r = comprehension(body, rest, env, iterators);
+        iterators.pop();
+        out.push(r?);
+    }
+    Ok(Value::Array(out))
+}
+
+fn index(
+    e: &Expr,
+    mut v: Value,
+    subs: &[Subscript],
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    for (k, s) in subs.iter().enumerate() {
+        match s {
+            Subscript::Colon(_) => {
+                if k + 1 != subs.len() {
+                    return Err(unsupported(e, "a slice before another subscript"));
+                }
+            }
+            Subscript::Expr(ix) => {
+                let i = eval(ix, env, iterators)?
+                    .as_int()
+                    .ok_or_else(|| unsupported(ix, "an array index must be an Integer"))?;
+                let Value::Array(items) = v else {
+                    return Err(unsupported(e, "a subscript on a scalar"));
+                };
+                v = items
+                    .get((i - 1).max(0) as usize)
+                    .filter(|_| i >= 1)
+                    .cloned()
+                    .ok_or_else(|| {
+                        unsupported(
+                            ix,
+                            &format!("index {i} is out of bounds 1..{}", items.len()),
+                        )
+                    })?;
+            }
+        }
+    }
+    Ok(v)
+}
+
+fn map_num(e: &Expr, v: &Value, f: &dyn Fn(f64) -> f64) -> Result<Value, EvalError> {
+    match v {
+        Value::Int(i) => {
+            let r = f(*i as f64);
+            Ok(if r.fract() == 0.0 && r.abs() < 9.0e15 {
+                Value::Int(r as i64)
+            } else {
+                Value::Real(r)
+            })
+        }
+        Value::Real(r) => Ok(Value::Real(f(*r))),
+        Value::Array(items) => Ok(Value::Array(
+            items
+                .iter()
+                .map(|i| map_num(e, i, f))
+                .collect::<Result<_, _>>()?,
+        )),
+        _ => Err(unsupported(e, "a number is needed here")),
+    }
+}
+
+fn binary(e: &Expr, op: BinaryOp, a: &Value, b: &Value) -> Result<Value, EvalError> {
+    use BinaryOp::*;
+    // Element-wise over arrays (and scalar with array).
+    match (a, b) {
+        (Value::Array(x), Value::Array(y))
+            if matches!(
+                op,
+                Add | Sub | ElemAdd | ElemSub | ElemMul | ElemDiv | ElemPow
+            ) =>
+        {
+            if x.len() != y.len() {
+                return Err(unsupported(e, "arrays of different sizes"));
+            }
+            return Ok(Value::Array(
+                x.iter()
+                    .zip(y)
+                    .map(|(p, q)| binary(e, op, p, q))
+                    .collect::<Result<_, _>>()?,
+            ));
+        }
+        (Value::Array(x), Value::Array(y)) if op == Mul => {
+            // Scalar product of vectors; matrix products are left to later stages.
+            if x.len() != y.len() || x.iter().any(|v| matches!(v, Value::Array(_))) {
+                return Err(unsupported(e, "matrix product in a constant expression"));
+            }
+            let mut acc = 0.0;
+            for (p, q) in x.iter().zip(y) {
+                acc += num(e, p)? * num(e, q)?;
+            }
+            return Ok(Value::Real(acc));
+        }
+        (Value::Array(x), s) if !matches!(s, Value::Array(_)) => {
+            return Ok(Value::Array(
+                x.iter()
+                    .map(|p| binary(e, op, p, s))
+                    .collect::<Result<_, _>>()?,
+            ));
+        }
+        (s, Value::Array(y))
+            if !matches!(s, Value::Array(_))
+                && matches!(op, Mul | ElemMul | Add | Sub | ElemAdd | ElemSub) =>
+        {
+            return Ok(Value::Array(
+                y.iter()
+                    .map(|q| binary(e, op, s, q))
+                    .collect::<Result<_, _>>()?,
+            ));
+        }
+        _ => {}
+    }
+    match op {
+        And | Or => {
+            let (x, y) = (a.as_bool(), b.as_bool());
+            match (x, y) {
+                (Some(x), Some(y)) => Ok(Value::Bool(if op == And { x && y } else { x || y })),
+                _ => Err(unsupported(e, "`and`/`or` need Booleans")),
+            }
+        }
+        Lt | Le | Gt | Ge | Eq | Ne => {
+            let ord = match (a, b) {
+                (Value::Str(x), Value::Str(y)) => x.cmp(y) as i32 as f64,
+                (Value::Bool(x), Value::Bool(y)) => (*x as i32 - *y as i32) as f64,
+                _ => num(e, a)? - num(e, b)?,
+            };
+            Ok(Value::Bool(match op {
+                Lt => ord < 0.0,
+                Le => ord <= 0.0,
+                Gt => ord > 0.0,
+                Ge => ord >= 0.0,
+                Eq => ord == 0.0,
+                _ => ord != 0.0,
+            }))
+        }
+        Add | ElemAdd if matches!((a, b), (Value::Str(_), Value::Str(_))) => match (a, b) {
+            (Value::Str(x), Value::Str(y)) => Ok(Value::Str(format!("{x}{y}"))),
+            _ => unreachable!(),
+        },
+        _ => {
+            let ints = matches!((a, b), (Value::Int(_), Value::Int(_)));
+            let (x, y) = (num(e, a)?, num(e, b)?);
+            let r = match op {
+                Add | ElemAdd => x + y,
+                Sub | ElemSub => x - y,
+                Mul | ElemMul => x * y,
+                Div | ElemDiv => return Ok(Value::Real(x / y)),
+                _ => return Ok(Value::Real(x.powf(y))),
+            };
+            Ok(if ints {
+                Value::Int(r as i64)
+            } else {
+                Value::Real(r)
+            })
+        }
+    }
+}
+
+fn range(e: &Expr, a: &Value, step: Option<&Value>, b: &Value) -> Result<Value, EvalError> {
+    if let (Some(x), Some(y), None | Some(Value::Int(_))) = (a.as_int(), b.as_int(), step) {
+        if matches!(a, Value::Int(_) | Value::Enum(..))
+            && matches!(b, Value::Int(_) | Value::Enum(..))
+        {
+            let s = step.and_then(Value::as_int).unwrap_or(1);
+            if s == 0 {
+                return Err(unsupported(e, "a range with step 0"));
+            }
+            let n = if (s > 0 && y < x) || (s < 0 && y > x) {
+                0
+            } else {
+                (y - x) / s + 1
+            };
+            if n > 10_000_000 {
+                return Err(unsupported(e, "a range of more than 10^7 elements"));
+            }
+            return Ok(Value::Array(
+                (0..n).map(|k| Value::Int(x + k * s)).collect(),
+            ));
+        }
+    }
+    let (x, y) = (num(e, a)?, num(e, b)?);
+    let s = match step {
+        Some(s) => num(e, s)?,
+        None => 1.0,
+    };
+    if s == 0.0 {
+        return Err(unsupported(e, "a range with step 0"));
+    }
+    let n = ((y - x) / s + 1e-10).floor() as i64 + 1;
+    Ok(Value::Array(
+        (0..n.max(0))
+            .map(|k| Value::Real(x + k as f64 * s))
+            .collect(),
+    ))
+}
+
+fn flatten_values(v: &Value, out: &mut Vec<Value>) {
+    match v {
+        Value::Array(items) => items.iter().for_each(|i| flatten_values(i, out)),
+        other => out.push(other.clone()),
+    }
+}
+
+fn call(
+    e: &Expr,
+    func: &unimo_syntax::ast::Name,
+    args: &unimo_syntax::ast::CallArgs,
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    let name = func.to_dotted();
+    if !args.iterators.is_empty() {
+        // Reductions: sum(e for i in r) and friends.
+        let body = args
+            .positional
+            .first()
+            .ok_or_else(|| unsupported(e, "an empty reduction"))?;
+        let v = comprehension(body, &args.iterators, env, iterators)?;
+        return reduce(e, &name, &v);
+    }
+    let vals: Vec<Value> = args
+        .positional
+        .iter()
+        .map(|a| eval(a, env, iterators))
+        .collect::<Result<_, _>>()?;
+    let arg = |k: usize| {
+        vals.get(k)
+            .ok_or_else(|| unsupported(e, "missing argument"))
+    };
+    let f1 = |f: fn(f64) -> f64| -> Result<Value, EvalError> { map_num(e, arg(0)?, &f) };
+    match name.as_str() {
+        "abs" => f1(f64::abs),
+        "sqrt" => f1(f64::sqrt),
+        "exp" => f1(f64::exp),
+        "log" => f1(f64::ln),
+        "log10" => f1(f64::log10),
+        "sin" => f1(f64::sin),
+        "cos" => f1(f64::cos),
+        "tan" => f1(f64::tan),
+        "asin" => f1(f64::asin),
+        "acos" => f1(f64::acos),
+        "atan" => f1(f64::atan),
+        "sinh" => f1(f64::sinh),
+        "cosh" => f1(f64::cosh),
+        "tanh" => f1(f64::tanh),
+        "sign" => f1(|x| {
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }),
+        "floor" => Ok(Value::Real(num(e, arg(0)?)?.floor())),
+        "ceil" => Ok(Value::Real(num(e, arg(0)?)?.ceil())),
+        "integer" => Ok(Value::Int(num(e, arg(0)?)?.floor() as i64)),
+        "Integer" => {
+            Ok(Value::Int(arg(0)?.as_int().ok_or_else(|| {
+                unsupported(e, "Integer() of a non-enumeration")
+            })?))
+        }
+        "atan2" => Ok(Value::Real(num(e, arg(0)?)?.atan2(num(e, arg(1)?)?))),
+        "div" | "mod" | "rem" => {
+            let ints = matches!((arg(0)?, arg(1)?), (Value::Int(_), Value::Int(_)));
+            let (x, y) = (num(e, arg(0)?)?, num(e, arg(1)?)?);
+            let r = match name.as_str() {
+                "div" => (x / y).trunc(),
+                "mod" => x - (x / y).floor() * y,
+                _ => x - (x / y).trunc() * y,
+            };
+            Ok(if ints {
+                Value::Int(r as i64)
+            } else {
+                Value::Real(r)
+            })
+        }
+        "min" | "max" if vals.len() == 2 => {
+            let (x, y) = (arg(0)?, arg(1)?);
+            let pick_first = if name == "min" {
+                num(e, x)? <= num(e, y)?
+            } else {
+                num(e, x)? >= num(e, y)?
+            };
+            Ok(if pick_first { x.clone() } else { y.clone() })
+        }
+        "min" | "max" | "sum" | "product" => reduce(e, &name, arg(0)?),
+        "size" => {
+            let d = arg(0)?.dims();
+            match vals.get(1) {
+                Some(k) => {
+                    let k = k
+                        .as_int()
+                        .ok_or_else(|| unsupported(e, "size(a, k) needs an Integer k"))?;
+                    d.get((k - 1).max(0) as usize)
+                        .map(|n| Value::Int(*n as i64))
+                        .ok_or_else(|| unsupported(e, "size of a missing dimension"))
+                }
+                None => Ok(Value::Array(
+                    d.into_iter().map(|n| Value::Int(n as i64)).collect(),
+                )),
+            }
+        }
+        "zeros" | "ones" => {
+            let fill_with = if name == "zeros" {
+                Value::Int(0)
+            } else {
+                Value::Int(1)
+            };
+            filled(e, fill_with, &vals)
+        }
+        "fill" => filled(e, arg(0)?.clone(), &vals[1..]),
+        "identity" => {
+            let n = arg(0)?
+                .as_int()
+                .ok_or_else(|| unsupported(e, "identity(n) needs an Integer"))?
+                .max(0);
+            Ok(Value::Array(
+                (0..n)
+                    .map(|i| Value::Array((0..n).map(|j| Value::Int((i == j) as i64)).collect()))
+                    .collect(),
+            ))
+        }
+        "noEvent" | "smooth" => vals
+            .last()
+            .cloned()
+            .ok_or_else(|| unsupported(e, "missing argument")),
+        _ => Err(EvalError::NotConstant {
+            span: e.span,
+            what: format!("a call of `{name}`"),
+        }),
+    }
+}
+
+fn filled(e: &Expr, v: Value, dims: &[Value]) -> Result<Value, EvalError> {
+    let Some((first, rest)) = dims.split_first() else {
+        return Ok(v);
+    };
+    let n = first
+        .as_int()
+        .ok_or_else(|| unsupported(e, "a dimension must be an Integer"))?
+        .max(0);
+    let inner = filled(e, v, rest)?;
+    Ok(Value::Array(vec![inner; n as usize]))
+}
+
+fn reduce(e: &Expr, name: &str, v: &Value) -> Result<Value, EvalError> {
+    let mut items = Vec::new();
+    flatten_values(v, &mut items);
+    let all_int = items.iter().all(|i| matches!(i, Value::Int(_)));
+    let nums: Vec<f64> = items.iter().map(|i| num(e, i)).collect::<Result<_, _>>()?;
+    let r = match name {
+        "sum" => nums.iter().sum(),
+        "product" => nums.iter().product(),
+        "min" => nums.iter().cloned().fold(f64::INFINITY, f64::min),
+        _ => nums.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+    };
+    Ok(if all_int && r.is_finite() {
+        Value::Int(r as i64)
+    } else {
+        Value::Real(r)
+    })
+}

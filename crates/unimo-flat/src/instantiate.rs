@@ -1,0 +1,1106 @@
+//! Instantiation: walks a class with its modifications and produces the flat model —
+//! variables with full names and merged attributes, equations with full references,
+//! `for` equations unrolled, structural `if`s decided, connections recorded.
+
+use crate::eval::{self, Env, EvalError, Value};
+use crate::flat::{FlatModel, FlatType, FlatVar, VarId, Variability};
+use crate::lookup::{Found, BUILTIN_FUNCTIONS};
+use crate::modif::{Bound, Mod, Scope};
+use crate::tree::{ClassId, ClassTree};
+use smol_str::SmolStr;
+use std::collections::{HashMap, HashSet};
+use unimo_source::{Diagnostic, Span};
+use unimo_syntax::ast::*;
+
+/// Attributes a variable of a predefined type may be modified with.
+const ATTRIBUTES: &[&str] = &[
+    "start",
+    "fixed",
+    "nominal",
+    "min",
+    "max",
+    "unit",
+    "quantity",
+    "displayUnit",
+    "stateSelect",
+    "unbounded",
+];
+
+/// Deepest component nesting followed (recursive models are errors).
+const MAX_DEPTH: usize = 100;
+
+/// One `connect` as written, with full paths and faces.
+#[derive(Clone, Debug)]
+pub struct Connect {
+    pub a: ComponentRef,
+    pub b: ComponentRef,
+    /// Whether each side is an outside connector (declared in the class that connects).
+    pub a_outside: bool,
+    pub b_outside: bool,
+    pub span: Span,
+}
+
+pub(crate) struct Instantiator<'t, 'p> {
+    pub tree: &'t mut ClassTree<'p>,
+    pub model: FlatModel,
+    pub var_index: HashMap<String, VarId>,
+    pub connects: Vec<Connect>,
+    pub diags: Vec<Diagnostic>,
+    values: HashMap<String, Value>,
+    evaluating: HashSet<String>,
+    /// Paths of conditional components that are absent.
+    pub absent: Vec<String>,
+    depth: usize,
+}
+
+/// The type a component turns out to have.
+enum Kind {
+    Builtin(FlatType),
+    Class(ClassId),
+}
+
+fn part(name: &str, span: Span) -> RefPart {
+    RefPart {
+        name: Ident {
+            text: SmolStr::new(name),
+            span,
+        },
+        subscripts: Vec::new(),
+    }
+}
+
+fn int_expr(i: i64, span: Span) -> Expr {
+    Expr {
+        kind: ExprKind::Integer(i),
+        span,
+    }
+}
+
+/// All index tuples of an array of the given dimensions, in row-major order.
+fn index_tuples(dims: &[usize]) -> Vec<Vec<i64>> {
+    let mut out = vec![Vec::new()];
+    for &d in dims {
+        out = out
+            .into_iter()
+            .flat_map(|t| {
+                (1..=d as i64).map(move |i| {
+                    let mut t = t.clone();
+                    t.push(i);
+                    t
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+impl<'t, 'p> Instantiator<'t, 'p> {
+    pub fn new(tree: &'t mut ClassTree<'p>) -> Self {
+        Instantiator {
+            tree,
+            model: FlatModel::default(),
+            var_index: HashMap::new(),
+            connects: Vec::new(),
+            diags: Vec::new(),
+            values: HashMap::new(),
+            evaluating: HashSet::new(),
+            absent: Vec::new(),
+            depth: 0,
+        }
+    }
+
+    fn error(&mut self, code: &'static str, message: String, span: Span, label: &str) {
+        self.diags
+            .push(Diagnostic::error(code, message).at(span, label));
+    }
+
+    fn eval_error(&mut self, e: EvalError, context: &str) {
+        let (span, what, code) = match e {
+            EvalError::NotConstant { span, what } => (
+                span,
+                format!("depends on {what}, which is not a known parameter or constant"),
+                "E2003",
+            ),
+            EvalError::Unsupported { span, what } => {
+                (span, format!("cannot evaluate {what}"), "E2003")
+            }
+            EvalError::Cycle { span, name } => (
+                span,
+                format!("parameter `{name}` depends on itself"),
+                "E2008",
+            ),
+        };
+        self.diags.push(
+            Diagnostic::error(code, format!("{context}: {what}"))
+                .at(span, "needed at compile time")
+                .with_help("sizes, `for` ranges and conditions of conditional components and structural `if`s must be parameters or constants"),
+        );
+    }
+
+    /// Instantiates the class `class` as the top-level model.
+    pub fn run(&mut self, class: ClassId) {
+        self.model.name = self.tree.full_name(class);
+        if let ClassBody::Long { composition, .. } = &self.tree.get(class).def.body {
+            self.model.experiment = composition.annotation.as_ref().and_then(|a| {
+                a.args.iter().find_map(|arg| match arg {
+                    Argument::Modify {
+                        name,
+                        modification: Some(m),
+                        ..
+                    } if name.to_dotted() == "experiment" => m.class_mod.clone(),
+                    _ => None,
+                })
+            });
+        }
+        if self.tree.get(class).def.partial {
+            let span = self.tree.get(class).def.name.span;
+            self.error(
+                "E2009",
+                format!(
+                    "class `{}` is partial and cannot be simulated",
+                    self.model.name
+                ),
+                span,
+                "declared `partial`",
+            );
+        }
+        self.class_body(class, &[], &Mod::default(), None, true);
+    }
+
+    /// Follows short class definitions to a long class or a predefined type,
+    /// accumulating their modifiers (innermost last).
+    fn resolve_type(&mut self, mut found: Found, m: &Mod) -> Option<(Kind, Mod)> {
+        let mut m = m.clone();
+        for _ in 0..MAX_DEPTH {
+            let c = match found {
+                Found::Builtin(b) => {
+                    let t = match b {
+                        "Real" => FlatType::Real,
+                        "Integer" => FlatType::Integer,
+                        "Boolean" => FlatType::Boolean,
+                        "String" => FlatType::String,
+                        // StateSelect and AssertionLevel are enumerations.
+                        other => FlatType::Enumeration {
+                            name: other.to_owned(),
+                            literals: Vec::new(),
+                        },
+                    };
+                    return Some((Kind::Builtin(t), m));
+                }
+                Found::Component(_) => return None,
+                Found::Class(c) => c,
+            };
+            let def = self.tree.get(c).def.clone();
+            match &def.body {
+                ClassBody::Short {
+                    base, modification, ..
+                } => {
+                    let parent = self.tree.get(c).parent;
+                    if let Some(cm) = modification {
+                        let scope = Scope {
+                            class: parent.unwrap_or(c),
+                            prefix: Vec::new(),
+                        };
+                        m = m.over(&Mod::from_class_mod(cm, &scope));
+                    }
+                    let parts: Vec<&str> = base.parts.iter().map(|p| p.text.as_str()).collect();
+                    found = self.tree.lookup_dotted(parent, &parts, false)?;
+                }
+                ClassBody::Enumeration { literals, .. } => {
+                    let name = self.tree.full_name(c);
+                    let lits: Vec<String> =
+                        literals.iter().map(|l| l.name.text.to_string()).collect();
+                    if !self.model.enumerations.iter().any(|(n, _)| *n == name) {
+                        self.model.enumerations.push((name.clone(), lits.clone()));
+                    }
+                    return Some((
+                        Kind::Builtin(FlatType::Enumeration {
+                            name,
+                            literals: lits,
+                        }),
+                        m,
+                    ));
+                }
+                ClassBody::Long { .. } => return Some((Kind::Class(c), m)),
+            }
+        }
+        None
+    }
+
+    /// Instantiates the elements and equations of `class` at `prefix`.
+    fn class_body(
+        &mut self,
+        class: ClassId,
+        prefix: &[RefPart],
+        m: &Mod,
+        variability: Option<Variability>,
+        top: bool,
+    ) {
+        self.class_body_inner(class, prefix, m, variability, top, true);
+    }
+
+    /// `check_mods`: whether modified names are checked here (not again in bases).
+    fn class_body_inner(
+        &mut self,
+        class: ClassId,
+        prefix: &[RefPart],
+        m: &Mod,
+        variability: Option<Variability>,
+        top: bool,
+        check_mods: bool,
+    ) {
+        if self.depth >= MAX_DEPTH {
+            let span = self.tree.get(class).def.name.span;
+            self.error(
+                "E2011",
+                format!("instances nested more than {MAX_DEPTH} deep (a recursive model?)"),
+                span,
+                "in this class",
+            );
+            return;
+        }
+        self.depth += 1;
+        let def = self.tree.get(class).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            // A short class used as a model: instantiate its base with its modifiers.
+            if let Some((Kind::Class(c), m2)) = self.resolve_type(Found::Class(class), m) {
+                if c != class {
+                    self.class_body(c, prefix, &m2, variability, top);
+                }
+            }
+            self.depth -= 1;
+            return;
+        };
+        let scope = Scope {
+            class,
+            prefix: prefix.to_vec(),
+        };
+        // Inherited elements first, each base with the extends modifier under ours.
+        for e in &composition.elements {
+            if let ElementKind::Extends(x) = &e.kind {
+                let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
+                match self.tree.lookup_dotted(Some(class), &parts, true) {
+                    Some(Found::Class(b)) => {
+                        let ext = x
+                            .modification
+                            .as_ref()
+                            .map(|cm| Mod::from_class_mod(cm, &scope))
+                            .unwrap_or_default();
+                        self.class_body_inner(b, prefix, &m.over(&ext), variability, top, false);
+                    }
+                    Some(Found::Builtin(_)) => {
+                        self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
+                    }
+                    _ => {} // reported by the name check
+                }
+            }
+        }
+        if check_mods {
+            self.check_modified_names(class, composition, m);
+        }
+        // Parameters and constants first: sizes and conditions of the others use them.
+        for pass in 0..2 {
+            for e in &composition.elements {
+                let ElementKind::Component(cc) = &e.kind else {
+                    continue;
+                };
+                let is_param = matches!(
+                    cc.prefix.variability,
+                    Some(
+                        unimo_syntax::ast::Variability::Parameter
+                            | unimo_syntax::ast::Variability::Constant
+                    )
+                );
+                if (pass == 0) != is_param {
+                    continue;
+                }
+                for d in &cc.components {
+                    self.component(&scope, cc, d, m, variability, top);
+                }
+            }
+        }
+        for s in &composition.sections {
+            match s {
+                Section::Equation(es) => {
+                    let mut out = Vec::new();
+                    for eq in &es.equations {
+                        self.equation(eq, &scope, &mut Vec::new(), &mut out);
+                    }
+                    if es.initial {
+                        self.model.initial_equations.extend(out);
+                    } else {
+                        self.model.equations.extend(out);
+                    }
+                }
+                Section::Algorithm(al) => {
+                    let stmts: Vec<Statement> = al
+                        .statements
+                        .iter()
+                        .map(|s| self.statement(s, &scope, &mut Vec::new()))
+                        .collect();
+                    if al.initial {
+                        self.model.initial_algorithms.push(stmts);
+                    } else {
+                        self.model.algorithms.push(stmts);
+                    }
+                }
+            }
+        }
+        self.depth -= 1;
+    }
+
+    /// Every modified name must be an element of the class (or one of its bases).
+    fn check_modified_names(&mut self, class: ClassId, _composition: &Composition, m: &Mod) {
+        for (name, child) in &m.children {
+            if !self.tree.has_component(class, name)
+                && self.tree.member_class(class, name).is_none()
+            {
+                let span = child
+                    .binding
+                    .as_ref()
+                    .map_or(Span::default(), |b| b.expr.span);
+                let cname = self.tree.full_name(class);
+                self.diags.push(
+                    Diagnostic::error(
+                        "E2004",
+                        format!("modifier of `{name}`, which `{cname}` does not have"),
+                    )
+                    .at(span, "value given here")
+                    .with_help(format!(
+                        "the modified element must be declared in `{cname}` or a class it extends"
+                    )),
+                );
+            }
+        }
+    }
+
+    fn component(
+        &mut self,
+        scope: &Scope,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+        m: &Mod,
+        inherited: Option<Variability>,
+        top: bool,
+    ) {
+        let name = d.name.text.as_str();
+        let decl_mod = d
+            .modification
+            .as_ref()
+            .map(|dm| Mod::from_modification(dm, scope))
+            .unwrap_or_default();
+        let merged = match m.child(name) {
+            Some(outer) => outer.over(&decl_mod),
+            None => decl_mod,
+        };
+        let mut path = scope.prefix.clone();
+        path.push(part(name, d.name.span));
+        let key = eval::var_key(&crate::flat::path_ref(path.clone(), d.span));
+        if let Some(cond) = &d.condition {
+            let flat = self.expr(cond, scope, &mut Vec::new(), &mut Vec::new());
+            match eval::eval(&flat, self, &mut Vec::new()) {
+                Ok(Value::Bool(false)) => {
+                    self.absent.push(key);
+                    return;
+                }
+                Ok(Value::Bool(true)) => {}
+                Ok(_) => self.error(
+                    "E2003",
+                    "the condition of a conditional component must be Boolean".into(),
+                    cond.span,
+                    "not Boolean",
+                ),
+                Err(e) => self.eval_error(e, "condition of a conditional component"),
+            }
+        }
+        let found = match &merged.redeclare {
+            Some((n, s)) => {
+                let parts: Vec<&str> = n.parts.iter().map(|p| p.text.as_str()).collect();
+                self.tree.lookup_dotted(Some(s.class), &parts, false)
+            }
+            None => {
+                let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
+                self.tree.lookup_dotted(Some(scope.class), &parts, false)
+            }
+        };
+        let Some(found) = found else { return }; // unknown type: reported by the name check
+        let Some((kind, merged)) = self.resolve_type(found, &merged) else {
+            return;
+        };
+        let variability = match cc.prefix.variability {
+            Some(unimo_syntax::ast::Variability::Constant) => Some(Variability::Constant),
+            Some(unimo_syntax::ast::Variability::Parameter) => Some(Variability::Parameter),
+            Some(unimo_syntax::ast::Variability::Discrete) => Some(Variability::Discrete),
+            None => inherited,
+        };
+        let mut dims = Vec::new();
+        for s in cc.type_dims.iter().chain(&d.dims) {
+            match s {
+                Subscript::Expr(e) => {
+                    let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+                    match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
+                        Ok(Some(n)) if n >= 0 => dims.push(n as usize),
+                        Ok(_) => self.error(
+                            "E2003",
+                            "an array dimension must be a non-negative Integer".into(),
+                            e.span,
+                            "here",
+                        ),
+                        Err(err) => self.eval_error(err, "array dimension"),
+                    }
+                }
+                Subscript::Colon(span) => {
+                    // `[:]`: the size comes from the binding.
+                    let size = merged.binding.clone().and_then(|b| {
+                        let flat = self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new());
+                        eval::eval(&flat, self, &mut Vec::new()).ok()
+                    });
+                    match size.map(|v| v.dims()) {
+                        Some(vd) if vd.len() > dims.len() => dims.push(vd[dims.len()]),
+                        _ => self.error(
+                            "E2003",
+                            "the size of `[:]` must follow from a constant binding".into(),
+                            *span,
+                            "unknown size",
+                        ),
+                    }
+                }
+            }
+        }
+        match kind {
+            Kind::Builtin(ty) => {
+                let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
+                let id = VarId(self.model.vars.len() as u32);
+                self.var_index.insert(var.name.clone(), id);
+                self.model.vars.push(var);
+            }
+            Kind::Class(c) => {
+                if dims.is_empty() {
+                    self.class_body(c, &path, &merged, variability, false);
+                } else {
+                    for t in index_tuples(&dims) {
+                        let mut p = path.clone();
+                        if let Some(last) = p.last_mut() {
+                            last.subscripts = t
+                                .iter()
+                                .map(|i| Subscript::Expr(int_expr(*i, d.span)))
+                                .collect();
+                        }
+                        self.class_body(c, &p, &merged, variability, false);
+                    }
+                }
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn builtin_var(
+        &mut self,
+        name: String,
+        ty: FlatType,
+        m: &Mod,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+        variability: Option<Variability>,
+        dims: Vec<usize>,
+        top: bool,
+    ) -> FlatVar {
+        let mut attributes = Vec::new();
+        let mut each_attributes = Vec::new();
+        for (attr, am) in &m.children {
+            if !ATTRIBUTES.contains(&attr.as_str()) {
+                let span = am.binding.as_ref().map_or(d.span, |b| b.expr.span);
+                self.diags.push(
+                    Diagnostic::error("E2004", format!("`{attr}` is not an attribute of `{name}`"))
+                        .at(span, "value given here")
+                        .with_help(format!(
+                            "attributes of predefined types: {}",
+                            ATTRIBUTES.join(", ")
+                        )),
+                );
+                continue;
+            }
+            if let Some(b) = &am.binding {
+                attributes.push((
+                    attr.clone(),
+                    self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new()),
+                ));
+                if am.each {
+                    each_attributes.push(attr.clone());
+                }
+            }
+        }
+        let binding = m
+            .binding
+            .as_ref()
+            .map(|b: &Bound| self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new()));
+        let discrete_type = matches!(
+            ty,
+            FlatType::Integer | FlatType::Boolean | FlatType::String | FlatType::Enumeration { .. }
+        );
+        let variability = match variability {
+            Some(v) => v,
+            None if discrete_type => Variability::Discrete,
+            None => Variability::Continuous,
+        };
+        FlatVar {
+            name,
+            ty,
+            variability,
+            causality: cc.prefix.causality,
+            flow: cc.prefix.connection == Some(Connection::Flow),
+            dims,
+            binding,
+            attributes,
+            each_attributes,
+            description: d.comment.description.clone(),
+            top_level: top,
+            origin: d.span,
+        }
+    }
+
+    // ------------------------------------------------------------ equations
+
+    fn equation(
+        &mut self,
+        eq: &Equation,
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        out: &mut Vec<Equation>,
+    ) {
+        let kind = match &eq.kind {
+            EquationKind::Simple { lhs, rhs } => EquationKind::Simple {
+                lhs: self.expr(lhs, scope, iters, &mut Vec::new()),
+                rhs: self.expr(rhs, scope, iters, &mut Vec::new()),
+            },
+            EquationKind::Call(c) => {
+                EquationKind::Call(self.expr(c, scope, iters, &mut Vec::new()))
+            }
+            EquationKind::Connect { a, b } => {
+                let fa = self.cref(a, scope, iters, &mut Vec::new());
+                let fb = self.cref(b, scope, iters, &mut Vec::new());
+                self.connects.push(Connect {
+                    a: fa,
+                    b: fb,
+                    a_outside: a.parts.len() == 1,
+                    b_outside: b.parts.len() == 1,
+                    span: eq.span,
+                });
+                return;
+            }
+            EquationKind::For { indices, body } => {
+                self.for_equation(indices, body, scope, iters, out);
+                return;
+            }
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => {
+                // Decided now when every condition is a parameter expression.
+                // Some(Some(k)): branch k is taken; Some(None): all conditions false;
+                // None: a condition is not a parameter expression.
+                let mut decided = Some(None);
+                for (k, (c, _)) in branches.iter().enumerate() {
+                    let flat = self.expr(c, scope, iters, &mut Vec::new());
+                    match eval::eval(&flat, self, iters) {
+                        Ok(Value::Bool(true)) => {
+                            decided = Some(Some(k));
+                            break;
+                        }
+                        Ok(Value::Bool(false)) => {}
+                        _ => {
+                            decided = None;
+                            break;
+                        }
+                    }
+                }
+                let all_false = decided == Some(None);
+                let decided = decided.flatten();
+                if let Some(k) = decided {
+                    for e in &branches[k].1 {
+                        self.equation(e, scope, iters, out);
+                    }
+                    return;
+                }
+                if all_false {
+                    for e in otherwise {
+                        self.equation(e, scope, iters, out);
+                    }
+                    return;
+                }
+                let mut fb = Vec::new();
+                for (c, body) in branches {
+                    let cond = self.expr(c, scope, iters, &mut Vec::new());
+                    let mut b = Vec::new();
+                    for e in body {
+                        self.equation(e, scope, iters, &mut b);
+                    }
+                    fb.push((cond, b));
+                }
+                let mut fo = Vec::new();
+                for e in otherwise {
+                    self.equation(e, scope, iters, &mut fo);
+                }
+                EquationKind::If {
+                    branches: fb,
+                    otherwise: fo,
+                }
+            }
+            EquationKind::When { branches } => {
+                let mut fb = Vec::new();
+                for (c, body) in branches {
+                    let cond = self.expr(c, scope, iters, &mut Vec::new());
+                    let mut b = Vec::new();
+                    for e in body {
+                        self.equation(e, scope, iters, &mut b);
+                    }
+                    fb.push((cond, b));
+                }
+                EquationKind::When { branches: fb }
+            }
+        };
+        out.push(Equation {
+            kind,
+            comment: Comment::default(),
+            span: eq.span,
+        });
+    }
+
+    fn for_equation(
+        &mut self,
+        indices: &[ForIndex],
+        body: &[Equation],
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        out: &mut Vec<Equation>,
+    ) {
+        let Some((first, rest)) = indices.split_first() else {
+            for e in body {
+                self.equation(e, scope, iters, out);
+            }
+            return;
+        };
+        let Some(range) = &first.range else {
+            self.error(
+                "E2003",
+                "a `for` equation needs an explicit range here".into(),
+                first.name.span,
+                "no range",
+            );
+            return;
+        };
+        let flat = self.expr(range, scope, iters, &mut Vec::new());
+        let values = match eval::eval(&flat, self, iters) {
+            Ok(Value::Array(v)) => v,
+            Ok(_) => {
+                self.error(
+                    "E2003",
+                    "a `for` range must be an array".into(),
+                    range.span,
+                    "not an array",
+                );
+                return;
+            }
+            Err(e) => {
+                self.eval_error(e, "`for` range");
+                return;
+            }
+        };
+        for v in values {
+            iters.push((first.name.text.to_string(), v));
+            self.for_equation(rest, body, scope, iters, out);
+            iters.pop();
+        }
+    }
+
+    fn statement(&mut self, st: &Statement, scope: &Scope, locals: &mut Vec<String>) -> Statement {
+        let iters = &mut Vec::new();
+        let kind = match &st.kind {
+            StatementKind::Assign { target, value } => StatementKind::Assign {
+                target: self.cref(target, scope, iters, locals),
+                value: self.expr(value, scope, iters, locals),
+            },
+            StatementKind::MultiAssign { targets, value } => StatementKind::MultiAssign {
+                targets: targets
+                    .iter()
+                    .map(|t| t.as_ref().map(|e| self.expr(e, scope, iters, locals)))
+                    .collect(),
+                value: self.expr(value, scope, iters, locals),
+            },
+            StatementKind::Call(e) => StatementKind::Call(self.expr(e, scope, iters, locals)),
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => StatementKind::If {
+                branches: branches
+                    .iter()
+                    .map(|(c, b)| {
+                        (
+                            self.expr(c, scope, iters, locals),
+                            b.iter().map(|s| self.statement(s, scope, locals)).collect(),
+                        )
+                    })
+                    .collect(),
+                otherwise: otherwise
+                    .iter()
+                    .map(|s| self.statement(s, scope, locals))
+                    .collect(),
+            },
+            StatementKind::For { indices, body } => {
+                let indices: Vec<ForIndex> = indices
+                    .iter()
+                    .map(|i| ForIndex {
+                        name: i.name.clone(),
+                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
+                    })
+                    .collect();
+                let n = indices.len();
+                locals.extend(indices.iter().map(|i| i.name.text.to_string()));
+                let body = body
+                    .iter()
+                    .map(|s| self.statement(s, scope, locals))
+                    .collect();
+                locals.truncate(locals.len() - n);
+                StatementKind::For { indices, body }
+            }
+            StatementKind::While { condition, body } => StatementKind::While {
+                condition: self.expr(condition, scope, iters, locals),
+                body: body
+                    .iter()
+                    .map(|s| self.statement(s, scope, locals))
+                    .collect(),
+            },
+            StatementKind::When { branches } => StatementKind::When {
+                branches: branches
+                    .iter()
+                    .map(|(c, b)| {
+                        (
+                            self.expr(c, scope, iters, locals),
+                            b.iter().map(|s| self.statement(s, scope, locals)).collect(),
+                        )
+                    })
+                    .collect(),
+            },
+            StatementKind::Return => StatementKind::Return,
+            StatementKind::Break => StatementKind::Break,
+        };
+        Statement {
+            kind,
+            comment: Comment::default(),
+            span: st.span,
+        }
+    }
+
+    // ------------------------------------------------------------ expressions
+
+    /// A reference made absolute: the instance prefix added to a component of the
+    /// scope; `for` indices replaced by their value; package constants inlined.
+    fn cref(
+        &mut self,
+        r: &ComponentRef,
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> ComponentRef {
+        let mut r = r.clone();
+        for p in &mut r.parts {
+            for s in &mut p.subscripts {
+                if let Subscript::Expr(e) = s {
+                    *e = self.expr(e, scope, iters, locals);
+                }
+            }
+        }
+        let Some(first) = r.parts.first().map(|p| p.name.text.to_string()) else {
+            return r;
+        };
+        if r.global || first == "time" || locals.contains(&first) {
+            return r;
+        }
+        if self.tree.has_component(scope.class, &first) {
+            let mut parts = scope.prefix.clone();
+            parts.extend(r.parts);
+            return ComponentRef {
+                global: false,
+                parts,
+                span: r.span,
+            };
+        }
+        // A class path: an enumeration literal or a package constant, made global.
+        let names: Vec<&str> = r.parts.iter().map(|p| p.name.text.as_str()).collect();
+        let owner = match self.tree.lookup_simple(Some(scope.class), &first, false) {
+            Some(Found::Class(c)) => Some(c),
+            Some(Found::Component(c)) => Some(c),
+            _ => None,
+        };
+        if let Some(owner) = owner {
+            let full = match self.tree.lookup_dotted(Some(scope.class), &names, false) {
+                Some(Found::Component(c)) => {
+                    let mut n = self.tree.full_name(c);
+                    n.push('.');
+                    n.push_str(names.last().copied().unwrap_or(""));
+                    n
+                }
+                Some(Found::Class(c)) => self.tree.full_name(c),
+                _ => {
+                    let _ = owner;
+                    return r;
+                }
+            };
+            let mut parts: Vec<RefPart> = full.split('.').map(|p| part(p, r.span)).collect();
+            if let (Some(last), Some(orig)) = (parts.last_mut(), r.parts.last()) {
+                last.subscripts = orig.subscripts.clone();
+            }
+            return ComponentRef {
+                global: true,
+                parts,
+                span: r.span,
+            };
+        }
+        r
+    }
+
+    fn expr(
+        &mut self,
+        e: &Expr,
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> Expr {
+        let span = e.span;
+        let kind = match &e.kind {
+            ExprKind::Ref(r) => {
+                if r.parts.len() == 1 && !r.global {
+                    let n = r.parts[0].name.text.as_str();
+                    if !locals.iter().any(|l| l == n) {
+                        if let Some((_, v)) = iters.iter().rev().find(|(k, _)| k == n) {
+                            return v.to_expr(span);
+                        }
+                    }
+                }
+                let fr = self.cref(r, scope, iters, locals);
+                if fr.global {
+                    if let Some(v) = self.package_constant(&fr) {
+                        return v;
+                    }
+                }
+                ExprKind::Ref(fr)
+            }
+            ExprKind::Call { func, args } => {
+                let simple = !func.global && func.parts.len() == 1;
+                let func = if simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()) {
+                    func.clone()
+                } else {
+                    let parts: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
+                    let start = if func.global { None } else { Some(scope.class) };
+                    match self.tree.lookup_dotted(start, &parts, false) {
+                        Some(Found::Class(c)) => {
+                            let full = self.tree.full_name(c);
+                            Name {
+                                global: true,
+                                parts: full
+                                    .split('.')
+                                    .map(|p| Ident {
+                                        text: p.into(),
+                                        span: func.span,
+                                    })
+                                    .collect(),
+                                span: func.span,
+                            }
+                        }
+                        _ => func.clone(),
+                    }
+                };
+                let n = args.iterators.len();
+                let iterators: Vec<ForIndex> = args
+                    .iterators
+                    .iter()
+                    .map(|i| ForIndex {
+                        name: i.name.clone(),
+                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
+                    })
+                    .collect();
+                locals.extend(iterators.iter().map(|i| i.name.text.to_string()));
+                let positional = args
+                    .positional
+                    .iter()
+                    .map(|a| self.expr(a, scope, iters, locals))
+                    .collect();
+                let named = args
+                    .named
+                    .iter()
+                    .map(|a| NamedArg {
+                        name: a.name.clone(),
+                        value: self.expr(&a.value, scope, iters, locals),
+                    })
+                    .collect();
+                locals.truncate(locals.len() - n);
+                ExprKind::Call {
+                    func,
+                    args: Box::new(CallArgs {
+                        positional,
+                        named,
+                        iterators,
+                        span: args.span,
+                    }),
+                }
+            }
+            ExprKind::Comprehension { body, indices } => {
+                let indices: Vec<ForIndex> = indices
+                    .iter()
+                    .map(|i| ForIndex {
+                        name: i.name.clone(),
+                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
+                    })
+                    .collect();
+                let n = indices.len();
+                locals.extend(indices.iter().map(|i| i.name.text.to_string()));
+                let body = Box::new(self.expr(body, scope, iters, locals));
+                locals.truncate(locals.len() - n);
+                ExprKind::Comprehension { body, indices }
+            }
+            ExprKind::Unary { op, operand } => ExprKind::Unary {
+                op: *op,
+                operand: Box::new(self.expr(operand, scope, iters, locals)),
+            },
+            ExprKind::Binary { op, lhs, rhs } => ExprKind::Binary {
+                op: *op,
+                lhs: Box::new(self.expr(lhs, scope, iters, locals)),
+                rhs: Box::new(self.expr(rhs, scope, iters, locals)),
+            },
+            ExprKind::If {
+                branches,
+                otherwise,
+            } => ExprKind::If {
+                branches: branches
+                    .iter()
+                    .map(|(c, v)| {
+                        (
+                            self.expr(c, scope, iters, locals),
+                            self.expr(v, scope, iters, locals),
+                        )
+                    })
+                    .collect(),
+                otherwise: Box::new(self.expr(otherwise, scope, iters, locals)),
+            },
+            ExprKind::Range { start, step, stop } => ExprKind::Range {
+                start: Box::new(self.expr(start, scope, iters, locals)),
+                step: step
+                    .as_ref()
+                    .map(|s| Box::new(self.expr(s, scope, iters, locals))),
+                stop: Box::new(self.expr(stop, scope, iters, locals)),
+            },
+            ExprKind::Array(items) => ExprKind::Array(
+                items
+                    .iter()
+                    .map(|i| self.expr(i, scope, iters, locals))
+                    .collect(),
+            ),
+            ExprKind::Matrix(rows) => ExprKind::Matrix(
+                rows.iter()
+                    .map(|r| {
+                        r.iter()
+                            .map(|i| self.expr(i, scope, iters, locals))
+                            .collect()
+                    })
+                    .collect(),
+            ),
+            ExprKind::Tuple(items) => ExprKind::Tuple(
+                items
+                    .iter()
+                    .map(|i| i.as_ref().map(|e| self.expr(e, scope, iters, locals)))
+                    .collect(),
+            ),
+            other => other.clone(),
+        };
+        Expr { kind, span }
+    }
+
+    /// The value of a package constant (`Modelica.Constants.pi`), as a literal.
+    fn package_constant(&mut self, r: &ComponentRef) -> Option<Expr> {
+        let names: Vec<&str> = r.parts.iter().map(|p| p.name.text.as_str()).collect();
+        let (last, owner_path) = names.split_last()?;
+        let Some(Found::Class(owner)) = self.tree.lookup_dotted(None, owner_path, false) else {
+            return None;
+        };
+        let def = self.tree.get(owner).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return None;
+        };
+        let (cc, decl) = composition.elements.iter().find_map(|e| match &e.kind {
+            ElementKind::Component(cc) => cc
+                .components
+                .iter()
+                .find(|d| d.name.text == *last)
+                .map(|d| (cc, d)),
+            _ => None,
+        })?;
+        if cc.prefix.variability != Some(unimo_syntax::ast::Variability::Constant) {
+            return None;
+        }
+        let binding = decl.modification.as_ref()?.binding.as_ref()?;
+        let scope = Scope {
+            class: owner,
+            prefix: Vec::new(),
+        };
+        let flat = self.expr(binding, &scope, &mut Vec::new(), &mut Vec::new());
+        let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
+        let subs = r
+            .parts
+            .last()
+            .map(|p| p.subscripts.clone())
+            .unwrap_or_default();
+        if subs.is_empty() {
+            Some(v.to_expr(r.span))
+        } else {
+            None
+        }
+    }
+}
+
+impl Env for Instantiator<'_, '_> {
+    fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError> {
+        if let Some(v) = self.values.get(key) {
+            return Ok(v.clone());
+        }
+        let Some(&id) = self.var_index.get(key) else {
+            return Err(EvalError::NotConstant {
+                span,
+                what: format!("`{key}`"),
+            });
+        };
+        let var = self.model.vars[id.0 as usize].clone();
+        if !matches!(
+            var.variability,
+            Variability::Parameter | Variability::Constant
+        ) {
+            return Err(EvalError::NotConstant {
+                span,
+                what: format!("the variable `{key}`"),
+            });
+        }
+        let expr = var
+            .binding
+            .clone()
+            .or_else(|| {
+                var.attributes
+                    .iter()
+                    .find(|(n, _)| n == "start")
+                    .map(|(_, e)| e.clone())
+            })
+            .ok_or_else(|| EvalError::NotConstant {
+                span,
+                what: format!("`{key}`, a parameter without a value"),
+            })?;
+        if !self.evaluating.insert(key.to_owned()) {
+            return Err(EvalError::Cycle {
+                span,
+                name: key.to_owned(),
+            });
+        }
+        let r = eval::eval(&expr, self, &mut Vec::new());
+        self.evaluating.remove(key);
+        let v = r?;
+        self.values.insert(key.to_owned(), v.clone());
+        Ok(v)
+    }
+}
