@@ -234,30 +234,35 @@ fn pick_model(
 }
 
 pub fn flatten(
-    file: &Path,
+    files: &[PathBuf],
     model: Option<&str>,
     libs: &[PathBuf],
     stats: bool,
     color: bool,
 ) -> i32 {
-    let text = match std::fs::read_to_string(file) {
-        Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: cannot read `{}`: {e}", file.display());
-            return EXIT_USAGE;
-        }
-    };
     let started = Instant::now();
     let provider = CliProvider::new(libs);
     let mut tree = ClassTree::new(&provider);
-    let id = tree.sources.add(file.to_path_buf(), text);
-    let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
-    if parsed.has_errors() {
-        let (mut e, mut w) = (0, 0);
-        report(&parsed.diagnostics, &tree.sources, color, &mut e, &mut w);
-        return EXIT_MODEL_ERROR;
+    let mut first_classes = None;
+    for file in files {
+        let text = match std::fs::read_to_string(file) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("error: cannot read `{}`: {e}", file.display());
+                return EXIT_USAGE;
+            }
+        };
+        let id = tree.sources.add(file.to_path_buf(), text);
+        let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
+        if parsed.has_errors() {
+            let (mut e, mut w) = (0, 0);
+            report(&parsed.diagnostics, &tree.sources, color, &mut e, &mut w);
+            return EXIT_MODEL_ERROR;
+        }
+        let classes = tree.add_user_file(id, parsed.ast);
+        first_classes.get_or_insert(classes);
     }
-    let classes = tree.add_user_file(id, parsed.ast);
+    let classes = first_classes.unwrap_or_default();
     let class = match pick_model(&mut tree, &classes, model) {
         Ok(c) => c,
         Err(msg) => {

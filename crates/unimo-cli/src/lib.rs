@@ -73,9 +73,9 @@ enum Command {
     /// merged, `for` equations unrolled and connections turned into equations. The
     /// output parses back with unimo.
     Flatten {
-        /// The Modelica file.
-        #[arg(value_name = "FILE")]
-        file: PathBuf,
+        /// The Modelica file with the model, then any other files it uses.
+        #[arg(required = true, value_name = "FILE")]
+        files: Vec<PathBuf>,
         /// The model to flatten (full dotted name); may be omitted when the file has
         /// exactly one non-partial model.
         #[arg(long, value_name = "NAME")]
@@ -133,11 +133,11 @@ fn run_on_this_thread() -> i32 {
     match cli.command {
         Command::Check { paths, stats, libs } => check::check(&paths, &libs, stats, color),
         Command::Flatten {
-            file,
+            files,
             model,
             libs,
             stats,
-        } => check::flatten(&file, model.as_deref(), &libs, stats, color),
+        } => check::flatten(&files, model.as_deref(), &libs, stats, color),
         Command::Emit { stage, file } => match stage {
             Stage::Ast => check::emit_ast(&file, color),
         },

@@ -112,7 +112,13 @@ pub fn quote(name: &str) -> String {
 
 /// A reference as one quoted identifier plus its last subscripts (for printing).
 fn printable_ref(r: &ComponentRef) -> ComponentRef {
-    if r.global
+    let builtin_enum = r.parts.len() == 2
+        && matches!(
+            r.parts[0].name.text.as_str(),
+            "StateSelect" | "AssertionLevel"
+        );
+    if builtin_enum
+        || r.global
         || r.parts.len() <= 1
             && r.parts
                 .first()
@@ -232,7 +238,15 @@ fn type_name(t: &FlatType) -> String {
         FlatType::Integer => "Integer".into(),
         FlatType::Boolean => "Boolean".into(),
         FlatType::String => "String".into(),
-        FlatType::Enumeration { name, .. } => quote(name),
+        // Enumerations are referred to by their global name (they live in the model's
+        // files or the library, like the functions the equations call).
+        FlatType::Enumeration { name, .. } if name == "StateSelect" || name == "AssertionLevel" => {
+            name.clone()
+        }
+        FlatType::Enumeration { name, .. } => format!(
+            ".{}",
+            name.split('.').map(quote).collect::<Vec<_>>().join(".")
+        ),
     }
 }
 
@@ -242,14 +256,6 @@ impl FlatModel {
         let mut out = String::new();
         let name = quote(&self.name);
         let _ = writeln!(out, "class {name}");
-        for (ename, literals) in &self.enumerations {
-            let _ = writeln!(
-                out,
-                "  type {} = enumeration({});",
-                quote(ename),
-                literals.join(", ")
-            );
-        }
         for v in &self.vars {
             out.push_str("  ");
             out.push_str(&self.var_decl(v));
@@ -297,13 +303,13 @@ impl FlatModel {
             Variability::Discrete => s.push_str("discrete "),
             Variability::Continuous => {}
         }
-        if v.flow {
-            s.push_str("flow ");
-        }
+        // `flow` has done its work (the connection equations are written out), and
+        // only top-level inputs and outputs keep their causality: printed otherwise, a
+        // re-read would change the model.
         match v.causality {
-            Some(Causality::Input) => s.push_str("input "),
-            Some(Causality::Output) => s.push_str("output "),
-            None => {}
+            Some(Causality::Input) if v.top_level => s.push_str("input "),
+            Some(Causality::Output) if v.top_level => s.push_str("output "),
+            _ => {}
         }
         s.push_str(&type_name(&v.ty));
         s.push(' ');

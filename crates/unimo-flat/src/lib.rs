@@ -38,5 +38,13 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
     diags.extend(connect::generate(&mut model, &connects, &absent));
+    // Canonical order: constants and parameters first, each group in declaration order
+    // (so that flattening the printed model gives the same text).
+    model.vars.sort_by_key(|v| {
+        !matches!(
+            v.variability,
+            flat::Variability::Constant | flat::Variability::Parameter
+        )
+    });
     (model, diags)
 }
