@@ -21,7 +21,7 @@ model MBSAcausalDifferential "Heavy ellipsoid flying, sliding and rolling on a h
   // Components of Figure 4.1 (their classes are not printed in the paper).
   UnilateralMBS.Bodies.FixedBaseBody HorizontalSurface "Base body: the horizontal plane y = 0 fixed in AF";
   UnilateralMBS.Bodies.HeavyEllipsoidBody FlySlideRollBody(
-    a=a, b=b, c=c, m=m, g=g,
+    semiA=a, semiB=b, semiC=c, m=m, g=g,
     r(start={0, 5, 0}),
     v(start={0.05, 0, 0}),
     q(start={1, 0, 0, 0}),

@@ -190,6 +190,23 @@ pub fn emit_ast(file: &Path, color: bool) -> i32 {
     }
 }
 
+/// Last parts of the type names a class uses for its components and bases.
+fn uses_of(def: &unimo_syntax::ast::ClassDef) -> Vec<String> {
+    use unimo_syntax::ast::{ClassBody, ElementKind};
+    let ClassBody::Long { composition, .. } = &def.body else {
+        return Vec::new();
+    };
+    composition
+        .elements
+        .iter()
+        .filter_map(|e| match &e.kind {
+            ElementKind::Component(cc) => cc.type_name.parts.last().map(|p| p.text.to_string()),
+            ElementKind::Extends(x) => x.base.parts.last().map(|p| p.text.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
 /// Picks the model to flatten: `--model`, or the one non-partial model of the file.
 fn pick_model(
     tree: &mut ClassTree<'_>,
@@ -220,9 +237,40 @@ fn pick_model(
                 )
         })
         .collect();
+    // Several models: the top one is the model no other model of the file uses as a
+    // component type or base class.
+    let used: Vec<String> = candidates
+        .iter()
+        .flat_map(|&c| uses_of(&tree.get(c).def))
+        .collect();
+    let tops: Vec<_> = candidates
+        .iter()
+        .copied()
+        .filter(|&c| !used.iter().any(|u| *u == tree.get(c).name))
+        .collect();
+    if let [one] = tops.as_slice() {
+        return Ok(*one);
+    }
     match candidates.as_slice() {
         [one] => Ok(*one),
-        [] => Err("the file has no non-partial model; name one with --model".into()),
+        [] => {
+            // One partial model and nothing else: take it, so that instantiation can
+            // say why it cannot be simulated.
+            let partial: Vec<_> = classes
+                .iter()
+                .copied()
+                .filter(|&c| {
+                    matches!(
+                        tree.get(c).def.kind,
+                        ClassKind::Model | ClassKind::Block | ClassKind::Class
+                    )
+                })
+                .collect();
+            match partial.as_slice() {
+                [one] => Ok(*one),
+                _ => Err("the file has no non-partial model; name one with --model".into()),
+            }
+        }
         many => {
             let names: Vec<String> = many.iter().map(|c| tree.full_name(*c)).collect();
             Err(format!(

@@ -215,7 +215,20 @@ pub fn count(model: &FlatModel) -> Balance {
         .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
         .map(|v| v.size())
         .sum();
-    let mut equations = shapes.count(&model.equations);
+    // A declaration equation of a variable (`Real s = f(x)`) is an equation too.
+    let bindings: usize = model
+        .vars
+        .iter()
+        .filter(|v| {
+            v.binding.is_some()
+                && matches!(
+                    v.variability,
+                    Variability::Continuous | Variability::Discrete
+                )
+        })
+        .map(|v| v.size())
+        .sum();
+    let mut equations = shapes.count(&model.equations) + bindings;
     for alg in &model.algorithms {
         let mut names = BTreeSet::new();
         assigned(alg, &mut names);
@@ -285,7 +298,9 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
             )
         })
         .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
-        .filter(|v| !mentioned.contains(&v.name) && !assigned_names.contains(&v.name))
+        .filter(|v| {
+            v.binding.is_none() && !mentioned.contains(&v.name) && !assigned_names.contains(&v.name)
+        })
         .map(|v| v.name.as_str())
         .collect();
     let (more, what) = if b.equations < b.unknowns {

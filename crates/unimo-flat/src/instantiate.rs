@@ -50,6 +50,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     evaluating: HashSet<String>,
     /// Paths of conditional components that are absent.
     pub absent: Vec<String>,
+    /// Element names declared so far in each instance (by instance path), with where.
+    declared: HashMap<String, HashMap<SmolStr, Span>>,
     depth: usize,
 }
 
@@ -105,6 +107,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             values: HashMap::new(),
             evaluating: HashSet::new(),
             absent: Vec::new(),
+            declared: HashMap::new(),
             depth: 0,
         }
     }
@@ -384,6 +387,26 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         top: bool,
     ) {
         let name = d.name.text.as_str();
+        let mut instance = eval::var_key(&crate::flat::path_ref(scope.prefix.clone(), d.span));
+        if let Some(last) = scope.prefix.last() {
+            instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+        }
+        let seen = self.declared.entry(instance.clone()).or_default();
+        if let Some(first) = seen.get(name).copied() {
+            let owner = if instance.is_empty() {
+                self.model.name.clone()
+            } else {
+                instance
+            };
+            self.diags.push(
+                Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
+                    .at(d.name.span, "second declaration")
+                    .with_label(first, "first declared here (possibly in a base class)")
+                    .with_help("rename one of them; an inherited element and a local one share one name space"),
+            );
+            return;
+        }
+        seen.insert(d.name.text.clone(), d.name.span);
         let decl_mod = d
             .modification
             .as_ref()

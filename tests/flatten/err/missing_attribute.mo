@@ -1,0 +1,5 @@
+model MissingAttribute
+  Real x(strat = 1);
+equation
+  x = 1;
+end MissingAttribute;

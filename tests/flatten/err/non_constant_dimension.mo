@@ -1,0 +1,4 @@
+model NonConstantDimension
+  Real n = time;
+  Real x[n];
+end NonConstantDimension;

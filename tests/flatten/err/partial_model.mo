@@ -1,0 +1,5 @@
+partial model PartialModel
+  Real x;
+equation
+  x = 1;
+end PartialModel;
