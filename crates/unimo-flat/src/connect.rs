@@ -50,13 +50,13 @@ fn var_ref(name: &str, span: Span) -> Expr {
 }
 
 /// The primitive variables inside the connector instance `key`: (suffix, var index).
-fn members(model: &FlatModel, key: &str) -> Vec<(String, usize)> {
-    model
-        .vars
-        .iter()
-        .enumerate()
-        .filter_map(|(i, v)| {
-            let rest = v.name.strip_prefix(key)?;
+/// `names` is every variable name, sorted, with its index: a range query, not a scan.
+fn members(names: &std::collections::BTreeMap<String, usize>, key: &str) -> Vec<(String, usize)> {
+    names
+        .range(key.to_owned()..)
+        .take_while(|(n, _)| n.starts_with(key))
+        .filter_map(|(n, &i)| {
+            let rest = &n[key.len()..];
             (rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
                 .then(|| (rest.to_owned(), i))
         })
@@ -77,6 +77,12 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
         })
     };
     let mut spans: HashMap<usize, Span> = HashMap::new();
+    let names: std::collections::BTreeMap<String, usize> = model
+        .vars
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (v.name.clone(), i))
+        .collect();
     for c in connects {
         let (ka, kb) = (var_key_full(&c.a), var_key_full(&c.b));
         // A connection to an absent conditional component is dropped (spec 4.4.5).
@@ -86,7 +92,7 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
         {
             continue;
         }
-        let (ma, mb) = (members(model, &ka), members(model, &kb));
+        let (ma, mb) = (members(&names, &ka), members(&names, &kb));
         if ma.is_empty() || mb.is_empty() {
             let which = if ma.is_empty() { &ka } else { &kb };
             diags.push(

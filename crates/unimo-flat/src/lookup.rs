@@ -100,6 +100,17 @@ impl ClassTree<'_> {
     /// The classes `class` extends, looked up in its scope (without its own inherited
     /// elements, spec 5.6.1). A short class definition extends its base.
     pub fn bases(&mut self, class: ClassId) -> Vec<ClassId> {
+        if let Some(b) = self.bases_cache.get(&class) {
+            return b.clone();
+        }
+        // Guard against `extends` cycles while resolving: provisionally no bases.
+        self.bases_cache.insert(class, Vec::new());
+        let out = self.resolve_bases(class);
+        self.bases_cache.insert(class, out.clone());
+        out
+    }
+
+    fn resolve_bases(&mut self, class: ClassId) -> Vec<ClassId> {
         let def = self.get(class).def.clone();
         let names: Vec<Vec<String>> = match &def.body {
             ClassBody::Long { composition, .. } => composition
@@ -156,16 +167,7 @@ impl ClassTree<'_> {
     }
 
     fn has_component_depth(&mut self, class: ClassId, name: &str, depth: usize) -> bool {
-        let def = self.get(class).def.clone();
-        let declared = match &def.body {
-            ClassBody::Long { composition, .. } => composition.elements.iter().any(|e| {
-                matches!(&e.kind, ElementKind::Component(cc)
-                    if cc.components.iter().any(|d| d.name.text == name))
-            }),
-            ClassBody::Enumeration { literals, .. } => literals.iter().any(|l| l.name.text == name),
-            ClassBody::Short { .. } => false,
-        };
-        if declared {
+        if self.get(class).declares(name) {
             return true;
         }
         if depth >= MAX_INHERITANCE_DEPTH {
@@ -214,6 +216,11 @@ impl ClassTree<'_> {
         let mut file = None;
         while let Some(c) = cur {
             file = Some(self.get(c).file);
+            // Components and classes share one namespace; components are indexed, so
+            // try them first.
+            if self.get(c).declares(name) {
+                return Some(Found::Component(c));
+            }
             let local = if first && skip_inherited {
                 self.child_class(c, name)
             } else {
@@ -249,27 +256,19 @@ impl ClassTree<'_> {
     }
 
     fn declares_component(&self, class: ClassId, name: &str) -> bool {
-        match &self.get(class).def.body {
-            ClassBody::Long { composition, .. } => composition.elements.iter().any(|e| {
-                matches!(&e.kind, ElementKind::Component(cc)
-                    if cc.components.iter().any(|d| d.name.text == name))
-            }),
-            ClassBody::Enumeration { literals, .. } => literals.iter().any(|l| l.name.text == name),
-            ClassBody::Short { .. } => false,
-        }
+        self.get(class).declares(name)
     }
 
     /// `name` through the imports of `class` (imports are looked up globally).
     fn lookup_import(&mut self, class: ClassId, name: &str) -> Option<Found> {
-        let def = self.get(class).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
-            return None;
-        };
-        for e in &composition.elements {
-            let ElementKind::Import(imp) = &e.kind else {
-                continue;
-            };
-            match &imp.kind {
+        let imports: Vec<ImportKind> = self
+            .get(class)
+            .imports()
+            .into_iter()
+            .map(|i| i.kind.clone())
+            .collect();
+        for kind in &imports {
+            match kind {
                 ImportKind::Qualified(n) => {
                     if n.parts.last().is_some_and(|p| p.text == name) {
                         return self.lookup_global_found(&parts(n));
