@@ -84,3 +84,40 @@ fn library_is_loaded_lazily() {
         "loaded {loaded} library files\n{stderr}"
     );
 }
+
+/// `--lib DIR` and `UNIMO_PATH` add library roots searched before the bundled library.
+#[test]
+fn library_roots_from_flag_and_environment() {
+    let tmp = std::env::temp_dir().join(format!("unimo-lib-{}", std::process::id()));
+    let lib = tmp.join("lib");
+    std::fs::create_dir_all(lib.join("Extra")).unwrap();
+    std::fs::write(
+        lib.join("Extra/package.mo"),
+        "within;\npackage Extra\n  model Decay\n    Real x(start = 1, fixed = true);\n  equation\n    der(x) = -x;\n  end Decay;\nend Extra;\n",
+    )
+    .unwrap();
+    let user = tmp.join("user.mo");
+    std::fs::write(&user, "model User\n  Extra.Decay d;\nend User;\n").unwrap();
+    let user_s = user.to_string_lossy().to_string();
+    let lib_s = lib.to_string_lossy().to_string();
+
+    let (code, stderr) = check(&[&user_s]);
+    assert_eq!(code, Some(1), "without the library: {stderr}");
+    assert!(stderr.contains("E2001"), "{stderr}");
+
+    let (code, stderr) = check(&["--lib", &lib_s, &user_s]);
+    assert_eq!(code, Some(0), "with --lib: {stderr}");
+
+    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["check", "--color", "never", &user_s])
+        .env("UNIMO_PATH", &lib_s)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "with UNIMO_PATH: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&tmp);
+}

@@ -2,10 +2,12 @@
 //! the standard library embedded in the binary.
 
 use std::path::{Path, PathBuf};
-use unimo_flat::{LibFile, LibLocation, SourceProvider};
+use unimo_flat::{LibFile, LibLocation, MemoryProvider, SourceProvider};
 
 pub struct CliProvider {
     disk: Vec<PathBuf>,
+    /// The embedded `stdlib/`, as the last root.
+    embedded: MemoryProvider,
 }
 
 impl CliProvider {
@@ -15,15 +17,22 @@ impl CliProvider {
         if let Some(p) = std::env::var_os("UNIMO_PATH") {
             disk.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
         }
-        CliProvider { disk }
+        let embedded = MemoryProvider::new().with_root(
+            "<stdlib>",
+            unimo_stdlib::FILES
+                .iter()
+                .map(|(p, t)| (p.to_string(), t.to_string())),
+        );
+        CliProvider { disk, embedded }
     }
 
     fn path(&self, root: usize, rel: &str) -> Option<PathBuf> {
         self.disk.get(root).map(|d| d.join(rel))
     }
 
-    fn embedded(&self, root: usize) -> bool {
-        root == self.disk.len()
+    /// The same file or folder in the embedded provider, if `root` is the embedded one.
+    fn embedded_root(&self, root: usize) -> Option<usize> {
+        (root == self.disk.len()).then_some(0)
     }
 }
 
@@ -55,52 +64,50 @@ impl SourceProvider for CliProvider {
     }
 
     fn exists(&self, file: &LibFile) -> bool {
-        if self.embedded(file.root) {
-            return unimo_stdlib::file(&file.path).is_some();
+        match self.embedded_root(file.root) {
+            Some(root) => self.embedded.exists(&LibFile {
+                root,
+                ..file.clone()
+            }),
+            None => self
+                .path(file.root, &file.path)
+                .is_some_and(|p| p.is_file()),
         }
-        self.path(file.root, &file.path)
-            .is_some_and(|p| p.is_file())
     }
 
     fn read(&self, file: &LibFile) -> Result<String, String> {
-        if self.embedded(file.root) {
-            return unimo_stdlib::file(&file.path)
-                .map(str::to_owned)
-                .ok_or_else(|| "not in the embedded library".to_owned());
+        match self.embedded_root(file.root) {
+            Some(root) => self.embedded.read(&LibFile {
+                root,
+                ..file.clone()
+            }),
+            None => {
+                let p = self.path(file.root, &file.path).ok_or("no such root")?;
+                std::fs::read_to_string(&p).map_err(|e| e.to_string())
+            }
         }
-        let p = self.path(file.root, &file.path).ok_or("no such root")?;
-        std::fs::read_to_string(&p).map_err(|e| e.to_string())
     }
 
     fn list(&self, dir: &LibLocation) -> Vec<String> {
-        if self.embedded(dir.root) {
-            let prefix = if dir.dir.is_empty() {
-                String::new()
-            } else {
-                format!("{}/", dir.dir)
-            };
-            let mut names: Vec<String> = unimo_stdlib::FILES
-                .iter()
-                .filter_map(|(p, _)| p.strip_prefix(prefix.as_str()))
-                .filter_map(|rest| match rest.split_once('/') {
-                    Some((d, "package.mo")) => Some(d.to_owned()),
-                    None if rest != "package.mo" => rest.strip_suffix(".mo").map(str::to_owned),
-                    _ => None,
-                })
-                .collect();
-            names.sort();
-            names.dedup();
-            return names;
+        match self.embedded_root(dir.root) {
+            Some(root) => self.embedded.list(&LibLocation {
+                root,
+                ..dir.clone()
+            }),
+            None => self
+                .path(dir.root, &dir.dir)
+                .map(|p| list_dir(&p))
+                .unwrap_or_default(),
         }
-        self.path(dir.root, &dir.dir)
-            .map(|p| list_dir(&p))
-            .unwrap_or_default()
     }
 
     fn display(&self, file: &LibFile) -> PathBuf {
-        if self.embedded(file.root) {
-            return PathBuf::from("<stdlib>").join(&file.path);
+        match self.embedded_root(file.root) {
+            Some(root) => self.embedded.display(&LibFile {
+                root,
+                ..file.clone()
+            }),
+            None => self.path(file.root, &file.path).unwrap_or_default(),
         }
-        self.path(file.root, &file.path).unwrap_or_default()
     }
 }

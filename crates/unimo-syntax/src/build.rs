@@ -7,6 +7,7 @@
 use crate::ast::*;
 use crate::grammar::Rule;
 use crate::lexer::Token;
+use crate::shared;
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 use smol_str::SmolStr;
@@ -833,11 +834,7 @@ impl Builder<'_> {
                     (Some(op), Some(rhs)) => {
                         if op.as_str() == ":=" {
                             let op_span = self.span(&op);
-                            self.diags.push(
-                                Diagnostic::error("E1215", "`:=` in an equation section")
-                                    .at(op_span, "assignment is only allowed in algorithm sections")
-                                    .with_help("write an equation with `=`, or move it into an `algorithm` section"),
-                            );
+                            self.diags.push(shared::assign_in_equation(op_span));
                         }
                         EquationKind::Simple {
                             lhs,
@@ -971,11 +968,7 @@ impl Builder<'_> {
                     Some(op) => {
                         if op.as_str() == "=" {
                             let op_span = self.span(&op);
-                            self.diags.push(
-                                Diagnostic::error("E1216", "`=` in an algorithm section")
-                                    .at(op_span, "statements assign with `:=`")
-                                    .with_help("write `:=`, or move the equation into an `equation` section"),
-                            );
+                            self.diags.push(shared::equals_in_algorithm(op_span));
                         }
                         let value = match it.next() {
                             Some(v) => self.expression(v),
@@ -984,11 +977,8 @@ impl Builder<'_> {
                         StatementKind::Assign { target, value }
                     }
                     None => {
-                        self.diags.push(
-                            Diagnostic::error("E1217", "a statement must assign or call")
-                                .at(target.span, "this reference alone does nothing")
-                                .with_help("write `x := expr;` or call a function `f(x);`"),
-                        );
+                        self.diags
+                            .push(shared::statement_without_effect(target.span));
                         StatementKind::Call(Expr {
                             kind: ExprKind::Ref(target),
                             span,
@@ -1232,26 +1222,8 @@ impl Builder<'_> {
             return empty(span);
         };
         let kind = match p.as_rule() {
-            Rule::unsigned_integer => match p.as_str().parse::<i64>() {
-                Ok(v) => ExprKind::Integer(v),
-                Err(_) => {
-                    self.diags.push(
-                        Diagnostic::error("E1007", "integer literal is too large")
-                            .at(span, "does not fit in a 64-bit Integer")
-                            .with_help("write it as a Real, e.g. `1e20`"),
-                    );
-                    ExprKind::Integer(0)
-                }
-            },
-            Rule::unsigned_real => {
-                let v: f64 = p.as_str().parse().unwrap_or(f64::NAN);
-                if !v.is_finite() {
-                    self.diags.push(
-                        Diagnostic::error("E1007", "real literal is out of range")
-                            .at(span, "larger than the largest finite Real (about 1.8e308)"),
-                    );
-                }
-                ExprKind::Real(v)
+            Rule::unsigned_integer | Rule::unsigned_real => {
+                shared::number(p.as_str(), span, self.diags)
             }
             Rule::string => ExprKind::String(self.string_value(&p)),
             Rule::true_lit => ExprKind::Bool(true),
@@ -1353,20 +1325,7 @@ impl Builder<'_> {
     }
 
     fn callee(&mut self, cref: &ComponentRef) -> Name {
-        match cref.as_name() {
-            Some(n) => n,
-            None => {
-                self.diags.push(
-                    Diagnostic::error("E1218", "a function name cannot have subscripts")
-                        .at(cref.span, "subscripted name called as a function"),
-                );
-                Name {
-                    global: cref.global,
-                    parts: cref.parts.iter().map(|p| p.name.clone()).collect(),
-                    span: cref.span,
-                }
-            }
-        }
+        shared::callee(cref, self.diags)
     }
 
     pub fn component_reference(&mut self, pair: Pair<'_, Rule>) -> ComponentRef {

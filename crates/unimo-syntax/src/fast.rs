@@ -10,6 +10,7 @@
 use crate::ast::*;
 use crate::build::unescape;
 use crate::lexer::{Sym, Token, TokenKind};
+use crate::shared;
 use smol_str::SmolStr;
 use unimo_source::{Diagnostic, FileId, Span};
 
@@ -849,11 +850,11 @@ impl<'a> P<'a, '_> {
                 let op = self.toks[self.pos];
                 self.pos += 1;
                 if self.txt(&op) == ":=" {
-                    self.diags.push(
-                        Diagnostic::error("E1215", "`:=` in an equation section")
-                            .at(Span::new(self.file, op.start(), op.end()), "assignment is only allowed in algorithm sections")
-                            .with_help("write an equation with `=`, or move it into an `algorithm` section"),
-                    );
+                    self.diags.push(shared::assign_in_equation(Span::new(
+                        self.file,
+                        op.start(),
+                        op.end(),
+                    )));
                 }
                 let rhs = self.expression()?;
                 EquationKind::Simple { lhs, rhs }
@@ -991,25 +992,17 @@ impl<'a> P<'a, '_> {
                 let op = self.toks[self.pos];
                 self.pos += 1;
                 if self.txt(&op) == "=" {
-                    self.diags.push(
-                        Diagnostic::error("E1216", "`=` in an algorithm section")
-                            .at(
-                                Span::new(self.file, op.start(), op.end()),
-                                "statements assign with `:=`",
-                            )
-                            .with_help(
-                                "write `:=`, or move the equation into an `equation` section",
-                            ),
-                    );
+                    self.diags.push(shared::equals_in_algorithm(Span::new(
+                        self.file,
+                        op.start(),
+                        op.end(),
+                    )));
                 }
                 let value = self.expression()?;
                 StatementKind::Assign { target, value }
             } else {
-                self.diags.push(
-                    Diagnostic::error("E1217", "a statement must assign or call")
-                        .at(target.span, "this reference alone does nothing")
-                        .with_help("write `x := expr;` or call a function `f(x);`"),
-                );
+                self.diags
+                    .push(shared::statement_without_effect(target.span));
                 let span = target.span;
                 StatementKind::Call(Expr {
                     kind: ExprKind::Ref(target),
@@ -1168,30 +1161,8 @@ impl<'a> P<'a, '_> {
         let kind = match t.kind {
             TokenKind::Number => {
                 self.pos += 1;
-                let s = self.txt(&t);
                 let span = self.span_from(first);
-                if s.contains(['.', 'e', 'E']) {
-                    let v: f64 = s.parse().unwrap_or(f64::NAN);
-                    if !v.is_finite() {
-                        self.diags.push(
-                            Diagnostic::error("E1007", "real literal is out of range")
-                                .at(span, "larger than the largest finite Real (about 1.8e308)"),
-                        );
-                    }
-                    ExprKind::Real(v)
-                } else {
-                    match s.parse::<i64>() {
-                        Ok(v) => ExprKind::Integer(v),
-                        Err(_) => {
-                            self.diags.push(
-                                Diagnostic::error("E1007", "integer literal is too large")
-                                    .at(span, "does not fit in a 64-bit Integer")
-                                    .with_help("write it as a Real, e.g. `1e20`"),
-                            );
-                            ExprKind::Integer(0)
-                        }
-                    }
-                }
+                shared::number(self.txt(&t), span, self.diags)
             }
             TokenKind::String => {
                 self.pos += 1;
@@ -1304,20 +1275,7 @@ impl<'a> P<'a, '_> {
     }
 
     fn callee(&mut self, cref: &ComponentRef) -> Name {
-        match cref.as_name() {
-            Some(n) => n,
-            None => {
-                self.diags.push(
-                    Diagnostic::error("E1218", "a function name cannot have subscripts")
-                        .at(cref.span, "subscripted name called as a function"),
-                );
-                Name {
-                    global: cref.global,
-                    parts: cref.parts.iter().map(|p| p.name.clone()).collect(),
-                    span: cref.span,
-                }
-            }
-        }
+        shared::callee(cref, self.diags)
     }
 
     /// `expression? ("," expression?)*` as in `(a, , b)`.

@@ -12,6 +12,7 @@ mod grammar;
 pub mod lexer;
 mod parse;
 pub mod print;
+mod shared;
 mod validate;
 
 pub use parse::{parse_expression, Parsed};
