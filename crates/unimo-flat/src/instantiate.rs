@@ -52,6 +52,11 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub absent: Vec<String>,
     /// Element names declared so far in each instance (by instance path), with where.
     declared: HashMap<String, HashMap<SmolStr, Span>>,
+    /// `inner` components visible from the current instance, innermost last:
+    /// (name, instance path of the inner component).
+    inners: Vec<(SmolStr, Vec<RefPart>)>,
+    /// Instance keys of `outer` components, with the path of the `inner` they stand for.
+    outer_alias: HashMap<String, Vec<RefPart>>,
     depth: usize,
 }
 
@@ -76,6 +81,20 @@ fn int_expr(i: i64, span: Span) -> Expr {
         kind: ExprKind::Integer(i),
         span,
     }
+}
+
+/// The instance key of a path (all subscripts included).
+fn instance_key(path: &[RefPart]) -> String {
+    let mut k = eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()));
+    if let Some(last) = path.last() {
+        k.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+    }
+    k
+}
+
+/// The instance key of a path, without the last part's subscripts.
+fn instance_key_no_subs(path: &[RefPart]) -> String {
+    eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()))
 }
 
 /// All index tuples of an array of the given dimensions, in row-major order.
@@ -108,6 +127,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             evaluating: HashSet::new(),
             absent: Vec::new(),
             declared: HashMap::new(),
+            inners: Vec::new(),
+            outer_alias: HashMap::new(),
             depth: 0,
         }
     }
@@ -301,6 +322,17 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         if check_mods {
             self.check_modified_names(class, composition, m);
         }
+        // `inner` components of this instance are visible to `outer` ones below it.
+        let inners_before = self.inners.len();
+        for e in &composition.elements {
+            if let (true, ElementKind::Component(cc)) = (e.inner, &e.kind) {
+                for d in &cc.components {
+                    let mut path = prefix.to_vec();
+                    path.push(part(&d.name.text, d.name.span));
+                    self.inners.push((d.name.text.clone(), path));
+                }
+            }
+        }
         // Parameters and constants first: sizes and conditions of the others use them.
         for pass in 0..2 {
             for e in &composition.elements {
@@ -318,6 +350,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     continue;
                 }
                 for d in &cc.components {
+                    if e.outer && !e.inner {
+                        self.outer_component(&scope, d);
+                        continue;
+                    }
                     self.component(&scope, cc, d, m, variability, top);
                 }
             }
@@ -349,7 +385,38 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
         }
+        self.inners.truncate(inners_before);
         self.depth -= 1;
+    }
+
+    /// An `outer` component: no variables of its own; its references go to the nearest
+    /// `inner` component of the same name in an enclosing instance (spec 5.4).
+    fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
+        let name = d.name.text.as_str();
+        // Inners declared in this very instance do not count: they are siblings.
+        let own = scope.prefix.len();
+        let found = self
+            .inners
+            .iter()
+            .rev()
+            .find(|(n, path)| n == name && path.len() <= own)
+            .map(|(_, p)| p.clone());
+        let mut key_path = scope.prefix.clone();
+        key_path.push(part(name, d.name.span));
+        let key = instance_key(&key_path);
+        match found {
+            Some(inner) => {
+                self.outer_alias.insert(key, inner);
+            }
+            None => self.diags.push(
+                Diagnostic::error(
+                    "E2013",
+                    format!("`outer {name}` has no matching `inner` declaration"),
+                )
+                .at(d.name.span, "declared `outer` here")
+                .with_help(format!("declare `inner ... {name}` in an enclosing model")),
+            ),
+        }
     }
 
     /// Every modified name must be an element of the class (or one of its bases).
@@ -840,8 +907,22 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             return r;
         }
         if self.tree.has_component(scope.class, &first) {
-            let mut parts = scope.prefix.clone();
-            parts.extend(r.parts);
+            let mut head = scope.prefix.clone();
+            head.push(r.parts[0].clone());
+            // A reference through an `outer` component goes to its `inner`.
+            let mut parts = match self.outer_alias.get(&instance_key_no_subs(&head)) {
+                Some(inner) => {
+                    let mut p = inner.clone();
+                    if let Some(last) = p.last_mut() {
+                        if !r.parts[0].subscripts.is_empty() {
+                            last.subscripts = r.parts[0].subscripts.clone();
+                        }
+                    }
+                    p
+                }
+                None => head,
+            };
+            parts.extend(r.parts.into_iter().skip(1));
             return ComponentRef {
                 global: false,
                 parts,
