@@ -28,6 +28,20 @@ pub enum EvalError {
 /// Values of variables, by flat name (the reference without its last subscripts).
 pub trait Env {
     fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError>;
+
+    /// Calls the user function `name` (full name) on evaluated arguments.
+    fn call(
+        &mut self,
+        name: &str,
+        _positional: Vec<Value>,
+        _named: Vec<(String, Value)>,
+        span: Span,
+    ) -> Result<Value, EvalError> {
+        Err(EvalError::NotConstant {
+            span,
+            what: format!("a call of `{name}`"),
+        })
+    }
 }
 
 impl Value {
@@ -570,6 +584,14 @@ fn call(
             .last()
             .cloned()
             .ok_or_else(|| unsupported(e, "missing argument")),
+        _ if func.global => {
+            let named = args
+                .named
+                .iter()
+                .map(|a| Ok((a.name.text.to_string(), eval(&a.value, env, iterators)?)))
+                .collect::<Result<Vec<_>, EvalError>>()?;
+            env.call(name.trim_start_matches('.'), vals, named, e.span)
+        }
         _ => Err(EvalError::NotConstant {
             span: e.span,
             what: format!("a call of `{name}`"),

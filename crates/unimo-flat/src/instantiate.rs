@@ -55,6 +55,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// `inner` components visible from the current instance, innermost last:
     /// (name, instance path of the inner component).
     inners: Vec<(SmolStr, Vec<RefPart>)>,
+    /// Nesting of compile-time function calls.
+    pub(crate) call_depth: usize,
     /// Instance keys of `outer` components, with the path of the `inner` they stand for.
     outer_alias: HashMap<String, Vec<RefPart>>,
     depth: usize,
@@ -128,6 +130,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             absent: Vec::new(),
             declared: HashMap::new(),
             inners: Vec::new(),
+            call_depth: 0,
             outer_alias: HashMap::new(),
             depth: 0,
         }
@@ -1161,7 +1164,24 @@ impl<'t, 'p> Instantiator<'t, 'p> {
     }
 }
 
+impl Instantiator<'_, '_> {
+    /// An expression of a function body, with names resolved in the function's scope.
+    pub(crate) fn expr_in_function(&mut self, e: &Expr, scope: &Scope) -> Expr {
+        self.expr(e, scope, &mut Vec::new(), &mut Vec::new())
+    }
+}
+
 impl Env for Instantiator<'_, '_> {
+    fn call(
+        &mut self,
+        name: &str,
+        positional: Vec<Value>,
+        named: Vec<(String, Value)>,
+        span: Span,
+    ) -> Result<Value, EvalError> {
+        self.call_function(name, positional, named, span)
+    }
+
     fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError> {
         if let Some(v) = self.values.get(key) {
             return Ok(v.clone());

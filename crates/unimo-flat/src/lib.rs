@@ -15,6 +15,7 @@ pub mod error;
 pub mod eval;
 pub mod flat;
 pub mod instantiate;
+mod interp;
 pub mod lookup;
 pub mod modif;
 pub mod provider;
