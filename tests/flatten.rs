@@ -40,7 +40,8 @@ fn flatten_suite_round_trips() {
     let tmp = std::env::temp_dir().join(format!("unimo-flatten-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let mut n = 0;
-    for f in files("tests/flatten/ok") {
+    // The flatten suite and every bundled model.
+    for f in files("tests/flatten/ok").into_iter().chain(files("models")) {
         let rel = f.strip_prefix(root()).unwrap().to_path_buf();
         let (code, first, stderr) = flatten(&[&rel]);
         assert_eq!(code, Some(0), "{}: {stderr}", rel.display());

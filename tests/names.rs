@@ -41,7 +41,7 @@ fn expected() -> BTreeMap<String, Vec<String>> {
 
 #[test]
 fn valid_names_resolve() {
-    let (code, stderr) = check(&["tests/names/ok", "stdlib", "models"]);
+    let (code, stderr) = check(&["tests/names/ok", "stdlib", "models", "tests/flatten/ok"]);
     assert_eq!(code, Some(0), "{stderr}");
 }
 

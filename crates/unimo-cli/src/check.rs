@@ -56,7 +56,7 @@ fn count_classes(def: &StoredDefinition) -> usize {
     def.classes.iter().map(rec).sum()
 }
 
-pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, color: bool) -> i32 {
+pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, balance: bool, color: bool) -> i32 {
     let started = Instant::now();
     let files = match collect(paths) {
         Ok(f) => f,
@@ -109,8 +109,24 @@ pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, color: bool) -> i
     for (id, ast) in parsed_files {
         user_classes.extend(tree.add_user_file(id, ast));
     }
-    for c in user_classes {
-        diags.extend(unimo_flat::resolve::check_names(&mut tree, c));
+    let mut flattened = 0;
+    for c in &user_classes {
+        diags.extend(unimo_flat::resolve::check_names(&mut tree, *c));
+    }
+    if balance && !diags.iter().any(|d| d.is_error()) {
+        // Every top model of a file that holds models (not a package): flatten it and
+        // check its balance.
+        for c in top_models(&tree, &user_classes) {
+            let (flat, mut fd) = unimo_flat::flatten(&mut tree, c);
+            // The name check already ran on every class above.
+            fd.retain(|d| d.code.0 != "E2001");
+            if !fd.iter().any(|d| d.is_error()) {
+                let span = tree.get(c).def.name.span;
+                fd.extend(unimo_flat::balance::check(&flat, span));
+            }
+            diags.extend(fd);
+            flattened += 1;
+        }
     }
     diags.append(&mut tree.diagnostics);
     let (mut n_errors, mut n_warnings) = (read_errors, 0);
@@ -119,10 +135,11 @@ pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, color: bool) -> i
     if stats {
         let s = tree.stats;
         eprintln!(
-            "stats: files={} classes={} bytes={} library_files_loaded={} library_bytes_loaded={} classes_in_tree={} time_ms={:.1}",
+            "stats: files={} classes={} bytes={} models_flattened={} library_files_loaded={} library_bytes_loaded={} classes_in_tree={} time_ms={:.1}",
             files.len(),
             n_classes,
             bytes,
+            flattened,
             s.library_files,
             s.library_bytes,
             s.classes,
@@ -188,6 +205,31 @@ pub fn emit_ast(file: &Path, color: bool) -> i32 {
     } else {
         EXIT_OK
     }
+}
+
+/// The models `check` flattens: in files without a `within` clause, the non-partial
+/// models and blocks at the top level that no other class of the same file uses.
+fn top_models(tree: &ClassTree<'_>, classes: &[unimo_flat::ClassId]) -> Vec<unimo_flat::ClassId> {
+    use unimo_syntax::ast::ClassKind;
+    let mut out = Vec::new();
+    for &c in classes {
+        let entry = tree.get(c);
+        let d = &entry.def;
+        if entry.parent.is_some()
+            || d.partial
+            || !matches!(d.kind, ClassKind::Model | ClassKind::Block)
+        {
+            continue;
+        }
+        let used = classes
+            .iter()
+            .filter(|&&o| o != c && tree.get(o).file == entry.file)
+            .any(|&o| uses_of(&tree.get(o).def).iter().any(|u| *u == entry.name));
+        if !used {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// Last parts of the type names a class uses for its components and bases.
@@ -320,16 +362,22 @@ pub fn flatten(
     };
     let (flat, mut diags) = unimo_flat::flatten(&mut tree, class);
     let has_errors = diags.iter().any(|d| d.is_error());
+    let mut unbalanced = false;
     if !has_errors {
         let span = tree.get(class).def.name.span;
-        diags.extend(unimo_flat::balance::check(&flat, span));
+        if let Some(d) = unimo_flat::balance::check(&flat, span) {
+            diags.push(d);
+            unbalanced = true;
+        }
     }
     diags.append(&mut tree.diagnostics);
     let (mut e, mut w) = (0, 0);
     report(&diags, &tree.sources, color, &mut e, &mut w);
-    if e > 0 {
+    if e > 0 && !unbalanced {
         return EXIT_MODEL_ERROR;
     }
+    // An unbalanced model is still printed: reading it is how one finds the surplus or
+    // missing equation. The exit code says it is not usable.
     print!("{}", flat.to_modelica());
     if stats {
         let b = unimo_flat::balance::count(&flat);
@@ -343,5 +391,9 @@ pub fn flatten(
             started.elapsed().as_secs_f64() * 1e3
         );
     }
-    EXIT_OK
+    if e > 0 {
+        EXIT_MODEL_ERROR
+    } else {
+        EXIT_OK
+    }
 }

@@ -51,10 +51,12 @@ enum ColorWhen {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Parse and check Modelica files; report every error with file:line:col.
+    /// Check Modelica files: syntax, names, and the balance of every model.
     ///
     /// PATHs may be files or folders; folders are searched recursively for `*.mo`.
-    /// Exits 0 when every file is clean, 1 when any has an error.
+    /// Every top-level model that no other class of its file uses is flattened and its
+    /// equations and unknowns counted. Exits 0 when every file is clean, 1 when any has
+    /// an error.
     Check {
         /// Files or folders to check.
         #[arg(required = true, value_name = "PATH")]
@@ -66,6 +68,9 @@ enum Command {
         /// Add a library folder (searched before UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
+        /// Skip flattening and the balance check: syntax and names only.
+        #[arg(long)]
+        no_balance: bool,
     },
     /// Instantiate a model and print it as flat Modelica.
     ///
@@ -131,7 +136,12 @@ fn run_on_this_thread() -> i32 {
         ColorWhen::Auto => std::io::stderr().is_terminal(),
     };
     match cli.command {
-        Command::Check { paths, stats, libs } => check::check(&paths, &libs, stats, color),
+        Command::Check {
+            paths,
+            stats,
+            libs,
+            no_balance,
+        } => check::check(&paths, &libs, stats, !no_balance, color),
         Command::Flatten {
             files,
             model,

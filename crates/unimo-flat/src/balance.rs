@@ -24,8 +24,17 @@ impl Shapes<'_> {
     fn of(&self, e: &Expr) -> Vec<usize> {
         match &e.kind {
             ExprKind::Ref(r) => {
-                let Some(d) = self.dims.get(&var_key(r)) else {
-                    return Vec::new();
+                let key = var_key(r);
+                let Some(d) = self.dims.get(&key) else {
+                    // A record: as many scalars as its variables.
+                    let prefix = format!("{key}.");
+                    let n: usize = self
+                        .dims
+                        .iter()
+                        .filter(|(k, _)| k.starts_with(&prefix))
+                        .map(|(_, d)| d.iter().product::<usize>())
+                        .sum();
+                    return if n > 0 { vec![n] } else { Vec::new() };
                 };
                 let subs = r
                     .parts
@@ -147,7 +156,16 @@ impl Shapes<'_> {
 
     fn count_one(&self, e: &Equation) -> usize {
         match &e.kind {
-            EquationKind::Simple { lhs, rhs } => self.size(lhs).max(self.size(rhs)),
+            // The left side decides; the right side when the left is a plain scalar
+            // expression whose shape is unknown here (`zeros(3) = v` has its own shape).
+            EquationKind::Simple { lhs, rhs } => {
+                let l = self.of(lhs);
+                if l.is_empty() && !is_scalar_for_sure(lhs) {
+                    self.size(rhs)
+                } else {
+                    l.iter().product()
+                }
+            }
             // assert, terminate and reinit are not equations for counting.
             EquationKind::Call(_) | EquationKind::Connect { .. } => 0,
             EquationKind::If {
@@ -163,6 +181,18 @@ impl Shapes<'_> {
             }
         }
     }
+}
+
+/// A left side whose shape is certainly scalar (a literal or a scalar reference).
+fn is_scalar_for_sure(e: &Expr) -> bool {
+    matches!(
+        e.kind,
+        ExprKind::Integer(_)
+            | ExprKind::Real(_)
+            | ExprKind::Bool(_)
+            | ExprKind::String(_)
+            | ExprKind::Ref(_)
+    )
 }
 
 fn assigned(stmts: &[Statement], out: &mut BTreeSet<String>) {

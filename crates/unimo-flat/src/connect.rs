@@ -125,6 +125,17 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
         }
         for ((_, va), (_, vb)) in ma.iter().zip(&mb) {
             let (xa, xb) = (&model.vars[*va], &model.vars[*vb]);
+            // Parameters and constants of connectors (a signal port's size `n`) are not
+            // connected (spec 9.3).
+            let fixed = |v: &crate::flat::FlatVar| {
+                matches!(
+                    v.variability,
+                    crate::flat::Variability::Parameter | crate::flat::Variability::Constant
+                )
+            };
+            if fixed(xa) || fixed(xb) {
+                continue;
+            }
             if xa.flow != xb.flow || xa.dims != xb.dims {
                 diags.push(
                     Diagnostic::error(

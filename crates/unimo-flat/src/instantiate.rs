@@ -57,6 +57,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     inners: Vec<(SmolStr, Vec<RefPart>)>,
     /// Nesting of compile-time function calls.
     pub(crate) call_depth: usize,
+    /// `input`/`output` of the enclosing structured component, passed to its variables.
+    inherited_causality: Option<Causality>,
     /// Instance keys of `outer` components, with the path of the `inner` they stand for.
     outer_alias: HashMap<String, Vec<RefPart>>,
     depth: usize,
@@ -131,6 +133,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             declared: HashMap::new(),
             inners: Vec::new(),
             call_depth: 0,
+            inherited_causality: None,
             outer_alias: HashMap::new(),
             depth: 0,
         }
@@ -302,6 +305,22 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             class,
             prefix: prefix.to_vec(),
         };
+        // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
+        // it travels into the bases like an extends modifier (under the instance's).
+        let mut own_redeclares = Mod::default();
+        for e in &composition.elements {
+            if let (true, ElementKind::Component(cc)) = (e.redeclare, &e.kind) {
+                for d in &cc.components {
+                    let mut dm = d
+                        .modification
+                        .as_ref()
+                        .map(|dm| Mod::from_modification(dm, &scope))
+                        .unwrap_or_default();
+                    dm.redeclare = Some((cc.type_name.clone(), scope.clone()));
+                    own_redeclares.children.push((d.name.text.clone(), dm));
+                }
+            }
+        }
         // Inherited elements first, each base with the extends modifier under ours.
         for e in &composition.elements {
             if let ElementKind::Extends(x) = &e.kind {
@@ -313,7 +332,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                             .as_ref()
                             .map(|cm| Mod::from_class_mod(cm, &scope))
                             .unwrap_or_default();
-                        self.class_body_inner(b, prefix, &m.over(&ext), variability, top, false);
+                        let base_mod = m.over(&own_redeclares.over(&ext));
+                        self.class_body_inner(b, prefix, &base_mod, variability, top, false);
                     }
                     Some(Found::Builtin(_)) => {
                         self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
@@ -351,6 +371,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 );
                 if (pass == 0) != is_param {
                     continue;
+                }
+                if e.redeclare {
+                    continue; // instantiated in the base it replaces an element of
                 }
                 for d in &cc.components {
                     if e.outer && !e.inner {
@@ -527,7 +550,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             None => inherited,
         };
         let mut dims = Vec::new();
-        for s in cc.type_dims.iter().chain(&d.dims) {
+        // `Real[3] x[2]` is `Real x[2, 3]` (spec 10.1): the name's dimensions come first.
+        for s in d.dims.iter().chain(&cc.type_dims) {
             match s {
                 Subscript::Expr(e) => {
                     let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
@@ -568,8 +592,32 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 self.model.vars.push(var);
             }
             Kind::Class(c) => {
+                // A binding of a structured (record) component is a record equation.
+                if let (Some(b), false) = (
+                    &merged.binding,
+                    matches!(
+                        variability,
+                        Some(Variability::Parameter | Variability::Constant)
+                    ),
+                ) {
+                    let rhs = self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new());
+                    let lhs = Expr {
+                        kind: ExprKind::Ref(crate::flat::path_ref(path.clone(), d.span)),
+                        span: d.span,
+                    };
+                    self.model.equations.push(Equation {
+                        kind: EquationKind::Simple { lhs, rhs },
+                        comment: Comment::default(),
+                        span: d.span,
+                    });
+                }
+                // `input`/`output` on a structured component applies to its variables;
+                // those of the top-level model's connectors are the model's interface.
+                let saved = self.inherited_causality;
+                self.inherited_causality = cc.prefix.causality.or(saved);
+                let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
                 if dims.is_empty() {
-                    self.class_body(c, &path, &merged, variability, false);
+                    self.class_body(c, &path, &merged, variability, top);
                 } else {
                     for t in index_tuples(&dims) {
                         let mut p = path.clone();
@@ -579,9 +627,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                                 .map(|i| Subscript::Expr(int_expr(*i, d.span)))
                                 .collect();
                         }
-                        self.class_body(c, &p, &merged, variability, false);
+                        self.class_body(c, &p, &merged, variability, top);
                     }
                 }
+                self.inherited_causality = saved;
             }
         }
     }
@@ -640,7 +689,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             name,
             ty,
             variability,
-            causality: cc.prefix.causality,
+            causality: cc.prefix.causality.or(self.inherited_causality),
             flow: cc.prefix.connection == Some(Connection::Flow),
             dims,
             binding,
@@ -900,6 +949,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             for s in &mut p.subscripts {
                 if let Subscript::Expr(e) = s {
                     *e = self.expr(e, scope, iters, locals);
+                    // Constant subscripts are folded (`x[i + 1]` in an unrolled loop is
+                    // `x[3]`), so that every reference to an element looks the same.
+                    if !matches!(e.kind, ExprKind::Integer(_) | ExprKind::End) && locals.is_empty()
+                    {
+                        if let Ok(Value::Int(k)) = eval::eval(e, self, &mut Vec::new()) {
+                            *e = int_expr(k, e.span);
+                        }
+                    }
                 }
             }
         }
