@@ -235,8 +235,18 @@ fn top_models(tree: &ClassTree<'_>, classes: &[unimo_flat::ClassId]) -> Vec<unim
 /// Last parts of the type names a class uses for its components and bases.
 fn uses_of(def: &unimo_syntax::ast::ClassDef) -> Vec<String> {
     use unimo_syntax::ast::{ClassBody, ElementKind};
-    let ClassBody::Long { composition, .. } = &def.body else {
-        return Vec::new();
+    let composition = match &def.body {
+        ClassBody::Long { composition, .. } => composition,
+        // `model B = A(...)` uses `A`.
+        ClassBody::Short { base, .. } => {
+            return base
+                .parts
+                .last()
+                .map(|p| p.text.to_string())
+                .into_iter()
+                .collect()
+        }
+        ClassBody::Enumeration { .. } => return Vec::new(),
     };
     composition
         .elements
