@@ -3,6 +3,8 @@
 //! round trip); every file in `tests/flatten/err` fails with the codes at the line:col
 //! of `expected.txt` (snapshot of the diagnostics).
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -65,18 +67,7 @@ fn flatten_suite_round_trips() {
 }
 
 fn expected() -> BTreeMap<String, Vec<String>> {
-    std::fs::read_to_string(root().join("tests/flatten/err/expected.txt"))
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let (f, codes) = l.split_once(':').unwrap();
-            (
-                f.trim().to_owned(),
-                codes.split(',').map(|c| c.trim().to_owned()).collect(),
-            )
-        })
-        .collect()
+    common::manifest("tests/flatten/err/expected.txt")
 }
 
 #[test]
@@ -87,16 +78,7 @@ fn flatten_errors_name_the_problem() {
         let rel = PathBuf::from(format!("tests/flatten/err/{file}"));
         let (code, _, stderr) = flatten(&[&rel]);
         assert_eq!(code, Some(1), "{file}: {stderr}");
-        let got: Vec<String> = stderr
-            .lines()
-            .collect::<Vec<_>>()
-            .windows(2)
-            .filter_map(|w| {
-                let code = w[0].strip_prefix("error[")?.split(']').next()?;
-                let loc: Vec<&str> = w[1].rsplit(':').take(2).collect();
-                Some(format!("{code} @{}:{}", loc[1], loc[0]))
-            })
-            .collect();
+        let got = common::rendered_codes(&stderr);
         assert_eq!(&got, want, "{file}:\n{stderr}");
         insta::assert_snapshot!(format!("flat_err_{}", file.trim_end_matches(".mo")), stderr);
     }

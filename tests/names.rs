@@ -2,6 +2,8 @@
 //! `tests/names/err` must fail with the codes at the line:col listed in `expected.txt`,
 //! and its rendered diagnostics (with "did you mean") are snapshot-tested.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::Command;
@@ -25,18 +27,7 @@ fn check(args: &[&str]) -> (Option<i32>, String) {
 }
 
 fn expected() -> BTreeMap<String, Vec<String>> {
-    std::fs::read_to_string(root().join("tests/names/err/expected.txt"))
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| {
-            let (f, codes) = l.split_once(':').unwrap();
-            (
-                f.trim().to_owned(),
-                codes.split(',').map(|c| c.trim().to_owned()).collect(),
-            )
-        })
-        .collect()
+    common::manifest("tests/names/err/expected.txt")
 }
 
 #[test]
@@ -53,16 +44,7 @@ fn unknown_names_are_reported_where_they_are() {
         let rel = format!("tests/names/err/{file}");
         let (code, stderr) = check(&[&rel]);
         assert_eq!(code, Some(1), "{file}: {stderr}");
-        let got: Vec<String> = stderr
-            .lines()
-            .collect::<Vec<_>>()
-            .windows(2)
-            .filter_map(|w| {
-                let code = w[0].strip_prefix("error[")?.split(']').next()?;
-                let loc = w[1].rsplit(':').take(2).collect::<Vec<_>>();
-                Some(format!("{code} @{}:{}", loc[1], loc[0]))
-            })
-            .collect();
+        let got = common::rendered_codes(&stderr);
         assert_eq!(&got, want, "{file}:\n{stderr}");
         insta::assert_snapshot!(format!("names_{}", file.trim_end_matches(".mo")), stderr);
     }

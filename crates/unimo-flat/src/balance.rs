@@ -183,6 +183,14 @@ impl Shapes<'_> {
     }
 }
 
+/// Continuous and discrete variables other than top-level inputs.
+fn is_unknown(v: &crate::flat::FlatVar) -> bool {
+    matches!(
+        v.variability,
+        Variability::Continuous | Variability::Discrete
+    ) && !(v.top_level && v.causality == Some(Causality::Input))
+}
+
 /// A left side whose shape is certainly scalar (a literal or a scalar reference).
 fn is_scalar_for_sure(e: &Expr) -> bool {
     matches!(
@@ -236,13 +244,7 @@ pub fn count(model: &FlatModel) -> Balance {
     let unknowns = model
         .vars
         .iter()
-        .filter(|v| {
-            matches!(
-                v.variability,
-                Variability::Continuous | Variability::Discrete
-            )
-        })
-        .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
+        .filter(|v| is_unknown(v))
         .map(|v| v.size())
         .sum();
     // A declaration equation of a variable (`Real s = f(x)`) is an equation too.
@@ -321,13 +323,7 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
     let orphans: Vec<&str> = model
         .vars
         .iter()
-        .filter(|v| {
-            matches!(
-                v.variability,
-                Variability::Continuous | Variability::Discrete
-            )
-        })
-        .filter(|v| !(v.top_level && v.causality == Some(Causality::Input)))
+        .filter(|v| is_unknown(v))
         .filter(|v| {
             v.binding.is_none() && !mentioned.contains(&v.name) && !assigned_names.contains(&v.name)
         })

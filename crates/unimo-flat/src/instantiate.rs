@@ -889,13 +889,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     .collect(),
             },
             StatementKind::For { indices, body } => {
-                let indices: Vec<ForIndex> = indices
-                    .iter()
-                    .map(|i| ForIndex {
-                        name: i.name.clone(),
-                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
-                    })
-                    .collect();
+                let indices = self.indices(indices, scope, iters, locals);
                 let n = indices.len();
                 locals.extend(indices.iter().map(|i| i.name.text.to_string()));
                 let body = body
@@ -1075,14 +1069,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     }
                 };
                 let n = args.iterators.len();
-                let iterators: Vec<ForIndex> = args
-                    .iterators
-                    .iter()
-                    .map(|i| ForIndex {
-                        name: i.name.clone(),
-                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
-                    })
-                    .collect();
+                let iterators = self.indices(&args.iterators, scope, iters, locals);
                 locals.extend(iterators.iter().map(|i| i.name.text.to_string()));
                 let positional = args
                     .positional
@@ -1109,13 +1096,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
             ExprKind::Comprehension { body, indices } => {
-                let indices: Vec<ForIndex> = indices
-                    .iter()
-                    .map(|i| ForIndex {
-                        name: i.name.clone(),
-                        range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
-                    })
-                    .collect();
+                let indices = self.indices(indices, scope, iters, locals);
                 let n = indices.len();
                 locals.extend(indices.iter().map(|i| i.name.text.to_string()));
                 let body = Box::new(self.expr(body, scope, iters, locals));
@@ -1177,6 +1158,23 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             other => other.clone(),
         };
         Expr { kind, span }
+    }
+
+    /// `for` indices with their ranges made absolute (the names stay local).
+    fn indices(
+        &mut self,
+        indices: &[ForIndex],
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> Vec<ForIndex> {
+        indices
+            .iter()
+            .map(|i| ForIndex {
+                name: i.name.clone(),
+                range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
+            })
+            .collect()
     }
 
     /// The value of a package constant (`Modelica.Constants.pi`), as a literal.

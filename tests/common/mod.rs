@@ -1,0 +1,40 @@
+//! Helpers shared by the end-to-end tests: expected-diagnostics manifests and the
+//! `CODE @line:col` list of rendered diagnostics.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `file: CODE @l:c, CODE @l:c` lines of a manifest (lines starting with `#` skipped).
+pub fn manifest(rel: &str) -> BTreeMap<String, Vec<String>> {
+    std::fs::read_to_string(root().join(rel))
+        .unwrap_or_else(|e| panic!("{rel}: {e}"))
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| {
+            let (f, codes) = l.split_once(':').expect("`file: CODE @l:c, ...`");
+            (
+                f.trim().to_owned(),
+                codes.split(',').map(|c| c.trim().to_owned()).collect(),
+            )
+        })
+        .collect()
+}
+
+/// `CODE @line:col` of every error rendered in `stderr` (the header line, then the
+/// `┌─ file:line:col` line).
+pub fn rendered_codes(stderr: &str) -> Vec<String> {
+    stderr
+        .lines()
+        .collect::<Vec<_>>()
+        .windows(2)
+        .filter_map(|w| {
+            let code = w[0].strip_prefix("error[")?.split(']').next()?;
+            let loc: Vec<&str> = w[1].rsplit(':').take(2).collect();
+            Some(format!("{code} @{}:{}", loc[1], loc[0]))
+        })
+        .collect()
+}
