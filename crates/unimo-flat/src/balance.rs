@@ -32,7 +32,7 @@ impl Shapes<'_> {
                         .dims
                         .iter()
                         .filter(|(k, _)| k.starts_with(&prefix))
-                        .map(|(_, d)| d.iter().product::<usize>())
+                        .map(|(_, d)| sat_product(d))
                         .sum();
                     return if n > 0 { vec![n] } else { Vec::new() };
                 };
@@ -147,11 +147,13 @@ impl Shapes<'_> {
     }
 
     fn size(&self, e: &Expr) -> usize {
-        self.of(e).iter().product()
+        sat_product(&self.of(e))
     }
 
     fn count(&self, eqs: &[Equation]) -> usize {
-        eqs.iter().map(|e| self.count_one(e)).sum()
+        eqs.iter()
+            .map(|e| self.count_one(e))
+            .fold(0, usize::saturating_add)
     }
 
     fn count_one(&self, e: &Equation) -> usize {
@@ -163,7 +165,7 @@ impl Shapes<'_> {
                 if l.is_empty() && !is_scalar_for_sure(lhs) {
                     self.size(rhs)
                 } else {
-                    l.iter().product()
+                    sat_product(&l)
                 }
             }
             // assert, terminate and reinit are not equations for counting.
@@ -181,6 +183,11 @@ impl Shapes<'_> {
             }
         }
     }
+}
+
+/// The product of sizes, saturating (sizes come from user input).
+fn sat_product(d: &[usize]) -> usize {
+    d.iter().fold(1usize, |acc, &n| acc.saturating_mul(n))
 }
 
 /// Continuous and discrete variables other than top-level inputs.
@@ -260,14 +267,15 @@ pub fn count(model: &FlatModel) -> Balance {
         })
         .map(|v| v.size())
         .sum();
-    let mut equations = shapes.count(&model.equations) + bindings;
+    let mut equations = shapes.count(&model.equations).saturating_add(bindings);
     for alg in &model.algorithms {
         let mut names = BTreeSet::new();
         assigned(alg, &mut names);
-        equations += names
+        let assigned_size = names
             .iter()
-            .map(|n| shapes.dims.get(n).map_or(1, |d| d.iter().product()))
-            .sum::<usize>();
+            .map(|n| shapes.dims.get(n).map_or(1, |d| sat_product(d)))
+            .fold(0, usize::saturating_add);
+        equations = equations.saturating_add(assigned_size);
     }
     Balance {
         equations,

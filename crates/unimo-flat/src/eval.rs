@@ -569,6 +569,13 @@ fn call(
             filled(e, fill_with, &vals)
         }
         "fill" => filled(e, arg(0)?.clone(), &vals[1..]),
+        "identity"
+            if arg(0)?
+                .as_int()
+                .is_some_and(|n| n.saturating_mul(n) > MAX_ELEMENTS) =>
+        {
+            Err(unsupported(e, "an array of more than 10^7 elements"))
+        }
         "identity" => {
             let n = arg(0)?
                 .as_int()
@@ -599,7 +606,18 @@ fn call(
     }
 }
 
+/// Largest array a compile-time evaluation may build.
+const MAX_ELEMENTS: i64 = 10_000_000;
+
 fn filled(e: &Expr, v: Value, dims: &[Value]) -> Result<Value, EvalError> {
+    let total = dims
+        .iter()
+        .map(|d| d.as_int().unwrap_or(0).max(0))
+        .try_fold(1i64, |acc, n| acc.checked_mul(n))
+        .unwrap_or(i64::MAX);
+    if total > MAX_ELEMENTS {
+        return Err(unsupported(e, "an array of more than 10^7 elements"));
+    }
     let Some((first, rest)) = dims.split_first() else {
         return Ok(v);
     };

@@ -66,7 +66,9 @@ pub struct FlatVar {
 impl FlatVar {
     /// Number of scalars.
     pub fn size(&self) -> usize {
-        self.dims.iter().product()
+        self.dims
+            .iter()
+            .fold(1usize, |acc, &n| acc.saturating_mul(n))
     }
 }
 

@@ -29,6 +29,10 @@ const ATTRIBUTES: &[&str] = &[
 /// Deepest component nesting followed (recursive models are errors).
 const MAX_DEPTH: usize = 100;
 
+/// Most scalar variables and component instances one model may have: beyond it the
+/// model is refused (`E2014`) rather than exhausting memory.
+pub const MAX_SCALARS: usize = 20_000_000;
+
 /// One `connect` as written, with full paths and faces.
 #[derive(Clone, Debug)]
 pub struct Connect {
@@ -59,6 +63,10 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub(crate) call_depth: usize,
     /// `input`/`output` of the enclosing structured component, passed to its variables.
     inherited_causality: Option<Causality>,
+    /// Scalars and instances created so far, against [`MAX_SCALARS`].
+    budget_used: usize,
+    /// Set when the budget ran out: instantiation stops.
+    stopped: bool,
     /// Instance keys of `outer` components, with the path of the `inner` they stand for.
     outer_alias: HashMap<String, Vec<RefPart>>,
     depth: usize,
@@ -134,9 +142,34 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             inners: Vec::new(),
             call_depth: 0,
             inherited_causality: None,
+            budget_used: 0,
+            stopped: false,
             outer_alias: HashMap::new(),
             depth: 0,
         }
+    }
+
+    /// Spends `n` of the size budget; false (and `E2014` once) when it is exhausted.
+    fn spend(&mut self, n: usize, span: Span) -> bool {
+        if self.stopped {
+            return false;
+        }
+        self.budget_used = self.budget_used.saturating_add(n);
+        if self.budget_used > MAX_SCALARS {
+            self.stopped = true;
+            self.diags.push(
+                Diagnostic::error(
+                    "E2014",
+                    format!(
+                        "the model is too large (more than {MAX_SCALARS} scalars and instances)"
+                    ),
+                )
+                .at(span, "the limit was passed here")
+                .with_help("check the array sizes and `for` ranges"),
+            );
+            return false;
+        }
+        true
     }
 
     fn error(&mut self, code: &'static str, message: String, span: Span, label: &str) {
@@ -279,6 +312,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         top: bool,
         check_mods: bool,
     ) {
+        if self.stopped {
+            return;
+        }
         if self.depth >= MAX_DEPTH {
             let span = self.tree.get(class).def.name.span;
             self.error(
@@ -584,6 +620,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
         }
+        let count = dims
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+            .unwrap_or(usize::MAX);
+        if !self.spend(count, d.span) {
+            return;
+        }
         match kind {
             Kind::Builtin(ty) => {
                 let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
@@ -849,6 +892,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             }
         };
         for v in values {
+            if !self.spend(body.len().max(1), first.name.span) {
+                return;
+            }
             iters.push((first.name.text.to_string(), v));
             self.for_equation(rest, body, scope, iters, out);
             iters.pop();

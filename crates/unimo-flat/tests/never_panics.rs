@@ -1,0 +1,143 @@
+//! Flattening never panics: every class of every corpus file, and mutated copies of the
+//! flatten suite, go through lookup, the name check, instantiation, connections and the
+//! balance count; only diagnostics may come out.
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+use std::path::{Path, PathBuf};
+use unimo_flat::{ClassTree, MemoryProvider};
+
+fn files_below(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.map(|e| e.unwrap().path()).collect();
+    entries.sort();
+    for e in entries {
+        if e.is_dir() {
+            files_below(&e, out);
+        } else if e.extension().is_some_and(|x| x == "mo") {
+            out.push(e);
+        }
+    }
+}
+
+fn corpus() -> Vec<String> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = Vec::new();
+    for d in [
+        "tests/syntax/ok",
+        "tests/syntax/err",
+        "tests/flatten",
+        "tests/names",
+        "models",
+    ] {
+        files_below(&root.join(d), &mut files);
+    }
+    files
+        .iter()
+        .map(|f| std::fs::read_to_string(f).unwrap())
+        .collect()
+}
+
+/// Flattens every class of `text` (errors allowed, panics not).
+fn flatten_all(text: &str) {
+    let provider = MemoryProvider::new();
+    let mut tree = ClassTree::new(&provider);
+    let file = tree.sources.add("t.mo", text.to_owned());
+    let parsed = unimo_syntax::parse(file, text);
+    let classes = tree.add_user_file(file, parsed.ast);
+    for c in classes {
+        let (model, _) = unimo_flat::flatten(&mut tree, c);
+        let _ = unimo_flat::balance::count(&model);
+        let _ = model.to_modelica();
+    }
+}
+
+#[test]
+fn every_corpus_class_flattens_without_panic() {
+    let files = corpus();
+    assert!(files.len() > 100);
+    for text in &files {
+        flatten_all(text);
+    }
+}
+
+#[test]
+fn mutated_models_flatten_without_panic() {
+    let texts = corpus();
+    const TOKENS: &[&str] = &[
+        ";",
+        "(",
+        ")",
+        "[",
+        "]",
+        "{",
+        "}",
+        "=",
+        "end",
+        "model",
+        "x",
+        "1",
+        "0",
+        "-1",
+        "n",
+        ".",
+        ",",
+        "extends",
+        "connect",
+        "for",
+        "loop",
+        "if",
+        "then",
+        "else",
+        "parameter",
+        "inner",
+        "outer",
+        "redeclare",
+        "each",
+        "Real",
+        "Integer",
+        "start",
+        "fixed",
+        ":",
+        "der",
+        "1:3",
+    ];
+    // 300 cases by default; `UNIMO_STRESS_CASES=N` for a longer local run.
+    let cases = std::env::var("UNIMO_STRESS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(300);
+    let mut runner = TestRunner::new(Config {
+        cases,
+        ..Config::default()
+    });
+    let strategy = (
+        0..texts.len(),
+        proptest::collection::vec((any::<usize>(), 0..TOKENS.len(), any::<bool>()), 1..4),
+    );
+    runner
+        .run(&strategy, |(which, edits)| {
+            let mut text = texts[which].clone();
+            for (at, tok, delete) in edits {
+                let mut at = at % text.len().max(1);
+                while !text.is_char_boundary(at) {
+                    at -= 1;
+                }
+                if delete {
+                    let mut end = (at + 2).min(text.len());
+                    while !text.is_char_boundary(end) {
+                        end += 1;
+                    }
+                    text.replace_range(at..end, "");
+                } else {
+                    text.insert_str(at, TOKENS[tok]);
+                    text.insert(at, ' ');
+                }
+            }
+            flatten_all(&text);
+            Ok(())
+        })
+        .unwrap();
+}
