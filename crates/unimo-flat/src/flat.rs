@@ -361,6 +361,38 @@ fn indent(out: &mut String, depth: usize) {
     }
 }
 
+/// `if c then ... elseif ... else ... end if;` (or `when`/`elsewhen`), each body
+/// written by `item` one level deeper.
+#[allow(clippy::too_many_arguments)]
+fn write_branches<T>(
+    out: &mut String,
+    depth: usize,
+    (first, next, end): (&str, &str, &str),
+    branches: &[(Expr, Vec<T>)],
+    otherwise: &[T],
+    item: fn(&mut String, &T, usize),
+) {
+    for (i, (c, body)) in branches.iter().enumerate() {
+        if i > 0 {
+            indent(out, depth);
+        }
+        let kw = if i == 0 { first } else { next };
+        let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
+        for b in body {
+            item(out, b, depth + 1);
+        }
+    }
+    if !otherwise.is_empty() {
+        indent(out, depth);
+        out.push_str("else\n");
+        for b in otherwise {
+            item(out, b, depth + 1);
+        }
+    }
+    indent(out, depth);
+    let _ = writeln!(out, "{end};");
+}
+
 fn write_equation(out: &mut String, e: &Equation, depth: usize) {
     indent(out, depth);
     match &e.kind {
@@ -386,27 +418,14 @@ fn write_equation(out: &mut String, e: &Equation, depth: usize) {
         EquationKind::If {
             branches,
             otherwise,
-        } => {
-            for (i, (c, body)) in branches.iter().enumerate() {
-                if i > 0 {
-                    indent(out, depth);
-                }
-                let kw = if i == 0 { "if" } else { "elseif" };
-                let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
-                for b in body {
-                    write_equation(out, b, depth + 1);
-                }
-            }
-            if !otherwise.is_empty() {
-                indent(out, depth);
-                out.push_str("else\n");
-                for b in otherwise {
-                    write_equation(out, b, depth + 1);
-                }
-            }
-            indent(out, depth);
-            out.push_str("end if;\n");
-        }
+        } => write_branches(
+            out,
+            depth,
+            ("if", "elseif", "end if"),
+            branches,
+            otherwise,
+            write_equation,
+        ),
         EquationKind::For { indices, body } => {
             let _ = writeln!(out, "for {} loop", print::for_indices(indices));
             for b in body {
@@ -415,20 +434,14 @@ fn write_equation(out: &mut String, e: &Equation, depth: usize) {
             indent(out, depth);
             out.push_str("end for;\n");
         }
-        EquationKind::When { branches } => {
-            for (i, (c, body)) in branches.iter().enumerate() {
-                if i > 0 {
-                    indent(out, depth);
-                }
-                let kw = if i == 0 { "when" } else { "elsewhen" };
-                let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
-                for b in body {
-                    write_equation(out, b, depth + 1);
-                }
-            }
-            indent(out, depth);
-            out.push_str("end when;\n");
-        }
+        EquationKind::When { branches } => write_branches(
+            out,
+            depth,
+            ("when", "elsewhen", "end when"),
+            branches,
+            &[],
+            write_equation,
+        ),
     }
 }
 
@@ -465,27 +478,14 @@ fn write_statement(out: &mut String, s: &Statement, depth: usize) {
         StatementKind::If {
             branches,
             otherwise,
-        } => {
-            for (i, (c, body)) in branches.iter().enumerate() {
-                if i > 0 {
-                    indent(out, depth);
-                }
-                let kw = if i == 0 { "if" } else { "elseif" };
-                let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
-                for b in body {
-                    write_statement(out, b, depth + 1);
-                }
-            }
-            if !otherwise.is_empty() {
-                indent(out, depth);
-                out.push_str("else\n");
-                for b in otherwise {
-                    write_statement(out, b, depth + 1);
-                }
-            }
-            indent(out, depth);
-            out.push_str("end if;\n");
-        }
+        } => write_branches(
+            out,
+            depth,
+            ("if", "elseif", "end if"),
+            branches,
+            otherwise,
+            write_statement,
+        ),
         StatementKind::For { indices, body } => {
             let _ = writeln!(out, "for {} loop", print::for_indices(indices));
             for b in body {
@@ -502,20 +502,14 @@ fn write_statement(out: &mut String, s: &Statement, depth: usize) {
             indent(out, depth);
             out.push_str("end while;\n");
         }
-        StatementKind::When { branches } => {
-            for (i, (c, body)) in branches.iter().enumerate() {
-                if i > 0 {
-                    indent(out, depth);
-                }
-                let kw = if i == 0 { "when" } else { "elsewhen" };
-                let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
-                for b in body {
-                    write_statement(out, b, depth + 1);
-                }
-            }
-            indent(out, depth);
-            out.push_str("end when;\n");
-        }
+        StatementKind::When { branches } => write_branches(
+            out,
+            depth,
+            ("when", "elsewhen", "end when"),
+            branches,
+            &[],
+            write_statement,
+        ),
         StatementKind::Return => out.push_str("return;\n"),
         StatementKind::Break => out.push_str("break;\n"),
     }

@@ -920,15 +920,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 branches,
                 otherwise,
             } => StatementKind::If {
-                branches: branches
-                    .iter()
-                    .map(|(c, b)| {
-                        (
-                            self.expr(c, scope, iters, locals),
-                            b.iter().map(|s| self.statement(s, scope, locals)).collect(),
-                        )
-                    })
-                    .collect(),
+                branches: self.statement_branches(branches, scope, locals),
                 otherwise: otherwise
                     .iter()
                     .map(|s| self.statement(s, scope, locals))
@@ -953,15 +945,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     .collect(),
             },
             StatementKind::When { branches } => StatementKind::When {
-                branches: branches
-                    .iter()
-                    .map(|(c, b)| {
-                        (
-                            self.expr(c, scope, iters, locals),
-                            b.iter().map(|s| self.statement(s, scope, locals)).collect(),
-                        )
-                    })
-                    .collect(),
+                branches: self.statement_branches(branches, scope, locals),
             },
             StatementKind::Return => StatementKind::Return,
             StatementKind::Break => StatementKind::Break,
@@ -1204,6 +1188,24 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             other => other.clone(),
         };
         Expr { kind, span }
+    }
+
+    /// The branches of an `if`/`when` statement, conditions and bodies made absolute.
+    fn statement_branches(
+        &mut self,
+        branches: &[(Expr, Vec<Statement>)],
+        scope: &Scope,
+        locals: &mut Vec<String>,
+    ) -> Vec<(Expr, Vec<Statement>)> {
+        branches
+            .iter()
+            .map(|(c, b)| {
+                (
+                    self.expr(c, scope, &mut Vec::new(), locals),
+                    b.iter().map(|s| self.statement(s, scope, locals)).collect(),
+                )
+            })
+            .collect()
     }
 
     /// `for` indices with their ranges made absolute (the names stay local).
