@@ -1,5 +1,6 @@
 //! Helpers shared by the end-to-end tests: expected-diagnostics manifests and the
 //! `CODE @line:col` list of rendered diagnostics.
+#![allow(dead_code)]
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;

@@ -260,6 +260,15 @@ fn uses_of(def: &unimo_syntax::ast::ClassDef) -> Vec<String> {
 }
 
 /// Picks the model to flatten: `--model`, or the one non-partial model of the file.
+/// Picks the model to compile (see [`pick_model`]).
+pub fn pick(
+    tree: &mut ClassTree<'_>,
+    classes: &[unimo_flat::ClassId],
+    wanted: Option<&str>,
+) -> Result<unimo_flat::ClassId, String> {
+    pick_model(tree, classes, wanted)
+}
+
 fn pick_model(
     tree: &mut ClassTree<'_>,
     classes: &[unimo_flat::ClassId],
@@ -333,14 +342,16 @@ fn pick_model(
     }
 }
 
-pub fn flatten(
+/// Parses `files`, picks the model, flattens it and checks its balance, rendering the
+/// diagnostics; then hands the flat model to `then`. Returns the exit code.
+pub fn with_flat_model(
     files: &[PathBuf],
     model: Option<&str>,
     libs: &[PathBuf],
-    stats: bool,
     color: bool,
+    print_unbalanced: bool,
+    then: &mut dyn FnMut(&unimo_flat::FlatModel, &SourceMap, bool) -> i32,
 ) -> i32 {
-    let started = Instant::now();
     let provider = CliProvider::new(libs);
     let mut tree = ClassTree::new(&provider);
     let mut first_classes = None;
@@ -383,27 +394,47 @@ pub fn flatten(
     diags.append(&mut tree.diagnostics);
     let (mut e, mut w) = (0, 0);
     report(&diags, &tree.sources, color, &mut e, &mut w);
-    if e > 0 && !unbalanced {
+    if e > 0 && !(unbalanced && print_unbalanced) {
         return EXIT_MODEL_ERROR;
     }
-    // An unbalanced model is still printed: reading it is how one finds the surplus or
-    // missing equation. The exit code says it is not usable.
-    print!("{}", flat.to_modelica());
-    if stats {
-        let b = unimo_flat::balance::count(&flat);
-        eprintln!(
-            "stats: variables={} scalars={} equations={} unknowns={} library_files_loaded={} time_ms={:.1}",
-            flat.vars.len(),
-            flat.vars.iter().map(|v| v.size()).sum::<usize>(),
-            b.equations,
-            b.unknowns,
-            tree.stats.library_files,
-            started.elapsed().as_secs_f64() * 1e3
-        );
-    }
+    let code = then(&flat, &tree.sources, e > 0);
     if e > 0 {
         EXIT_MODEL_ERROR
     } else {
-        EXIT_OK
+        code
     }
+}
+
+/// Renders diagnostics of a later stage; true when there were errors.
+pub fn render_stage(diags: &[Diagnostic], map: &SourceMap, color: bool) -> bool {
+    let (mut e, mut w) = (0, 0);
+    report(diags, map, color, &mut e, &mut w);
+    e > 0
+}
+
+pub fn flatten(
+    files: &[PathBuf],
+    model: Option<&str>,
+    libs: &[PathBuf],
+    stats: bool,
+    color: bool,
+) -> i32 {
+    let started = Instant::now();
+    // An unbalanced model is still printed: reading it is how one finds the surplus or
+    // missing equation. The exit code says it is not usable.
+    with_flat_model(files, model, libs, color, true, &mut |flat, _, _| {
+        print!("{}", flat.to_modelica());
+        if stats {
+            let b = unimo_flat::balance::count(flat);
+            eprintln!(
+                "stats: variables={} scalars={} equations={} unknowns={} time_ms={:.1}",
+                flat.vars.len(),
+                flat.vars.iter().map(|v| v.size()).sum::<usize>(),
+                b.equations,
+                b.unknowns,
+                started.elapsed().as_secs_f64() * 1e3
+            );
+        }
+        EXIT_OK
+    })
 }

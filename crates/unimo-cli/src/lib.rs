@@ -4,9 +4,12 @@
 //! Exit codes, for the whole tool: 0 success, 1 errors in the model, 2 usage errors
 //! (bad flags, missing files), 3 simulation failure.
 
+mod bench;
 mod check;
 mod provider;
 pub mod render;
+mod simulate;
+mod stages;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::IsTerminal;
@@ -92,21 +95,150 @@ enum Command {
         #[arg(long)]
         stats: bool,
     },
-    /// Print an intermediate representation of a file.
+    /// Simulate a model and write its results as CSV.
+    ///
+    /// Compiles the model (flattening, lowering, alias elimination, index reduction,
+    /// BLT, tearing), initializes it consistently and integrates it with one of
+    /// unimo's solvers, handling events with Modelica semantics. Defaults for the time
+    /// span, tolerance and output interval come from `annotation(experiment(...))`.
+    ///
+    /// The CSV has a header `time,<names>` and one row per output point, plus two rows
+    /// (left and right limit) at every event. On a solver failure the exit code is 3 and
+    /// the CSV keeps every row computed up to the failure.
+    Simulate(SimulateArgs),
+    /// Measure error against run time: every model x method x tolerance.
+    ///
+    /// Each configuration runs `--runs` times; the table gives the median wall time,
+    /// the steps, and the error against a reference (the `--reference` CSV, or a very
+    /// tight Radau5 run): scd = -log10(max relative error) over the variables at the
+    /// end time, and the worst scd over the output grid. `--plot` writes a
+    /// work-precision diagram (SVG).
+    Bench(BenchArgs),
+    /// Print an intermediate representation of a model.
+    ///
+    /// Stages in pipeline order: `ast` (syntax tree of the first file), `flat` (as
+    /// `unimo flatten`), `dae` (scalarized hybrid DAE: variables by kind, equations,
+    /// `when` clauses, zero crossings), `structure` (the causal plan: states, index
+    /// reduction, dummy derivatives, blocks with their iteration variables).
     Emit {
         /// Which stage to print.
         #[arg(long, value_enum, default_value_t = Stage::Ast)]
         stage: Stage,
-        /// The Modelica file.
-        #[arg(value_name = "FILE")]
-        file: PathBuf,
+        /// The Modelica file with the model, then any other files it uses.
+        #[arg(required = true, value_name = "FILE")]
+        files: Vec<PathBuf>,
+        /// The model (full dotted name); may be omitted when the file has one.
+        #[arg(long, value_name = "NAME")]
+        model: Option<String>,
+        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        #[arg(long = "lib", value_name = "DIR")]
+        libs: Vec<PathBuf>,
     },
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(clap::Args, Debug, Clone)]
+pub struct SimulateArgs {
+    /// The Modelica file with the model, then any other files it uses.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    /// The model (full dotted name); may be omitted when the file has one.
+    #[arg(long, value_name = "NAME")]
+    pub model: Option<String>,
+    /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+    #[arg(long = "lib", value_name = "DIR")]
+    pub libs: Vec<PathBuf>,
+    /// Start time [default: experiment StartTime, else 0].
+    #[arg(long, value_name = "T0")]
+    pub start: Option<f64>,
+    /// Stop time [default: experiment StopTime, else 1].
+    #[arg(long = "stop-time", value_name = "T")]
+    pub stop_time: Option<f64>,
+    /// Relative tolerance [default: experiment Tolerance, else 1e-6].
+    #[arg(long, value_name = "RTOL")]
+    pub tolerance: Option<f64>,
+    /// Absolute tolerance, scaled per state by its `nominal` [default: RTOL / 100].
+    #[arg(long, value_name = "ATOL")]
+    pub atol: Option<f64>,
+    /// Integration method: `auto` (BDF), `bdf`, `radau5` (tight tolerances) or
+    /// `dopri5` (explicit, non-stiff).
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    pub method: MethodArg,
+    /// Output interval [default: experiment Interval, else (stop - start) / 500].
+    #[arg(long, value_name = "DT", conflicts_with = "points")]
+    pub interval: Option<f64>,
+    /// Number of output intervals (instead of --interval).
+    #[arg(long, value_name = "N")]
+    pub points: Option<usize>,
+    /// Also write a row after every internal solver step.
+    #[arg(long)]
+    pub every_step: bool,
+    /// Write the CSV here instead of standard output.
+    #[arg(long, short, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Only these variables (comma separated; `body` selects every `body.*` and
+    /// `body[...]`). Variables nothing else needs are then left out of the computation.
+    #[arg(long, value_name = "A,B.C", value_delimiter = ',')]
+    pub vars: Vec<String>,
+    /// Print run statistics as one JSON object to stderr.
+    #[arg(long)]
+    pub stats: bool,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// Model files (each must hold one model, or use --model for all).
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    /// The model name, when the files hold several.
+    #[arg(long, value_name = "NAME")]
+    pub model: Option<String>,
+    /// Add a library folder.
+    #[arg(long = "lib", value_name = "DIR")]
+    pub libs: Vec<PathBuf>,
+    /// Methods to compare.
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [MethodArg::Bdf, MethodArg::Radau5])]
+    pub methods: Vec<MethodArg>,
+    /// Relative tolerances.
+    #[arg(long, value_delimiter = ',', default_values_t = [1e-4, 1e-6, 1e-8, 1e-10])]
+    pub tolerances: Vec<f64>,
+    /// Absolute tolerance as a multiple of the relative one.
+    #[arg(long, value_name = "F", default_value_t = 1e-2)]
+    pub atol_factor: f64,
+    /// Reference results (CSV as written by `simulate`); columns are matched by name.
+    #[arg(long, value_name = "CSV")]
+    pub reference: Option<PathBuf>,
+    /// Runs per configuration (the median is reported).
+    #[arg(long, default_value_t = 5)]
+    pub runs: usize,
+    /// Output intervals for the grid error.
+    #[arg(long, default_value_t = 100)]
+    pub points: usize,
+    /// Stop time [default: the model's experiment StopTime].
+    #[arg(long = "stop-time", value_name = "T")]
+    pub stop_time: Option<f64>,
+    /// Write a work-precision plot (SVG) here.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum MethodArg {
+    Auto,
+    Bdf,
+    Radau5,
+    Dopri5,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 enum Stage {
     /// The syntax tree, one node a line with its line:col.
     Ast,
+    /// The flat model as flat Modelica.
+    Flat,
+    /// The hybrid DAE after lowering.
+    Dae,
+    /// The structural analysis and causal plan.
+    Structure,
 }
 
 /// Runs the command line and returns the process exit code.
@@ -148,8 +280,66 @@ fn run_on_this_thread() -> i32 {
             libs,
             stats,
         } => check::flatten(&files, model.as_deref(), &libs, stats, color),
-        Command::Emit { stage, file } => match stage {
-            Stage::Ast => check::emit_ast(&file, color),
+        Command::Simulate(args) => simulate::simulate(&args, color),
+        Command::Bench(args) => bench::bench(&args, color),
+        Command::Emit {
+            stage,
+            files,
+            model,
+            libs,
+        } => match stage {
+            Stage::Ast => check::emit_ast(&files[0], color),
+            Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
+            Stage::Dae => stages::emit_dae(&files, model.as_deref(), &libs, color),
+            Stage::Structure => stages::emit_structure(&files, model.as_deref(), &libs, color),
         },
     }
+}
+
+/// A model compiled for simulation, for tests and benchmarks that drive the library
+/// directly: the DAE, its causal plan and the compiled tapes.
+pub struct LoadedModel {
+    pub dae: unimo_dae::Dae,
+    pub analysis: unimo_dae::analysis::Analysis,
+    pub compiled: unimo_runtime::model::CompiledModel,
+}
+
+/// Reads, flattens, lowers, analyses and compiles a model; errors come back as the
+/// plain-text diagnostics.
+pub fn load_model(files: &[PathBuf], model: Option<&str>) -> Result<LoadedModel, String> {
+    let provider = provider::CliProvider::new(&[]);
+    let mut tree = unimo_flat::ClassTree::new(&provider);
+    let mut first = None;
+    for f in files {
+        let text = std::fs::read_to_string(f).map_err(|e| format!("{}: {e}", f.display()))?;
+        let id = tree.sources.add(f.clone(), text);
+        let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
+        if parsed.has_errors() {
+            return Err(render_all(&parsed.diagnostics, &tree.sources));
+        }
+        let classes = tree.add_user_file(id, parsed.ast);
+        first.get_or_insert(classes);
+    }
+    let classes = first.unwrap_or_default();
+    let class = check::pick(&mut tree, &classes, model)?;
+    let (flat, diags) = unimo_flat::flatten(&mut tree, class);
+    if diags.iter().any(|d| d.is_error()) {
+        return Err(render_all(&diags, &tree.sources));
+    }
+    let (dae, analysis) =
+        unimo_dae::analyze_model(&flat).map_err(|d| render_all(&d, &tree.sources))?;
+    let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+    Ok(LoadedModel {
+        dae,
+        analysis,
+        compiled,
+    })
+}
+
+fn render_all(diags: &[unimo_source::Diagnostic], map: &unimo_source::SourceMap) -> String {
+    diags
+        .iter()
+        .map(|d| render::render_plain(d, map))
+        .collect::<Vec<_>>()
+        .join("\n")
 }

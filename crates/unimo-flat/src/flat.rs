@@ -86,6 +86,8 @@ pub struct FlatModel {
     pub experiment: Option<ClassModification>,
     /// Enumeration types used by variables, by full name.
     pub enumerations: Vec<(String, Vec<String>)>,
+    /// The user functions called (transitively), sorted by name.
+    pub functions: Vec<crate::functions::FlatFunction>,
 }
 
 /// A flat reference: the instance path as reference parts.

@@ -1272,6 +1272,26 @@ impl Instantiator<'_, '_> {
     pub(crate) fn expr_in_function(&mut self, e: &Expr, scope: &Scope) -> Expr {
         self.expr(e, scope, &mut Vec::new(), &mut Vec::new())
     }
+
+    /// An expression of a function body, its formal parameters and locals kept local.
+    pub(crate) fn function_expr(
+        &mut self,
+        e: &Expr,
+        scope: &Scope,
+        locals: &mut Vec<String>,
+    ) -> Expr {
+        self.expr(e, scope, &mut Vec::new(), locals)
+    }
+
+    /// A statement of a function body, its formal parameters and locals kept local.
+    pub(crate) fn function_statement(
+        &mut self,
+        st: &Statement,
+        scope: &Scope,
+        locals: &mut Vec<String>,
+    ) -> Statement {
+        self.statement(st, scope, locals)
+    }
 }
 
 impl Env for Instantiator<'_, '_> {

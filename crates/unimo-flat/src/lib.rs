@@ -14,6 +14,7 @@ pub mod connect;
 pub mod error;
 pub mod eval;
 pub mod flat;
+pub mod functions;
 pub mod instantiate;
 mod interp;
 pub mod lookup;
@@ -36,6 +37,7 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     inst.run(class);
     let connects = std::mem::take(&mut inst.connects);
     let absent = std::mem::take(&mut inst.absent);
+    inst.collect_functions();
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
     diags.extend(connect::generate(&mut model, &connects, &absent));

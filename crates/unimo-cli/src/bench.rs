@@ -1,0 +1,318 @@
+//! `unimo bench`: error against run time for models x methods x tolerances, as a
+//! table on stdout and a work-precision plot.
+
+use crate::check::{render_stage, with_flat_model};
+use crate::simulate::method;
+use crate::{BenchArgs, MethodArg, EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
+use std::collections::HashMap;
+use std::time::Instant;
+use unimo_runtime::model::CompiledModel;
+use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+
+/// One measured configuration.
+#[derive(Clone, Debug)]
+pub struct Measurement {
+    pub model: String,
+    pub method: MethodArg,
+    pub median_ms: f64,
+    pub steps: u64,
+    pub scd_end: f64,
+    pub failed: Option<String>,
+}
+
+/// Reference values: per variable name, the values on the grid (by time) and at the end.
+struct Reference {
+    end: HashMap<String, f64>,
+    grid: HashMap<u64, HashMap<String, f64>>,
+}
+
+fn key(t: f64) -> u64 {
+    t.to_bits()
+}
+
+fn reference_from_result(r: &SimResult) -> Reference {
+    let mut end = HashMap::new();
+    let mut grid: HashMap<u64, HashMap<String, f64>> = HashMap::new();
+    if let Some(last) = r.rows.last() {
+        for (n, v) in r.names.iter().zip(last) {
+            end.insert(n.clone(), *v);
+        }
+    }
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        // At an event time two rows exist; the grid uses the first (left limit).
+        grid.entry(key(*t))
+            .or_insert_with(|| r.names.iter().cloned().zip(row.iter().copied()).collect());
+    }
+    Reference { end, grid }
+}
+
+fn reference_from_csv(path: &std::path::Path) -> Result<Reference, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .ok_or("the reference CSV is empty")?
+        .split(',')
+        .map(|s| s.trim().trim_matches('"').to_owned())
+        .collect();
+    let mut result = SimResult {
+        names: header[1..].to_vec(),
+        ..SimResult::default()
+    };
+    for (k, line) in lines.enumerate() {
+        let vals: Result<Vec<f64>, _> = line.split(',').map(|s| s.trim().parse::<f64>()).collect();
+        let vals = vals.map_err(|e| format!("reference line {}: {e}", k + 2))?;
+        if vals.len() != header.len() {
+            return Err(format!(
+                "reference line {} has {} values, the header {}",
+                k + 2,
+                vals.len(),
+                header.len()
+            ));
+        }
+        result.times.push(vals[0]);
+        result.rows.push(vals[1..].to_vec());
+    }
+    Ok(reference_from_result(&result))
+}
+
+/// -log10 of the largest relative error of `values` against `reference` (matching
+/// names; derivatives left out); absolute error where the reference is zero.
+fn scd(names: &[String], values: &[f64], reference: &HashMap<String, f64>) -> f64 {
+    let mut worst = 0.0f64;
+    for (n, &v) in names.iter().zip(values) {
+        if n.starts_with("der(") {
+            continue;
+        }
+        let Some(&r) = reference.get(n) else { continue };
+        let err = if r == 0.0 {
+            v.abs()
+        } else {
+            ((v - r) / r).abs()
+        };
+        worst = worst.max(if err.is_nan() { f64::INFINITY } else { err });
+    }
+    if worst == 0.0 {
+        16.0
+    } else {
+        -worst.log10()
+    }
+}
+
+fn measure(
+    m: &CompiledModel,
+    o: &SimOptions,
+    runs: usize,
+    reference: &Reference,
+) -> (f64, SimResult, f64, f64) {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let t0 = Instant::now();
+        let r = simulate(m, o);
+        times.push(t0.elapsed().as_secs_f64() * 1e3);
+        last = Some(r);
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    let r = last.expect("at least one run");
+    let end = r
+        .rows
+        .last()
+        .map(|row| scd(&r.names, row, &reference.end))
+        .unwrap_or(f64::NAN);
+    let mut grid = f64::INFINITY;
+    let mut seen = std::collections::HashSet::new();
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        if !seen.insert(key(*t)) {
+            continue;
+        }
+        if let Some(refrow) = reference.grid.get(&key(*t)) {
+            grid = grid.min(scd(&r.names, row, refrow));
+        }
+    }
+    (median, r, end, grid)
+}
+
+pub fn bench(a: &BenchArgs, color: bool) -> i32 {
+    if a.tolerances.iter().any(|&t| !positive(t)) {
+        eprintln!("error: tolerances must be positive");
+        return EXIT_USAGE;
+    }
+    let mut all = Vec::new();
+    let mut code = EXIT_OK;
+    println!(
+        "{:<16} {:<7} {:>8} {:>8} {:>11} {:>7} {:>7} {:>7}",
+        "model", "method", "rtol", "atol", "median_ms", "steps", "scd_end", "scd_grid"
+    );
+    for file in &a.files {
+        let files = vec![file.clone()];
+        let c = with_flat_model(
+            &files,
+            a.model.as_deref(),
+            &a.libs,
+            color,
+            false,
+            &mut |flat, map, _| {
+                let (dae, analysis) = match unimo_dae::analyze_model(flat) {
+                    Ok(x) => x,
+                    Err(d) => {
+                        render_stage(&d, map, color);
+                        return EXIT_MODEL_ERROR;
+                    }
+                };
+                let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+                let ex = &dae.experiment;
+                let start = ex.start_time.unwrap_or(0.0);
+                let stop = a.stop_time.or(ex.stop_time).unwrap_or(1.0);
+                let interval = (stop - start) / a.points.max(1) as f64;
+                let options = |m: MethodArg, rtol: f64, atol: f64| SimOptions {
+                    start,
+                    stop,
+                    rtol,
+                    atol,
+                    method: method(m),
+                    interval,
+                    every_step: false,
+                };
+                let reference = match &a.reference {
+                    Some(p) => match reference_from_csv(p) {
+                        Ok(r) => r,
+                        Err(e) => {
+                            eprintln!("error: {e}");
+                            return EXIT_USAGE;
+                        }
+                    },
+                    None => {
+                        let tight = (a.tolerances.iter().copied().fold(f64::INFINITY, f64::min)
+                            * 1e-3)
+                            .max(1e-14);
+                        let r = simulate(
+                            &compiled,
+                            &options(MethodArg::Radau5, tight, tight * a.atol_factor),
+                        );
+                        if let Some(e) = &r.error {
+                            eprintln!("error: the reference run failed: {}", e.message());
+                            return EXIT_USAGE;
+                        }
+                        reference_from_result(&r)
+                    }
+                };
+                for &m in &a.methods {
+                    for &rtol in &a.tolerances {
+                        let atol = rtol * a.atol_factor;
+                        let (median, r, end, grid) =
+                            measure(&compiled, &options(m, rtol, atol), a.runs, &reference);
+                        let meas = Measurement {
+                            model: dae.name.clone(),
+                            method: m,
+                            median_ms: median,
+                            steps: r.stats.solver.steps,
+                            scd_end: end,
+                            failed: r.error.as_ref().map(|e| e.message()),
+                        };
+                        println!(
+                            "{:<16} {:<7} {:>8.0e} {:>8.0e} {:>11.3} {:>7} {:>7.2} {:>7.2}{}",
+                            meas.model,
+                            format!("{m:?}").to_lowercase(),
+                            rtol,
+                            atol,
+                            median,
+                            meas.steps,
+                            end,
+                            grid,
+                            meas.failed
+                                .as_ref()
+                                .map(|f| format!("  FAILED: {f}"))
+                                .unwrap_or_default()
+                        );
+                        all.push(meas);
+                    }
+                }
+                EXIT_OK
+            },
+        );
+        code = code.max(c);
+    }
+    if let Some(path) = &a.plot {
+        if let Err(e) = plot(path, &all) {
+            eprintln!("error: cannot write the plot: {e}");
+            return EXIT_USAGE;
+        }
+        eprintln!("wrote {}", path.display());
+    }
+    code
+}
+
+fn plot(path: &std::path::Path, all: &[Measurement]) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let finite: Vec<&Measurement> = all
+        .iter()
+        .filter(|m| m.scd_end.is_finite() && m.median_ms > 0.0)
+        .collect();
+    let (mut tmin, mut tmax) = (f64::INFINITY, 0.0f64);
+    let (mut smin, mut smax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for m in &finite {
+        tmin = tmin.min(m.median_ms);
+        tmax = tmax.max(m.median_ms);
+        smin = smin.min(m.scd_end);
+        smax = smax.max(m.scd_end);
+    }
+    if finite.is_empty() {
+        tmin = 0.1;
+        tmax = 1.0;
+        smin = 0.0;
+        smax = 1.0;
+    }
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Work-precision: scd at the end time against median run time",
+            ("sans-serif", 20),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(55)
+        .build_cartesian_2d(
+            (tmin * 0.8..tmax * 1.25).log_scale(),
+            (smin - 0.5)..(smax + 0.5),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("median run time [ms]")
+        .y_desc("scd (significant correct digits)")
+        .draw()?;
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for m in &finite {
+        let label = format!("{} {}", m.model, format!("{:?}", m.method).to_lowercase());
+        match series.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, pts)) => pts.push((m.median_ms, m.scd_end)),
+            None => series.push((label, vec![(m.median_ms, m.scd_end)])),
+        }
+    }
+    for (k, (label, pts)) in series.into_iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+            .label(label)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            });
+        chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, color.filled())))?;
+    }
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// A finite number above zero.
+pub fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}

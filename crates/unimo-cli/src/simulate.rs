@@ -1,0 +1,199 @@
+//! `unimo simulate`: compile, simulate, write CSV and statistics.
+
+use crate::bench::positive;
+use crate::check::{render_stage, with_flat_model};
+use crate::{
+    MethodArg, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE,
+};
+use std::io::Write;
+use std::time::Instant;
+use unimo_runtime::sim::{SimOptions, SimResult};
+use unimo_solve::Method;
+
+pub fn method(m: MethodArg) -> Method {
+    match m {
+        MethodArg::Auto => Method::Auto,
+        MethodArg::Bdf => Method::Bdf,
+        MethodArg::Radau5 => Method::Radau5,
+        MethodArg::Dopri5 => Method::Dopri5,
+    }
+}
+
+/// Columns selected by `--vars` (all when empty); Err names an unknown selector.
+fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, String> {
+    if wanted.is_empty() {
+        return Ok((0..names.len()).collect());
+    }
+    let mut out = Vec::new();
+    for w in wanted {
+        let w = w.trim();
+        let hits: Vec<usize> = names
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| {
+                *n == w
+                    || n.strip_prefix(w)
+                        .is_some_and(|rest| rest.starts_with('.') || rest.starts_with('['))
+            })
+            .map(|(k, _)| k)
+            .collect();
+        if hits.is_empty() {
+            let mut close: Vec<&String> = names
+                .iter()
+                .filter(|n| n.contains(w) || w.contains(n.as_str()))
+                .take(5)
+                .collect();
+            close.sort();
+            let hint = if close.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " (similar: {})",
+                    close
+                        .iter()
+                        .map(|s| s.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            };
+            return Err(format!("no variable `{w}` in the model{hint}"));
+        }
+        out.extend(hits);
+    }
+    out.sort();
+    out.dedup();
+    Ok(out)
+}
+
+pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io::Result<()> {
+    write!(out, "time")?;
+    for &c in cols {
+        let n = &r.names[c];
+        if n.contains(',') || n.contains('"') {
+            write!(out, ",\"{}\"", n.replace('"', "\"\""))?;
+        } else {
+            write!(out, ",{n}")?;
+        }
+    }
+    writeln!(out)?;
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        write!(out, "{t:e}")?;
+        for &c in cols {
+            // -0 is written as 0.
+            write!(out, ",{:e}", row[c] + 0.0)?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
+pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
+    let started = Instant::now();
+    with_flat_model(
+        &a.files,
+        a.model.as_deref(),
+        &a.libs,
+        color,
+        false,
+        &mut |flat, map, _| {
+            let (dae, analysis) = match unimo_dae::analyze_model(flat) {
+                Ok(x) => x,
+                Err(diags) => {
+                    render_stage(&diags, map, color);
+                    return EXIT_MODEL_ERROR;
+                }
+            };
+            let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+            let compile_ms = started.elapsed().as_secs_f64() * 1e3;
+            let ex = &dae.experiment;
+            let start = a.start.or(ex.start_time).unwrap_or(0.0);
+            let stop = a.stop_time.or(ex.stop_time).unwrap_or(1.0);
+            if !positive(stop - start) {
+                eprintln!("error: the stop time {stop} is not after the start time {start}");
+                return EXIT_USAGE;
+            }
+            let rtol = a.tolerance.or(ex.tolerance).unwrap_or(1e-6);
+            let atol = a.atol.unwrap_or(rtol / 100.0);
+            let interval = match (a.interval, a.points) {
+                (Some(dt), _) => dt,
+                (None, Some(n)) => (stop - start) / n.max(1) as f64,
+                (None, None) => ex.interval.unwrap_or((stop - start) / 500.0),
+            };
+            if !positive(interval) || !positive(rtol) || atol.is_nan() || atol < 0.0 {
+                eprintln!("error: the interval and tolerances must be positive");
+                return EXIT_USAGE;
+            }
+            let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
+            let cols = match select(&names, &a.vars) {
+                Ok(c) => c,
+                Err(msg) => {
+                    eprintln!("error: {msg}");
+                    return EXIT_USAGE;
+                }
+            };
+            let options = SimOptions {
+                start,
+                stop,
+                rtol,
+                atol,
+                method: method(a.method),
+                interval,
+                every_step: a.every_step,
+            };
+            let sim_started = Instant::now();
+            let result = unimo_runtime::sim::simulate(&compiled, &options);
+            let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
+            let written = match &a.output {
+                Some(path) => std::fs::File::create(path)
+                    .map(std::io::BufWriter::new)
+                    .and_then(|mut f| write_csv(&mut f, &result, &cols).and_then(|_| f.flush())),
+                None => {
+                    let stdout = std::io::stdout();
+                    let mut lock = std::io::BufWriter::new(stdout.lock());
+                    write_csv(&mut lock, &result, &cols).and_then(|_| lock.flush())
+                }
+            };
+            if let Err(e) = written {
+                eprintln!("error: cannot write the results: {e}");
+                return EXIT_USAGE;
+            }
+            if a.stats {
+                let s = &result.stats;
+                eprintln!(
+                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
+                format!("{:?}", a.method).to_lowercase(),
+                compiled.states.len(),
+                s.solver.steps,
+                s.solver.rejected_steps,
+                s.solver.rhs_evals,
+                s.solver.jacobian_evals,
+                s.solver.lu_factorizations,
+                s.solver.newton_iterations,
+                s.events,
+                s.event_iterations,
+                s.rhs_evaluations,
+                compile_ms,
+                simulate_ms
+            );
+            }
+            if let Some(msg) = &result.terminated {
+                eprintln!(
+                    "note: terminate() at t = {}: {msg}",
+                    result.times.last().copied().unwrap_or(start)
+                );
+            }
+            match &result.error {
+                Some(e) => {
+                    eprintln!("error[{}]: {}", e.code(), e.message());
+                    eprintln!(
+                        "note: {} rows up to t = {} were kept",
+                        result.times.len(),
+                        result.times.last().copied().unwrap_or(start)
+                    );
+                    EXIT_SIMULATION_FAILURE
+                }
+                None => EXIT_OK,
+            }
+        },
+    )
+}

@@ -1,0 +1,53 @@
+//! The back-end stages on the command line: `emit --stage dae|structure`.
+
+use crate::check::{render_stage, with_flat_model};
+use crate::{EXIT_MODEL_ERROR, EXIT_OK};
+use std::path::PathBuf;
+use unimo_source::{SourceMap, Span};
+
+/// `file:line` of a span, for dumps.
+pub fn origin(map: &SourceMap, span: Span) -> String {
+    if span == Span::default() {
+        return String::new();
+    }
+    let file = map.get(span.file);
+    let lc = file.line_col(span.start as usize);
+    let name = file
+        .path()
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    format!("{name}:{}", lc.line)
+}
+
+pub fn emit_dae(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color: bool) -> i32 {
+    with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
+        let (mut dae, diags) = unimo_dae::lower(flat);
+        if render_stage(&diags, map, color) {
+            return EXIT_MODEL_ERROR;
+        }
+        unimo_dae::alias::eliminate_aliases(&mut dae);
+        print!("{}", unimo_dae::dump::dump(&dae, &|s| origin(map, s)));
+        EXIT_OK
+    })
+}
+
+pub fn emit_structure(
+    files: &[PathBuf],
+    model: Option<&str>,
+    libs: &[PathBuf],
+    color: bool,
+) -> i32 {
+    with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
+        match unimo_dae::analyze_model(flat) {
+            Ok((_, analysis)) => {
+                print!("{}", analysis.dump);
+                EXIT_OK
+            }
+            Err(diags) => {
+                render_stage(&diags, map, color);
+                EXIT_MODEL_ERROR
+            }
+        }
+    })
+}

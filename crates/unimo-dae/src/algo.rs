@@ -1,0 +1,623 @@
+//! Algorithms, symbolically executed: user-function bodies are inlined this way, and
+//! model algorithm sections become one equation per assigned variable. Assignments
+//! update a symbolic value; `if` with a non-constant condition runs both branches and
+//! merges with `if`-expressions; `for` is unrolled; `while` must fold to a constant.
+
+use crate::dae::{Assertion, WhenAction, WhenBranch, WhenClause};
+use crate::error::{DaeError, DaeResult};
+use crate::expr::{ExprId, ScalarId};
+use crate::lower::{broadcast, unsupported, Local, Lowerer, MAX_INLINE_DEPTH_PUB};
+use crate::tensor::Tensor;
+use std::collections::HashMap;
+use unimo_flat::functions::FlatFunction;
+use unimo_source::Span;
+use unimo_syntax::ast::*;
+
+/// Iterations of one `while` loop before it is given up.
+const MAX_WHILE_ITERATIONS: usize = 1_000_000;
+
+pub(crate) enum Flow {
+    Next,
+    Break,
+    Return,
+}
+
+type Snapshot = (Vec<Local>, Option<HashMap<ScalarId, ExprId>>);
+
+impl Lowerer<'_> {
+    fn snapshot(&self) -> Snapshot {
+        (self.locals.clone(), self.assigned.clone())
+    }
+
+    fn restore(&mut self, s: Snapshot) {
+        self.locals = s.0;
+        self.assigned = s.1;
+    }
+
+    /// Merges the states after the two branches of `if c`.
+    fn merge(&mut self, c: ExprId, then: Snapshot, other: Snapshot) {
+        let (tl, ta) = then;
+        let (ol, oa) = other;
+        let mut locals = Vec::with_capacity(tl.len());
+        for (t, o) in tl.into_iter().zip(ol) {
+            let value = match (t.value, o.value) {
+                (Some(a), Some(b)) if a.dims == b.dims => {
+                    let data = a
+                        .data
+                        .iter()
+                        .zip(&b.data)
+                        .map(|(&x, &y)| self.dae.arena.if_(c, x, y))
+                        .collect();
+                    Some(Tensor { dims: a.dims, data })
+                }
+                (Some(a), _) => Some(a),
+                (None, b) => b,
+            };
+            locals.push(Local {
+                name: t.name,
+                value,
+            });
+        }
+        self.locals = locals;
+        self.assigned = match (ta, oa) {
+            (Some(ta), Some(oa)) => {
+                let mut keys: Vec<ScalarId> = ta.keys().chain(oa.keys()).copied().collect();
+                keys.sort();
+                keys.dedup();
+                let mut m = HashMap::new();
+                for s in keys {
+                    let dflt = self.unassigned_value(s);
+                    let x = ta.get(&s).copied().unwrap_or(dflt);
+                    let y = oa.get(&s).copied().unwrap_or(dflt);
+                    m.insert(s, self.dae.arena.if_(c, x, y));
+                }
+                Some(m)
+            }
+            (a, _) => a,
+        };
+    }
+
+    /// A model variable's value in an algorithm before it is assigned: `pre(v)` for
+    /// discrete variables, `v` otherwise.
+    fn unassigned_value(&mut self, s: ScalarId) -> ExprId {
+        if self.dae.scalars[s.index()].kind == crate::dae::ScalarKind::Discrete {
+            self.dae.arena.pre(s)
+        } else {
+            self.dae.arena.var(s)
+        }
+    }
+
+    pub(crate) fn exec_block(&mut self, body: &[Statement]) -> DaeResult<Flow> {
+        for st in body {
+            match self.exec(st)? {
+                Flow::Next => {}
+                f => return Ok(f),
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    fn exec(&mut self, st: &Statement) -> DaeResult<Flow> {
+        match &st.kind {
+            StatementKind::Assign { target, value } => {
+                let v = self.expr(value)?;
+                self.assign(target, v, st.span)?;
+                Ok(Flow::Next)
+            }
+            StatementKind::MultiAssign { targets, value } => {
+                let outs = self.call_outputs(value)?;
+                for (t, v) in targets.iter().zip(outs) {
+                    if let Some(t) = t {
+                        let ExprKind::Ref(r) = &t.kind else {
+                            return Err(unsupported("this assignment target", t.span));
+                        };
+                        self.assign(r, v, t.span)?;
+                    }
+                }
+                Ok(Flow::Next)
+            }
+            StatementKind::Call(e) => {
+                self.call_statement(e)?;
+                Ok(Flow::Next)
+            }
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => self.exec_if(branches, otherwise, st.span),
+            StatementKind::For { indices, body } => self.exec_for(indices, body),
+            StatementKind::While { condition, body } => {
+                for _ in 0..MAX_WHILE_ITERATIONS {
+                    let c = self.scalar(condition)?;
+                    match self.dae.arena.as_const(c) {
+                        Some(0.0) => return Ok(Flow::Next),
+                        Some(_) => {}
+                        None => return Err(DaeError::new(
+                            "E3015",
+                            "a `while` loop whose condition depends on variables cannot be inlined",
+                            condition.span,
+                        )
+                        .help("write the loop with a `for` over a fixed range")),
+                    }
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Break => return Ok(Flow::Next),
+                        Flow::Return => return Ok(Flow::Return),
+                    }
+                }
+                Err(DaeError::new(
+                    "E3015",
+                    "a `while` loop ran a million times",
+                    st.span,
+                ))
+            }
+            StatementKind::When { branches } => {
+                self.when_statement(branches, st.span)?;
+                Ok(Flow::Next)
+            }
+            StatementKind::Return => Ok(Flow::Return),
+            StatementKind::Break => Ok(Flow::Break),
+        }
+    }
+
+    fn exec_if(
+        &mut self,
+        branches: &[(Expr, Vec<Statement>)],
+        otherwise: &[Statement],
+        span: Span,
+    ) -> DaeResult<Flow> {
+        let Some(((cond, body), rest)) = branches.split_first() else {
+            return self.exec_block(otherwise);
+        };
+        let c = self.scalar(cond)?;
+        match self.dae.arena.as_const(c) {
+            Some(x) if x != 0.0 => return self.exec_block(body),
+            Some(_) => return self.exec_if(rest, otherwise, span),
+            None => {}
+        }
+        let before = self.snapshot();
+        let f1 = self.exec_block(body)?;
+        let then = self.snapshot();
+        self.restore(before);
+        let f2 = self.exec_if(rest, otherwise, span)?;
+        if !matches!((f1, f2), (Flow::Next, Flow::Next)) {
+            return Err(unsupported(
+                "`return` or `break` under a condition that depends on variables",
+                span,
+            ));
+        }
+        let other = self.snapshot();
+        self.merge(c, then, other);
+        Ok(Flow::Next)
+    }
+
+    fn exec_for(&mut self, indices: &[ForIndex], body: &[Statement]) -> DaeResult<Flow> {
+        let Some((first, rest)) = indices.split_first() else {
+            return self.exec_block(body);
+        };
+        let values = self.iterator_values(first)?;
+        for v in values {
+            self.locals.push(Local {
+                name: first.name.text.to_string(),
+                value: Some(v),
+            });
+            let f = self.exec_for(rest, body);
+            self.locals.pop();
+            match f? {
+                Flow::Next => {}
+                Flow::Break => break,
+                Flow::Return => return Ok(Flow::Return),
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    /// `target := value`, into a local or a model variable.
+    fn assign(&mut self, target: &ComponentRef, value: Tensor, span: Span) -> DaeResult<()> {
+        let subs: Vec<Subscript> = target
+            .parts
+            .last()
+            .map(|p| p.subscripts.clone())
+            .unwrap_or_default();
+        let local_pos = (!target.global && target.parts.len() == 1)
+            .then(|| {
+                self.locals
+                    .iter()
+                    .rposition(|l| l.name == target.parts[0].name.text.as_str())
+            })
+            .flatten();
+        if let Some(k) = local_pos {
+            let current = self.locals[k].value.clone();
+            let new = if subs.is_empty() {
+                value
+            } else {
+                let Some(mut cur) = current else {
+                    return Err(DaeError::new(
+                        "E3012",
+                        format!(
+                            "elements of `{}` are assigned before its size is known",
+                            target.parts[0].name.text
+                        ),
+                        span,
+                    ));
+                };
+                let positions = self.positions(&cur.dims, &subs)?;
+                let v = broadcast(value, &[positions.len()], span)?;
+                for (p, e) in positions.into_iter().zip(v.data) {
+                    cur.data[p] = e;
+                }
+                cur
+            };
+            self.locals[k].value = Some(new);
+            return Ok(());
+        }
+        // A model variable (algorithm section).
+        let key = unimo_flat::eval::var_key(target);
+        let Some((first, dims)) = self.vars.get(&key).cloned() else {
+            return Err(DaeError::new(
+                "E3010",
+                format!("`{key}` is not a variable that can be assigned"),
+                span,
+            ));
+        };
+        if self.assigned.is_none() {
+            return Err(DaeError::new(
+                "E3016",
+                format!("a function assigns `{key}`, which is not one of its variables"),
+                span,
+            ));
+        }
+        let positions = if subs.is_empty() {
+            (0..dims.iter().product()).collect()
+        } else {
+            self.positions(&dims, &subs)?
+        };
+        let v = broadcast(value, &[positions.len()], span)?;
+        let assigned = self.assigned.as_mut().expect("checked above");
+        for (p, e) in positions.into_iter().zip(v.data) {
+            assigned.insert(ScalarId(first.0 + p as u32), e);
+        }
+        Ok(())
+    }
+
+    /// Row-major positions selected by constant subscripts of an array of size `dims`.
+    fn positions(&mut self, dims: &[usize], subs: &[Subscript]) -> DaeResult<Vec<usize>> {
+        let mut pos = vec![0usize];
+        for (d, &n) in dims.iter().enumerate() {
+            let picks: Vec<usize> = match subs.get(d) {
+                None | Some(Subscript::Colon(_)) => (0..n).collect(),
+                Some(Subscript::Expr(e)) => {
+                    self.end_stack.push(n);
+                    let t = self.expr(e);
+                    self.end_stack.pop();
+                    let t = t?;
+                    let mut out = Vec::new();
+                    for &x in &t.data {
+                        let k = self.dae.arena.as_const(x).ok_or_else(|| {
+                            DaeError::new(
+                                "E3002",
+                                "an assigned element's index must be known at compile time",
+                                e.span,
+                            )
+                        })? as i64;
+                        if k < 1 || k as usize > n {
+                            return Err(DaeError::new(
+                                "E3013",
+                                format!("index {k} is out of bounds 1..{n}"),
+                                e.span,
+                            ));
+                        }
+                        out.push(k as usize - 1);
+                    }
+                    out
+                }
+            };
+            pos = pos
+                .into_iter()
+                .flat_map(|p| picks.iter().map(move |&k| p * n + k))
+                .collect();
+        }
+        Ok(pos)
+    }
+
+    /// The outputs of a user-function call expression.
+    pub(crate) fn call_outputs(&mut self, e: &Expr) -> DaeResult<Vec<Tensor>> {
+        if let ExprKind::Call { func, args } = &e.kind {
+            if func.global {
+                let name = func.to_dotted();
+                if let Some(f) = self.functions.get(name.trim_start_matches('.')).copied() {
+                    return self.inline_call(f, args, e.span);
+                }
+            }
+        }
+        Ok(vec![self.expr(e)?])
+    }
+
+    /// `assert`, `terminate`, `reinit` as statements; other calls are pure and dropped.
+    fn call_statement(&mut self, e: &Expr) -> DaeResult<()> {
+        let ExprKind::Call { func, args } = &e.kind else {
+            return Err(unsupported("this statement", e.span));
+        };
+        let action = self.action_call(&func.to_dotted(), args, e.span)?;
+        if let Some(a) = action {
+            match &mut self.when_actions {
+                Some(actions) => actions.push((a, e.span)),
+                None => match a {
+                    WhenAction::Assert { condition, message } => {
+                        let warning = is_warning(args);
+                        self.dae.assertions.push(Assertion {
+                            condition,
+                            message,
+                            warning,
+                            origin: e.span,
+                        })
+                    }
+                    WhenAction::Reinit { .. } => {
+                        return Err(DaeError::new(
+                            "E3017",
+                            "`reinit` is only allowed inside `when`",
+                            e.span,
+                        ))
+                    }
+                    _ => {
+                        return Err(unsupported("`terminate` outside `when`", e.span));
+                    }
+                },
+            }
+        }
+        Ok(())
+    }
+
+    /// `reinit`, `assert` or `terminate` as an action; `None` for other calls.
+    pub(crate) fn action_call(
+        &mut self,
+        name: &str,
+        args: &CallArgs,
+        span: Span,
+    ) -> DaeResult<Option<WhenAction>> {
+        Ok(Some(match name {
+            "reinit" => {
+                let (Some(target), Some(value)) = (args.positional.first(), args.positional.get(1))
+                else {
+                    return Err(DaeError::new("E3005", "`reinit` needs two arguments", span));
+                };
+                let t = self.expr(target)?;
+                let v = self.expr(value)?;
+                let v = broadcast(v, &t.dims, span)?;
+                if t.data.len() != 1 {
+                    // reinit of an array: one action per element is made by the caller.
+                    return Err(unsupported(
+                        "`reinit` of a whole array (reinit each element)",
+                        span,
+                    ));
+                }
+                let crate::expr::Node::Var(s) = self.dae.arena.node(t.data[0]) else {
+                    return Err(DaeError::new(
+                        "E3006",
+                        "`reinit` needs a state variable",
+                        target.span,
+                    ));
+                };
+                WhenAction::Reinit {
+                    state: s,
+                    value: v.data[0],
+                }
+            }
+            "assert" => {
+                let Some(c) = args.positional.first() else {
+                    return Err(DaeError::new("E3005", "`assert` needs a condition", span));
+                };
+                let condition = self.scalar(c)?;
+                let message = match args.positional.get(1).map(|m| &m.kind) {
+                    Some(ExprKind::String(s)) => s.clone(),
+                    _ => "assertion failed".into(),
+                };
+                WhenAction::Assert { condition, message }
+            }
+            "terminate" => {
+                let message = match args.positional.first().map(|m| &m.kind) {
+                    Some(ExprKind::String(s)) => s.clone(),
+                    _ => "terminate() was called".into(),
+                };
+                WhenAction::Terminate { message }
+            }
+            _ => return Ok(None),
+        }))
+    }
+
+    fn when_statement(&mut self, branches: &[(Expr, Vec<Statement>)], span: Span) -> DaeResult<()> {
+        let mut clause = WhenClause {
+            branches: Vec::new(),
+            origin: span,
+        };
+        for (cond, body) in branches {
+            let conditions = self.expr(cond)?.data;
+            let saved_assigned = self.assigned.replace(HashMap::new());
+            let saved_actions = self.when_actions.replace(Vec::new());
+            let r = self.exec_block(body);
+            let assigned =
+                std::mem::replace(&mut self.assigned, saved_assigned).unwrap_or_default();
+            let mut actions =
+                std::mem::replace(&mut self.when_actions, saved_actions).unwrap_or_default();
+            r?;
+            let mut assigned: Vec<_> = assigned.into_iter().collect();
+            assigned.sort_by_key(|(s, _)| *s);
+            actions.splice(
+                0..0,
+                assigned
+                    .into_iter()
+                    .map(|(target, value)| (WhenAction::Assign { target, value }, span)),
+            );
+            clause.branches.push(WhenBranch {
+                conditions,
+                actions,
+            });
+        }
+        self.dae.whens.push(clause);
+        Ok(())
+    }
+
+    /// Inlines a call of `f`: binds the arguments, executes the body symbolically and
+    /// returns the outputs.
+    pub(crate) fn inline_call(
+        &mut self,
+        f: &FlatFunction,
+        args: &CallArgs,
+        span: Span,
+    ) -> DaeResult<Vec<Tensor>> {
+        if self.inline_depth >= MAX_INLINE_DEPTH_PUB {
+            return Err(DaeError::new(
+                "E3018",
+                format!("`{}` calls itself too deeply to be inlined", f.name),
+                span,
+            ));
+        }
+        if f.external {
+            return Err(unsupported(format!("external function `{}`", f.name), span));
+        }
+        let mut given: Vec<Option<Tensor>> = vec![None; f.inputs.len()];
+        for (k, a) in args.positional.iter().enumerate() {
+            if k >= given.len() {
+                return Err(DaeError::new(
+                    "E3005",
+                    format!("too many arguments for `{}`", f.name),
+                    a.span,
+                ));
+            }
+            given[k] = Some(self.expr(a)?);
+        }
+        for a in &args.named {
+            let Some(k) = f.inputs.iter().position(|i| i.name == a.name.text.as_str()) else {
+                return Err(DaeError::new(
+                    "E3005",
+                    format!("`{}` has no input `{}`", f.name, a.name.text),
+                    a.name.span,
+                ));
+            };
+            given[k] = Some(self.expr(&a.value)?);
+        }
+        let saved_locals = std::mem::take(&mut self.locals);
+        let saved_assigned = self.assigned.take();
+        let saved_actions = self.when_actions.take();
+        self.inline_depth += 1;
+        let r = self.run_function(f, given, span);
+        self.inline_depth -= 1;
+        self.locals = saved_locals;
+        self.assigned = saved_assigned;
+        self.when_actions = saved_actions;
+        r.map_err(|e| {
+            if e.notes().iter().any(|n| n.starts_with("while inlining")) {
+                e
+            } else {
+                e.note(format!("while inlining `{}`", f.name))
+            }
+        })
+    }
+
+    fn run_function(
+        &mut self,
+        f: &FlatFunction,
+        given: Vec<Option<Tensor>>,
+        span: Span,
+    ) -> DaeResult<Vec<Tensor>> {
+        for (input, value) in f.inputs.iter().zip(given) {
+            let value = match value {
+                Some(v) => v,
+                None => match &input.default {
+                    Some(d) => self.expr(d)?,
+                    None => {
+                        return Err(DaeError::new(
+                            "E3005",
+                            format!("input `{}` of `{}` is not given", input.name, f.name),
+                            span,
+                        ))
+                    }
+                },
+            };
+            self.locals.push(Local {
+                name: input.name.clone(),
+                value: Some(value),
+            });
+        }
+        for v in f.outputs.iter().chain(&f.locals) {
+            let value = match &v.default {
+                Some(d) => Some(self.expr(d)?),
+                None if v.dims.iter().all(|d| d.is_some()) => {
+                    let dims: Vec<usize> = v.dims.iter().map(|d| d.unwrap_or(0)).collect();
+                    let nan = self.dae.arena.constant(f64::NAN);
+                    Some(Tensor {
+                        data: vec![nan; dims.iter().product()],
+                        dims,
+                    })
+                    .filter(|t| !t.dims.is_empty())
+                }
+                None => None,
+            };
+            self.locals.push(Local {
+                name: v.name.clone(),
+                value,
+            });
+        }
+        self.exec_block(&f.algorithm)?;
+        let mut outs = Vec::new();
+        for o in &f.outputs {
+            let v = self
+                .locals
+                .iter()
+                .rev()
+                .find(|l| l.name == o.name)
+                .and_then(|l| l.value.clone())
+                .ok_or_else(|| {
+                    DaeError::new(
+                        "E3012",
+                        format!("output `{}` of `{}` is never assigned", o.name, f.name),
+                        span,
+                    )
+                })?;
+            outs.push(v);
+        }
+        if outs.is_empty() {
+            return Err(DaeError::new(
+                "E3012",
+                format!("`{}` has no output to use in an expression", f.name),
+                span,
+            ));
+        }
+        Ok(outs)
+    }
+
+    /// A model algorithm section: each assigned variable gets the equation
+    /// `v = <its final symbolic value>`; `when` statements become `when` clauses.
+    pub(crate) fn algorithm(&mut self, body: &[Statement], span: Span) -> DaeResult<()> {
+        self.assigned = Some(HashMap::new());
+        let r = self.exec_block(body);
+        let assigned = self.assigned.take().unwrap_or_default();
+        r?;
+        let mut assigned: Vec<_> = assigned.into_iter().collect();
+        assigned.sort_by_key(|(s, _)| *s);
+        for (s, value) in assigned {
+            let lhs = self.dae.arena.var(s);
+            self.dae.equations.push(crate::dae::Equation {
+                lhs,
+                rhs: value,
+                origin: span,
+                derivative_of: None,
+            });
+        }
+        Ok(())
+    }
+}
+
+fn is_warning(args: &CallArgs) -> bool {
+    args.positional
+        .get(2)
+        .or_else(|| {
+            args.named
+                .iter()
+                .find(|a| a.name.text == "level")
+                .map(|a| &a.value)
+        })
+        .is_some_and(|e| match &e.kind {
+            ExprKind::Ref(r) => r.to_dotted().ends_with("warning"),
+            _ => false,
+        })
+}

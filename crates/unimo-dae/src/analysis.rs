@@ -1,0 +1,623 @@
+//! From the hybrid DAE to the causal plan: the DAE seen as an integer graph by
+//! `unimo-structure` (the symbolic side behind its `IndexReductionSystem` trait),
+//! Pantelides, dummy derivatives, BLT, tearing, and the plan's steps with solved
+//! expressions and symbolic block Jacobians.
+
+use crate::dae::{Dae, EqId, Equation, ScalarKind, StateSelect, WhenAction};
+use crate::diff::{partial, solve_linear};
+use crate::error::DaeError;
+use crate::expr::{ExprId, Node, ScalarId};
+use crate::plan::{Block, Plan, PlanStats, PlanStep};
+use std::collections::{HashMap, HashSet};
+use unimo_structure as st;
+
+/// The DAE as the structural algorithms see it.
+pub struct DaeSystem<'d> {
+    pub dae: &'d mut Dae,
+    graph: st::BipartiteGraph,
+    var_of_scalar: Vec<Option<st::VarId>>,
+    scalar_of_var: Vec<ScalarId>,
+    /// Graph equation -> DAE equation (the same index: every continuous equation is in
+    /// the graph).
+    eq_derivative: Vec<Option<st::EqId>>,
+}
+
+/// Whether a scalar is an unknown of the continuous system.
+fn in_graph(dae: &Dae, s: ScalarId, when_assigned: &HashSet<ScalarId>) -> bool {
+    let sc = dae.scalar(s);
+    sc.alias.is_none()
+        && !sc.input
+        && match sc.kind {
+            ScalarKind::Continuous | ScalarKind::Derivative => true,
+            ScalarKind::Discrete => !when_assigned.contains(&s),
+            ScalarKind::Parameter | ScalarKind::Constant => false,
+        }
+}
+
+impl<'d> DaeSystem<'d> {
+    pub fn new(dae: &'d mut Dae) -> DaeSystem<'d> {
+        let mut when_assigned = HashSet::new();
+        for w in &dae.whens {
+            for b in &w.branches {
+                for (a, _) in &b.actions {
+                    if let WhenAction::Assign { target, .. } = a {
+                        when_assigned.insert(*target);
+                    }
+                }
+            }
+        }
+        let mut sys = DaeSystem {
+            graph: st::BipartiteGraph::new(0),
+            var_of_scalar: vec![None; dae.scalars.len()],
+            scalar_of_var: Vec::new(),
+            eq_derivative: Vec::new(),
+            dae,
+        };
+        for s in sys.dae.ids().collect::<Vec<_>>() {
+            if in_graph(sys.dae, s, &when_assigned) {
+                sys.add_graph_var(s);
+            }
+        }
+        for k in 0..sys.dae.equations.len() {
+            let vars = sys.incidence(EqId(k as u32));
+            sys.graph
+                .add_eq(vars)
+                .expect("incidence uses graph variables only");
+            sys.eq_derivative.push(None);
+        }
+        sys
+    }
+
+    fn add_graph_var(&mut self, s: ScalarId) -> st::VarId {
+        if self.var_of_scalar.len() <= s.index() {
+            self.var_of_scalar.resize(s.index() + 1, None);
+        }
+        if let Some(v) = self.var_of_scalar[s.index()] {
+            return v;
+        }
+        let v = self.graph.add_var();
+        self.var_of_scalar[s.index()] = Some(v);
+        self.scalar_of_var.push(s);
+        v
+    }
+
+    pub fn var(&self, s: ScalarId) -> Option<st::VarId> {
+        self.var_of_scalar.get(s.index()).copied().flatten()
+    }
+
+    pub fn scalar(&self, v: st::VarId) -> ScalarId {
+        self.scalar_of_var[v.index()]
+    }
+
+    pub fn graph_ref(&self) -> &st::BipartiteGraph {
+        &self.graph
+    }
+
+    fn incidence(&mut self, e: EqId) -> Vec<st::VarId> {
+        let r = self.dae.residual(e);
+        self.dae
+            .arena
+            .vars(r)
+            .into_iter()
+            .filter_map(|s| self.var(s))
+            .collect()
+    }
+}
+
+impl st::IndexReductionSystem for DaeSystem<'_> {
+    fn graph(&self) -> &st::BipartiteGraph {
+        &self.graph
+    }
+
+    fn var_derivative(&self, v: st::VarId) -> Option<st::VarId> {
+        let s = self.scalar(v);
+        self.dae.scalar(s).derivative.and_then(|d| self.var(d))
+    }
+
+    fn add_var_derivative(&mut self, v: st::VarId) -> st::VarId {
+        let s = self.scalar(v);
+        let d = self.dae.derivative_of(s);
+        self.add_graph_var(d)
+    }
+
+    fn eq_derivative(&self, e: st::EqId) -> Option<st::EqId> {
+        self.eq_derivative[e.index()]
+    }
+
+    fn differentiate_eq(&mut self, e: st::EqId) -> Result<st::EqId, String> {
+        let eq = EqId(e.0);
+        let r = self.dae.residual(eq);
+        if contains_non_differentiable(self.dae, r) {
+            return Err("it contains `sample` or `initial()`".into());
+        }
+        let before = self.dae.scalars.len();
+        let d = time_derivative(self.dae, r);
+        // Derivative scalars made for variables in the graph join the graph.
+        for k in before..self.dae.scalars.len() {
+            let s = ScalarId(k as u32);
+            if let Some(base) = self.dae.scalar(s).derivative_of {
+                if self.var(base).is_some() {
+                    self.add_graph_var(s);
+                }
+            }
+        }
+        let origin = self.dae.equations[eq.index()].origin;
+        let zero = self.dae.arena.zero();
+        self.dae.equations.push(Equation {
+            lhs: d,
+            rhs: zero,
+            origin,
+            derivative_of: Some(eq),
+        });
+        let new_eq = EqId(self.dae.equations.len() as u32 - 1);
+        let vars = self.incidence(new_eq);
+        let ge = self
+            .graph
+            .add_eq(vars)
+            .map_err(|e| format!("internal: {e}"))?;
+        self.eq_derivative.push(None);
+        self.eq_derivative[e.index()] = Some(ge);
+        Ok(ge)
+    }
+}
+
+fn contains_non_differentiable(dae: &Dae, e: ExprId) -> bool {
+    let mut stack = vec![e];
+    let mut seen = HashSet::new();
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        if matches!(dae.arena.node(x), Node::Sample(..) | Node::Initial) {
+            return true;
+        }
+        stack.extend(dae.arena.children(x));
+    }
+    false
+}
+
+/// d/dt of `e`: continuous scalars get (new) derivative scalars; discrete ones and
+/// parameters have none.
+pub fn time_derivative(dae: &mut Dae, e: ExprId) -> ExprId {
+    let scalars = &mut dae.scalars;
+    let mut var = |a: &mut crate::expr::ExprArena, s: ScalarId| -> Option<ExprId> {
+        if !matches!(
+            scalars[s.index()].kind,
+            ScalarKind::Continuous | ScalarKind::Derivative
+        ) || scalars[s.index()].alias.is_some()
+        {
+            return None;
+        }
+        let d = match scalars[s.index()].derivative {
+            Some(d) => d,
+            None => {
+                let base = &scalars[s.index()];
+                let mut d = crate::dae::Scalar::new(
+                    format!("der({})", base.name),
+                    ScalarKind::Derivative,
+                    crate::dae::ScalarType::Real,
+                    base.origin,
+                );
+                d.derivative_of = Some(s);
+                let id = ScalarId(scalars.len() as u32);
+                scalars.push(d);
+                scalars[s.index()].derivative = Some(id);
+                id
+            }
+        };
+        Some(a.var(d))
+    };
+    let mut seed = crate::diff::Seed {
+        var: &mut var,
+        time: 1.0,
+    };
+    crate::diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::new())
+}
+
+fn priority(s: StateSelect) -> st::StateSelectPriority {
+    match s {
+        StateSelect::Never => st::StateSelectPriority::Never,
+        StateSelect::Avoid => st::StateSelectPriority::Avoid,
+        StateSelect::Default => st::StateSelectPriority::Default,
+        StateSelect::Prefer => st::StateSelectPriority::Prefer,
+        StateSelect::Always => st::StateSelectPriority::Always,
+    }
+}
+
+/// The structural result kept for dumps.
+pub struct Analysis {
+    pub plan: Plan,
+    /// Text of the structural dump (incidence, chains, dummies, blocks).
+    pub dump: String,
+}
+
+/// Analyses `dae` (alias elimination is done before, by the caller) and returns the
+/// plan. Index reduction appends differentiated equations to `dae.equations`.
+pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
+    let n_original = dae.equations.len();
+    let mut sys = DaeSystem::new(dae);
+    let pantelides = st::pantelides(&mut sys).map_err(|e| struct_error(&sys, e))?;
+    let graph = sys.graph.clone();
+    let dummies = st::select_dummy_derivatives(&graph, &pantelides, |v| {
+        let s = sys.scalar(v);
+        // The priority of the variable that would lose its state: v's integral.
+        let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
+        priority(sys.dae.scalar(base).state_select)
+    })
+    .map_err(|e| struct_error(&sys, e))?;
+    let matching = dummies
+        .index_one_matching(&graph)
+        .map_err(|e| struct_error(&sys, e))?;
+    let blocks = st::blt(&graph, &matching, |v| dummies.is_unknown[v.index()])
+        .map_err(|e| struct_error(&sys, e))?;
+
+    // Solvability of the edges inside blocks of size > 1 (for tearing).
+    let mut solvable: HashSet<(u32, u32)> = HashSet::new();
+    let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::new();
+    for b in &blocks {
+        if b.size() <= 1 {
+            continue;
+        }
+        for &e in &b.eqs {
+            let r = sys.dae.residual(EqId(e.0));
+            for &v in graph.eq_vars(e) {
+                if !b.vars.contains(&v) {
+                    continue;
+                }
+                let s = sys.scalar(v);
+                if let Some((sol, coef)) = solve_linear(&mut sys.dae.arena, r, s) {
+                    let known_coef = sys.dae.arena.vars(coef).iter().all(|&x| {
+                        !matches!(
+                            sys.dae.scalar(x).kind,
+                            ScalarKind::Continuous | ScalarKind::Derivative
+                        )
+                    });
+                    if known_coef && sys.dae.arena.as_const(coef) != Some(0.0) {
+                        solvable.insert((e.0, v.0));
+                        solutions.insert((e.0, v.0), sol);
+                    }
+                }
+            }
+        }
+    }
+    let mut tearing = st::Tearing::new();
+    let solv = |e: st::EqId, v: st::VarId| solvable.contains(&(e.0, v.0));
+
+    let mut plan = Plan::default();
+    let mut states: Vec<ScalarId> = dummies.states.iter().map(|&v| sys.scalar(v)).collect();
+    states.sort();
+    for &s in &states {
+        let d = sys
+            .dae
+            .scalar(s)
+            .derivative
+            .expect("a state has a derivative");
+        plan.states.push(s);
+        plan.derivatives.push(d);
+    }
+    plan.dummy_derivatives = dummies.dummies.iter().map(|&v| sys.scalar(v)).collect();
+    let mut torn_count = 0;
+    let mut largest = 0;
+    for b in &blocks {
+        largest = largest.max(b.size());
+        if b.size() == 1 {
+            let (e, v) = (b.eqs[0], b.vars[0]);
+            let eq = EqId(e.0);
+            let s = sys.scalar(v);
+            let r = sys.dae.residual(eq);
+            match solve_linear(&mut sys.dae.arena, r, s) {
+                Some((value, _)) => plan.steps.push(PlanStep::Assign { var: s, value, eq }),
+                None => {
+                    let block = newton_block(sys.dae, &[eq], &[s], &[], &[r]);
+                    plan.steps.push(PlanStep::Block(block));
+                }
+            }
+            continue;
+        }
+        let torn = tearing
+            .tear(&graph, b, &solv)
+            .map_err(|e| struct_error(&sys, e))?;
+        torn_count += 1;
+        let inner: Vec<(ScalarId, ExprId)> = torn
+            .inner
+            .iter()
+            .map(|&(e, v)| (sys.scalar(v), solutions[&(e.0, v.0)]))
+            .collect();
+        let iteration: Vec<ScalarId> = torn.iteration_vars.iter().map(|&v| sys.scalar(v)).collect();
+        let residuals: Vec<ExprId> = torn
+            .residual_eqs
+            .iter()
+            .map(|&e| sys.dae.residual(EqId(e.0)))
+            .collect();
+        let eqs: Vec<EqId> = b.eqs.iter().map(|e| EqId(e.0)).collect();
+        let block = newton_block(sys.dae, &eqs, &iteration, &inner, &residuals);
+        plan.steps.push(PlanStep::Block(block));
+    }
+    let n_unknowns = dummies.is_unknown.iter().filter(|&&u| u).count();
+    let dump = structure_dump(&sys, &pantelides, &dummies, &blocks, &plan);
+    let dae = sys.dae;
+    plan.stats = PlanStats {
+        flat_scalars: dae
+            .scalars
+            .iter()
+            .filter(|s| !matches!(s.kind, ScalarKind::Derivative))
+            .count(),
+        equations: n_original,
+        differentiated_equations: dae.equations.len() - n_original,
+        states: plan.states.len(),
+        dummy_derivatives: plan.dummy_derivatives.len(),
+        algebraic: n_unknowns.saturating_sub(plan.derivatives.len()),
+        blocks: blocks.len(),
+        torn_blocks: torn_count,
+        largest_block: largest,
+        zero_crossings: crate::events::zero_crossings(dae).relations.len(),
+        ..PlanStats::default()
+    };
+    Ok(Analysis { plan, dump })
+}
+
+/// A block: inner assignments substituted into the residuals for the symbolic Jacobian.
+fn newton_block(
+    dae: &mut Dae,
+    eqs: &[EqId],
+    iteration: &[ScalarId],
+    inner: &[(ScalarId, ExprId)],
+    residuals: &[ExprId],
+) -> Block {
+    let mut full: HashMap<ScalarId, ExprId> = HashMap::new();
+    for &(v, e) in inner {
+        let e = dae
+            .arena
+            .substitute(e, &|s| full.get(&s).copied(), &mut HashMap::new());
+        full.insert(v, e);
+    }
+    let mut memo = HashMap::new();
+    let substituted: Vec<ExprId> = residuals
+        .iter()
+        .map(|&r| {
+            dae.arena
+                .substitute(r, &|s| full.get(&s).copied(), &mut memo)
+        })
+        .collect();
+    let mut jacobian = Vec::with_capacity(residuals.len() * iteration.len());
+    let mut linear = true;
+    for &r in &substituted {
+        for &v in iteration {
+            let j = partial(&mut dae.arena, r, v);
+            if dae.arena.vars(j).iter().any(|x| iteration.contains(x)) || has_if(dae, j) {
+                linear = false;
+            }
+            jacobian.push(j);
+        }
+    }
+    let switched = substituted.iter().any(|&r| has_if(dae, r));
+    Block {
+        iteration_vars: iteration.to_vec(),
+        residuals: residuals.to_vec(),
+        inner: inner.to_vec(),
+        jacobian,
+        linear: linear && !switched,
+        switched,
+        equations: eqs.to_vec(),
+    }
+}
+
+fn has_if(dae: &Dae, e: ExprId) -> bool {
+    let mut stack = vec![e];
+    let mut seen = HashSet::new();
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        if matches!(dae.arena.node(x), Node::If(..)) {
+            return true;
+        }
+        stack.extend(dae.arena.children(x));
+    }
+    false
+}
+
+/// A structural error as a diagnostic naming equations and variables.
+fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
+    let name_eq = |e: st::EqId| {
+        let eq = &sys.dae.equations[e.index()];
+        format!("{} = {}", sys.dae.show(eq.lhs), sys.dae.show(eq.rhs))
+    };
+    let name_var = |v: st::VarId| sys.dae.name(sys.scalar(v));
+    let span_of = |e: st::EqId| sys.dae.equations[e.index()].origin;
+    match e {
+        st::StructError::Singular { over, under } => {
+            let span = over
+                .eqs
+                .first()
+                .map(|&e| span_of(e))
+                .or_else(|| {
+                    under
+                        .vars
+                        .first()
+                        .map(|&v| sys.dae.scalar(sys.scalar(v)).origin)
+                })
+                .unwrap_or_default();
+            let mut err = DaeError::new(
+                "E3201",
+                format!(
+                    "the model is structurally singular: {} equation(s) too many for their variables, {} variable(s) not determined",
+                    over.eqs.len().saturating_sub(over.vars.len()).max(usize::from(!over.eqs.is_empty())),
+                    under.vars.len().saturating_sub(under.eqs.len()).max(usize::from(!under.vars.is_empty()))
+                ),
+                span,
+            )
+            .label(if over.eqs.is_empty() { "declared here" } else { "this equation is part of the over-determined set" });
+            if !over.eqs.is_empty() {
+                let list: Vec<String> = over.eqs.iter().take(8).map(|&e| name_eq(e)).collect();
+                err = err.note(format!("over-determined equations: {}", list.join("; ")));
+                let vars: Vec<String> = over.vars.iter().take(8).map(|&v| name_var(v)).collect();
+                err = err.note(if vars.is_empty() {
+                    "they involve no unknown once aliases and constants are substituted".to_owned()
+                } else {
+                    format!("they only involve: {}", vars.join(", "))
+                });
+            }
+            if !under.vars.is_empty() {
+                let vars: Vec<String> = under.vars.iter().take(8).map(|&v| name_var(v)).collect();
+                err = err.note(format!("under-determined variables: {}", vars.join(", ")));
+                if std::env::var_os("UNIMO_DEBUG_STRUCTURE").is_some() {
+                    let all: Vec<String> = under.vars.iter().map(|&v| name_var(v)).collect();
+                    let eqs: Vec<String> = under.eqs.iter().map(|&e| name_eq(e)).collect();
+                    err = err.note(format!(
+                        "all: {}\n eqs: {}",
+                        all.join(", "),
+                        eqs.join("\n ")
+                    ));
+                }
+            }
+            err.help("remove a redundant equation or add one for an undetermined variable")
+        }
+        st::StructError::IndexReductionFailed { eq, reason } => DaeError::new(
+            "E3202",
+            format!(
+                "index reduction must differentiate `{}` but cannot: {reason}",
+                name_eq(eq)
+            ),
+            span_of(eq),
+        )
+        .label("this constraint"),
+        st::StructError::DifferentiationLimit { eq, limit } => DaeError::new(
+            "E3203",
+            format!(
+                "index reduction would differentiate `{}` more than {limit} times",
+                name_eq(eq)
+            ),
+            span_of(eq),
+        )
+        .help("the model is probably structurally singular or of very high index"),
+        st::StructError::DummySelectionFailed { level, eqs } => DaeError::new(
+            "E3204",
+            format!(
+                "no dummy derivatives can be chosen at level {level} for: {}",
+                eqs.iter()
+                    .take(6)
+                    .map(|&e| name_eq(e))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ),
+            eqs.first().map(|&e| span_of(e)).unwrap_or_default(),
+        ),
+        other => DaeError::new(
+            "E3290",
+            format!("internal structural error: {other}"),
+            Default::default(),
+        ),
+    }
+}
+
+fn structure_dump(
+    sys: &DaeSystem<'_>,
+    pantelides: &st::PantelidesResult,
+    dummies: &st::DummyDerivatives,
+    blocks: &[st::Block],
+    plan: &Plan,
+) -> String {
+    use std::fmt::Write;
+    let dae = &*sys.dae;
+    let mut o = String::new();
+    let _ = writeln!(o, "structure {}", dae.name);
+    let _ = writeln!(
+        o,
+        "equations: {} ({} differentiated), unknowns: {}",
+        sys.graph.n_eqs(),
+        dae.equations
+            .iter()
+            .filter(|e| e.derivative_of.is_some())
+            .count(),
+        dummies.is_unknown.iter().filter(|&&u| u).count()
+    );
+    let _ = writeln!(
+        o,
+        "max differentiations: {}",
+        pantelides.max_differentiations()
+    );
+    // Derivative chains, one per base variable: `x -> der(x) -> der(der(x))`.
+    let mut chains: Vec<String> = Vec::new();
+    for k in 0..sys.graph.n_vars() {
+        let s = sys.scalar(st::VarId(k as u32));
+        let sc = dae.scalar(s);
+        if sc.derivative_of.is_some() || sc.derivative.is_none() {
+            continue;
+        }
+        let mut chain = vec![dae.name(s)];
+        let mut cur = sc.derivative;
+        while let Some(d) = cur {
+            chain.push(dae.name(d));
+            cur = dae.scalar(d).derivative;
+        }
+        chains.push(chain.join(" -> "));
+    }
+    if !chains.is_empty() {
+        let _ = writeln!(o, "derivative chains:");
+        for c in chains {
+            let _ = writeln!(o, "  {c}");
+        }
+    }
+    let diffs: Vec<String> = dae
+        .equations
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| {
+            e.derivative_of
+                .map(|b| format!("e{k} = d/dt e{}: 0 = {}", b.0, dae.show(e.lhs)))
+        })
+        .collect();
+    if !diffs.is_empty() {
+        let _ = writeln!(o, "differentiated equations:");
+        for d in diffs {
+            let _ = writeln!(o, "  {d}");
+        }
+    }
+    let names = |v: &[ScalarId]| {
+        v.iter()
+            .map(|&s| dae.name(s))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let _ = writeln!(o, "states: {}", names(&plan.states));
+    let _ = writeln!(o, "dummy derivatives: {}", names(&plan.dummy_derivatives));
+    let _ = writeln!(o, "blocks: {}", blocks.len());
+    for (k, (b, step)) in blocks.iter().zip(&plan.steps).enumerate() {
+        match step {
+            PlanStep::Assign { var, eq, value } => {
+                let _ = writeln!(
+                    o,
+                    "  b{k}: {} := {}  (e{})",
+                    dae.name(*var),
+                    dae.show(*value),
+                    eq.0
+                );
+            }
+            PlanStep::Block(bl) => {
+                let kind = if bl.linear {
+                    "linear"
+                } else if bl.switched {
+                    "switched"
+                } else {
+                    "nonlinear"
+                };
+                let eqs: Vec<String> = b.eqs.iter().map(|e| format!("e{}", e.0)).collect();
+                let _ = writeln!(
+                    o,
+                    "  b{k}: {kind} block of {} [{}] iter {{{}}}",
+                    b.size(),
+                    eqs.join(" "),
+                    names(&bl.iteration_vars)
+                );
+                for (v, e) in &bl.inner {
+                    let _ = writeln!(o, "      {} := {}", dae.name(*v), dae.show(*e));
+                }
+                for r in &bl.residuals {
+                    let _ = writeln!(o, "      0 = {}", dae.show(*r));
+                }
+            }
+        }
+    }
+    o
+}

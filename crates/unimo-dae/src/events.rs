@@ -1,0 +1,74 @@
+//! Zero crossings: every relation outside `noEvent` (in continuous equations and
+//! `when` conditions) that involves a continuous-time quantity, plus `sample` time
+//! events.
+
+use crate::dae::Dae;
+use crate::expr::{ExprId, Node};
+use std::collections::HashSet;
+
+/// The relations that generate state events, in first-occurrence order, and the
+/// `sample` nodes (time events).
+#[derive(Clone, Debug, Default)]
+pub struct Crossings {
+    pub relations: Vec<ExprId>,
+    pub samples: Vec<ExprId>,
+}
+
+pub fn zero_crossings(dae: &Dae) -> Crossings {
+    let mut out = Crossings::default();
+    let mut seen = HashSet::new();
+    let mut roots: Vec<ExprId> = Vec::new();
+    for e in &dae.equations {
+        roots.push(e.lhs);
+        roots.push(e.rhs);
+    }
+    for w in &dae.whens {
+        for b in &w.branches {
+            roots.extend(&b.conditions);
+        }
+    }
+    for a in &dae.assertions {
+        roots.push(a.condition);
+    }
+    for r in roots {
+        collect(dae, r, &mut seen, &mut out);
+    }
+    out
+}
+
+fn collect(dae: &Dae, e: ExprId, seen: &mut HashSet<ExprId>, out: &mut Crossings) {
+    let mut stack = vec![e];
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        match dae.arena.node(x) {
+            Node::NoEvent(_) => continue,
+            Node::Rel(..) => {
+                let moves = dae.arena.vars(x).iter().any(|&s| dae.is_continuous(s))
+                    || depends_on_time(dae, x);
+                if moves {
+                    out.relations.push(x);
+                }
+            }
+            Node::Sample(..) => out.samples.push(x),
+            _ => {}
+        }
+        stack.extend(dae.arena.children(x));
+    }
+}
+
+fn depends_on_time(dae: &Dae, e: ExprId) -> bool {
+    let mut stack = vec![e];
+    let mut seen = HashSet::new();
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        if dae.arena.node(x) == Node::Time {
+            return true;
+        }
+        stack.extend(dae.arena.children(x));
+    }
+    false
+}

@@ -1,0 +1,820 @@
+//! The back end's expressions: a hash-consed arena of scalar nodes with simplifying
+//! constructors (constant folding, neutral elements, canonical operand order), so equal
+//! subexpressions are one node (common subexpressions come for free).
+
+use std::collections::HashMap;
+use std::fmt;
+
+/// Index of an expression node in an [`ExprArena`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct ExprId(pub u32);
+
+impl ExprId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Index of a scalar variable (state, algebraic, derivative, discrete, parameter).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+pub struct ScalarId(pub u32);
+
+impl ScalarId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Functions of one argument.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Fn1 {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sinh,
+    Cosh,
+    Tanh,
+    Exp,
+    Log,
+    Log10,
+    Sqrt,
+    Abs,
+    Sign,
+    Floor,
+    Ceil,
+}
+
+impl Fn1 {
+    pub fn name(self) -> &'static str {
+        match self {
+            Fn1::Sin => "sin",
+            Fn1::Cos => "cos",
+            Fn1::Tan => "tan",
+            Fn1::Asin => "asin",
+            Fn1::Acos => "acos",
+            Fn1::Atan => "atan",
+            Fn1::Sinh => "sinh",
+            Fn1::Cosh => "cosh",
+            Fn1::Tanh => "tanh",
+            Fn1::Exp => "exp",
+            Fn1::Log => "log",
+            Fn1::Log10 => "log10",
+            Fn1::Sqrt => "sqrt",
+            Fn1::Abs => "abs",
+            Fn1::Sign => "sign",
+            Fn1::Floor => "floor",
+            Fn1::Ceil => "ceil",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Fn1> {
+        Some(match name {
+            "sin" => Fn1::Sin,
+            "cos" => Fn1::Cos,
+            "tan" => Fn1::Tan,
+            "asin" => Fn1::Asin,
+            "acos" => Fn1::Acos,
+            "atan" => Fn1::Atan,
+            "sinh" => Fn1::Sinh,
+            "cosh" => Fn1::Cosh,
+            "tanh" => Fn1::Tanh,
+            "exp" => Fn1::Exp,
+            "log" => Fn1::Log,
+            "log10" => Fn1::Log10,
+            "sqrt" => Fn1::Sqrt,
+            "abs" => Fn1::Abs,
+            "sign" => Fn1::Sign,
+            "floor" => Fn1::Floor,
+            "ceil" => Fn1::Ceil,
+            "integer" => Fn1::Floor,
+            _ => return None,
+        })
+    }
+
+    pub fn apply(self, x: f64) -> f64 {
+        match self {
+            Fn1::Sin => x.sin(),
+            Fn1::Cos => x.cos(),
+            Fn1::Tan => x.tan(),
+            Fn1::Asin => x.asin(),
+            Fn1::Acos => x.acos(),
+            Fn1::Atan => x.atan(),
+            Fn1::Sinh => x.sinh(),
+            Fn1::Cosh => x.cosh(),
+            Fn1::Tanh => x.tanh(),
+            Fn1::Exp => x.exp(),
+            Fn1::Log => x.ln(),
+            Fn1::Log10 => x.log10(),
+            Fn1::Sqrt => x.sqrt(),
+            Fn1::Abs => x.abs(),
+            Fn1::Sign => {
+                if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            }
+            Fn1::Floor => x.floor(),
+            Fn1::Ceil => x.ceil(),
+        }
+    }
+
+    /// Piecewise constant: its value changes only at events.
+    pub fn is_discontinuous(self) -> bool {
+        matches!(self, Fn1::Sign | Fn1::Floor | Fn1::Ceil)
+    }
+}
+
+/// Functions of two arguments.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Fn2 {
+    Atan2,
+    Min,
+    Max,
+    /// `mod(x, y) = x - floor(x / y) * y`
+    Mod,
+    /// `rem(x, y) = x - div(x, y) * y`
+    Rem,
+    /// `div(x, y)`: the quotient truncated toward zero.
+    Div,
+}
+
+impl Fn2 {
+    pub fn name(self) -> &'static str {
+        match self {
+            Fn2::Atan2 => "atan2",
+            Fn2::Min => "min",
+            Fn2::Max => "max",
+            Fn2::Mod => "mod",
+            Fn2::Rem => "rem",
+            Fn2::Div => "div",
+        }
+    }
+
+    pub fn apply(self, x: f64, y: f64) -> f64 {
+        match self {
+            Fn2::Atan2 => x.atan2(y),
+            Fn2::Min => x.min(y),
+            Fn2::Max => x.max(y),
+            Fn2::Mod => x - (x / y).floor() * y,
+            Fn2::Rem => x - (x / y).trunc() * y,
+            Fn2::Div => (x / y).trunc(),
+        }
+    }
+}
+
+/// Relational operators; a relation is 1.0 when true and 0.0 when false.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum RelOp {
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Eq,
+    Ne,
+}
+
+impl RelOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            RelOp::Lt => "<",
+            RelOp::Le => "<=",
+            RelOp::Gt => ">",
+            RelOp::Ge => ">=",
+            RelOp::Eq => "==",
+            RelOp::Ne => "<>",
+        }
+    }
+
+    pub fn apply(self, a: f64, b: f64) -> bool {
+        match self {
+            RelOp::Lt => a < b,
+            RelOp::Le => a <= b,
+            RelOp::Gt => a > b,
+            RelOp::Ge => a >= b,
+            RelOp::Eq => a == b,
+            RelOp::Ne => a != b,
+        }
+    }
+}
+
+/// One expression node. Booleans are 1.0/0.0; Integers and enumeration ordinals are
+/// exact in f64.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    /// The bits of an f64 (never -0.0 or a NaN other than the canonical one).
+    Const(u64),
+    Var(ScalarId),
+    /// The value of a variable before the current event (left limit).
+    Pre(ScalarId),
+    Time,
+    Add(ExprId, ExprId),
+    Mul(ExprId, ExprId),
+    Div(ExprId, ExprId),
+    Pow(ExprId, ExprId),
+    Neg(ExprId),
+    Fn1(Fn1, ExprId),
+    Fn2(Fn2, ExprId, ExprId),
+    Rel(RelOp, ExprId, ExprId),
+    And(ExprId, ExprId),
+    Or(ExprId, ExprId),
+    Not(ExprId),
+    /// `if c then a else b`
+    If(ExprId, ExprId, ExprId),
+    /// `noEvent(e)`: relations inside never generate events.
+    NoEvent(ExprId),
+    /// `initial()`: true during initialization.
+    Initial,
+    /// `sample(start, interval)`: true at the sample instants.
+    Sample(ExprId, ExprId),
+}
+
+/// The arena. Nodes are immutable; constructors simplify and share.
+#[derive(Clone, Debug, Default)]
+pub struct ExprArena {
+    nodes: Vec<Node>,
+    index: HashMap<Node, ExprId>,
+}
+
+fn canonical_bits(x: f64) -> u64 {
+    if x == 0.0 {
+        0
+    } else if x.is_nan() {
+        f64::NAN.to_bits()
+    } else {
+        x.to_bits()
+    }
+}
+
+impl ExprArena {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    pub fn node(&self, id: ExprId) -> Node {
+        self.nodes[id.index()]
+    }
+
+    fn intern(&mut self, node: Node) -> ExprId {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = ExprId(self.nodes.len() as u32);
+        self.nodes.push(node);
+        self.index.insert(node, id);
+        id
+    }
+
+    pub fn constant(&mut self, x: f64) -> ExprId {
+        self.intern(Node::Const(canonical_bits(x)))
+    }
+
+    pub fn boolean(&mut self, b: bool) -> ExprId {
+        self.constant(if b { 1.0 } else { 0.0 })
+    }
+
+    pub fn zero(&mut self) -> ExprId {
+        self.constant(0.0)
+    }
+
+    pub fn one(&mut self) -> ExprId {
+        self.constant(1.0)
+    }
+
+    pub fn var(&mut self, s: ScalarId) -> ExprId {
+        self.intern(Node::Var(s))
+    }
+
+    pub fn pre(&mut self, s: ScalarId) -> ExprId {
+        self.intern(Node::Pre(s))
+    }
+
+    pub fn time(&mut self) -> ExprId {
+        self.intern(Node::Time)
+    }
+
+    pub fn initial(&mut self) -> ExprId {
+        self.intern(Node::Initial)
+    }
+
+    /// The value of a constant node.
+    pub fn as_const(&self, id: ExprId) -> Option<f64> {
+        match self.nodes[id.index()] {
+            Node::Const(b) => Some(f64::from_bits(b)),
+            _ => None,
+        }
+    }
+
+    pub fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => return self.constant(x + y),
+            (Some(0.0), _) => return b,
+            (_, Some(0.0)) => return a,
+            _ => {}
+        }
+        if let Node::Neg(nb) = self.node(b) {
+            if nb == a {
+                return self.zero();
+            }
+        }
+        if let Node::Neg(na) = self.node(a) {
+            if na == b {
+                return self.zero();
+            }
+        }
+        // Constants last; otherwise a canonical order so `a + b` and `b + a` share.
+        let (a, b) = if self.as_const(a).is_some() || (self.as_const(b).is_none() && b < a) {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        self.intern(Node::Add(a, b))
+    }
+
+    pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        if a == b {
+            return self.zero();
+        }
+        let nb = self.neg(b);
+        self.add(a, nb)
+    }
+
+    pub fn neg(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(b) => self.constant(-f64::from_bits(b)),
+            Node::Neg(x) => x,
+            _ => self.intern(Node::Neg(a)),
+        }
+    }
+
+    pub fn mul(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => return self.constant(x * y),
+            (Some(0.0), _) => return a,
+            (_, Some(0.0)) => return b,
+            (Some(1.0), _) => return b,
+            (_, Some(1.0)) => return a,
+            (Some(-1.0), _) => return self.neg(b),
+            (_, Some(-1.0)) => return self.neg(a),
+            _ => {}
+        }
+        // Signs out: (-a) * b = -(a * b).
+        if let Node::Neg(x) = self.node(a) {
+            let m = self.mul(x, b);
+            return self.neg(m);
+        }
+        if let Node::Neg(y) = self.node(b) {
+            let m = self.mul(a, y);
+            return self.neg(m);
+        }
+        // Constants first.
+        let (a, b) = if self.as_const(b).is_some() || (self.as_const(a).is_none() && b < a) {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        self.intern(Node::Mul(a, b))
+    }
+
+    pub fn div(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) if y != 0.0 => return self.constant(x / y),
+            (Some(0.0), _) => return a,
+            (_, Some(1.0)) => return a,
+            (_, Some(-1.0)) => return self.neg(a),
+            _ => {}
+        }
+        if a == b {
+            return self.one();
+        }
+        if let Node::Neg(x) = self.node(a) {
+            let d = self.div(x, b);
+            return self.neg(d);
+        }
+        self.intern(Node::Div(a, b))
+    }
+
+    pub fn pow(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), Some(y)) => return self.constant(x.powf(y)),
+            (_, Some(1.0)) => return a,
+            (_, Some(0.0)) => return self.one(),
+            _ => {}
+        }
+        self.intern(Node::Pow(a, b))
+    }
+
+    pub fn fn1(&mut self, f: Fn1, a: ExprId) -> ExprId {
+        if let Some(x) = self.as_const(a) {
+            return self.constant(f.apply(x));
+        }
+        if f == Fn1::Abs {
+            if let Node::Neg(x) = self.node(a) {
+                return self.fn1(Fn1::Abs, x);
+            }
+        }
+        self.intern(Node::Fn1(f, a))
+    }
+
+    pub fn fn2(&mut self, f: Fn2, a: ExprId, b: ExprId) -> ExprId {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.constant(f.apply(x, y));
+        }
+        if matches!(f, Fn2::Min | Fn2::Max) && a == b {
+            return a;
+        }
+        self.intern(Node::Fn2(f, a, b))
+    }
+
+    pub fn rel(&mut self, op: RelOp, a: ExprId, b: ExprId) -> ExprId {
+        if let (Some(x), Some(y)) = (self.as_const(a), self.as_const(b)) {
+            return self.boolean(op.apply(x, y));
+        }
+        self.intern(Node::Rel(op, a, b))
+    }
+
+    pub fn and(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(0.0), _) => return self.boolean(false),
+            (_, Some(0.0)) => return self.boolean(false),
+            (Some(_), _) => return b,
+            (_, Some(_)) => return a,
+            _ => {}
+        }
+        if a == b {
+            return a;
+        }
+        self.intern(Node::And(a, b))
+    }
+
+    pub fn or(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.as_const(a), self.as_const(b)) {
+            (Some(x), _) if x != 0.0 => return self.boolean(true),
+            (_, Some(y)) if y != 0.0 => return self.boolean(true),
+            (Some(_), _) => return b,
+            (_, Some(_)) => return a,
+            _ => {}
+        }
+        if a == b {
+            return a;
+        }
+        self.intern(Node::Or(a, b))
+    }
+
+    pub fn not(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(b) => self.boolean(f64::from_bits(b) == 0.0),
+            Node::Not(x) => x,
+            _ => self.intern(Node::Not(a)),
+        }
+    }
+
+    pub fn if_(&mut self, c: ExprId, a: ExprId, b: ExprId) -> ExprId {
+        if let Some(x) = self.as_const(c) {
+            return if x != 0.0 { a } else { b };
+        }
+        if a == b {
+            return a;
+        }
+        self.intern(Node::If(c, a, b))
+    }
+
+    pub fn no_event(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(_) | Node::Var(_) | Node::Pre(_) | Node::Time | Node::NoEvent(_) => a,
+            _ => self.intern(Node::NoEvent(a)),
+        }
+    }
+
+    pub fn sample(&mut self, start: ExprId, interval: ExprId) -> ExprId {
+        self.intern(Node::Sample(start, interval))
+    }
+
+    /// The operands of a node, in order.
+    pub fn children(&self, id: ExprId) -> impl Iterator<Item = ExprId> {
+        let (a, b, c): (Option<ExprId>, Option<ExprId>, Option<ExprId>) = match self.node(id) {
+            Node::Const(_) | Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
+                (None, None, None)
+            }
+            Node::Neg(x) | Node::Fn1(_, x) | Node::Not(x) | Node::NoEvent(x) => {
+                (Some(x), None, None)
+            }
+            Node::Add(x, y)
+            | Node::Mul(x, y)
+            | Node::Div(x, y)
+            | Node::Pow(x, y)
+            | Node::Fn2(_, x, y)
+            | Node::Rel(_, x, y)
+            | Node::And(x, y)
+            | Node::Or(x, y)
+            | Node::Sample(x, y) => (Some(x), Some(y), None),
+            Node::If(c, x, y) => (Some(c), Some(x), Some(y)),
+        };
+        a.into_iter().chain(b).chain(c)
+    }
+
+    /// Every variable (`Var`, not `Pre`) occurring in `id`, each once, in order of
+    /// first occurrence.
+    pub fn vars(&self, id: ExprId) -> Vec<ScalarId> {
+        let mut out = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        let mut stack = vec![id];
+        let mut visited = std::collections::HashSet::new();
+        while let Some(e) = stack.pop() {
+            if !visited.insert(e) {
+                continue;
+            }
+            if let Node::Var(s) = self.node(e) {
+                if seen.insert(s) {
+                    out.push(s);
+                }
+            }
+            let mut kids: Vec<ExprId> = self.children(e).collect();
+            kids.reverse();
+            stack.extend(kids);
+        }
+        out
+    }
+
+    /// Whether `id` depends on a variable for which `pred` holds.
+    pub fn depends_on(&self, id: ExprId, pred: &dyn Fn(ScalarId) -> bool) -> bool {
+        self.vars(id).into_iter().any(pred)
+    }
+
+    /// `id` with variables replaced by `map` (memoized over the shared graph).
+    pub fn substitute(
+        &mut self,
+        id: ExprId,
+        map: &dyn Fn(ScalarId) -> Option<ExprId>,
+        memo: &mut HashMap<ExprId, ExprId>,
+    ) -> ExprId {
+        if let Some(&r) = memo.get(&id) {
+            return r;
+        }
+        let r = match self.node(id) {
+            Node::Var(s) => map(s).unwrap_or(id),
+            Node::Const(_) | Node::Pre(_) | Node::Time | Node::Initial => id,
+            node => {
+                let kids: Vec<ExprId> = self.children(id).collect();
+                let new: Vec<ExprId> = kids
+                    .iter()
+                    .map(|&k| self.substitute(k, map, memo))
+                    .collect();
+                if new == kids {
+                    id
+                } else {
+                    self.rebuild(node, &new)
+                }
+            }
+        };
+        memo.insert(id, r);
+        r
+    }
+
+    /// A node of the same kind as `node` over new operands (simplified again).
+    pub fn rebuild(&mut self, node: Node, k: &[ExprId]) -> ExprId {
+        match node {
+            Node::Const(_) | Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
+                self.intern(node)
+            }
+            Node::Add(..) => self.add(k[0], k[1]),
+            Node::Mul(..) => self.mul(k[0], k[1]),
+            Node::Div(..) => self.div(k[0], k[1]),
+            Node::Pow(..) => self.pow(k[0], k[1]),
+            Node::Neg(_) => self.neg(k[0]),
+            Node::Fn1(f, _) => self.fn1(f, k[0]),
+            Node::Fn2(f, ..) => self.fn2(f, k[0], k[1]),
+            Node::Rel(op, ..) => self.rel(op, k[0], k[1]),
+            Node::And(..) => self.and(k[0], k[1]),
+            Node::Or(..) => self.or(k[0], k[1]),
+            Node::Not(_) => self.not(k[0]),
+            Node::If(..) => self.if_(k[0], k[1], k[2]),
+            Node::NoEvent(_) => self.no_event(k[0]),
+            Node::Sample(..) => self.sample(k[0], k[1]),
+        }
+    }
+
+    /// Evaluates `id` with `value` for variables and `pre` for pre-values; relations
+    /// are evaluated literally (no event semantics). For tests and constant folding of
+    /// parameters, not the hot path.
+    pub fn eval(&self, id: ExprId, env: &dyn EvalEnv) -> f64 {
+        let e = |x: ExprId| self.eval(x, env);
+        match self.node(id) {
+            Node::Const(b) => f64::from_bits(b),
+            Node::Var(s) => env.value(s),
+            Node::Pre(s) => env.pre(s),
+            Node::Time => env.time(),
+            Node::Initial => f64::from(env.initial()),
+            Node::Add(a, b) => e(a) + e(b),
+            Node::Mul(a, b) => e(a) * e(b),
+            Node::Div(a, b) => e(a) / e(b),
+            Node::Pow(a, b) => e(a).powf(e(b)),
+            Node::Neg(a) => -e(a),
+            Node::Fn1(f, a) => f.apply(e(a)),
+            Node::Fn2(f, a, b) => f.apply(e(a), e(b)),
+            Node::Rel(op, a, b) => f64::from(op.apply(e(a), e(b))),
+            Node::And(a, b) => f64::from(e(a) != 0.0 && e(b) != 0.0),
+            Node::Or(a, b) => f64::from(e(a) != 0.0 || e(b) != 0.0),
+            Node::Not(a) => f64::from(e(a) == 0.0),
+            Node::If(c, a, b) => {
+                if e(c) != 0.0 {
+                    e(a)
+                } else {
+                    e(b)
+                }
+            }
+            Node::NoEvent(a) => e(a),
+            Node::Sample(..) => 0.0,
+        }
+    }
+
+    /// Writes `id` in Modelica syntax, naming variables with `name`.
+    pub fn write(
+        &self,
+        id: ExprId,
+        name: &dyn Fn(ScalarId) -> String,
+        out: &mut String,
+    ) -> fmt::Result {
+        self.write_prec(id, name, out, 0)
+    }
+
+    fn write_prec(
+        &self,
+        id: ExprId,
+        name: &dyn Fn(ScalarId) -> String,
+        out: &mut String,
+        outer: u8,
+    ) -> fmt::Result {
+        use std::fmt::Write;
+        let prec = match self.node(id) {
+            Node::If(..) => 1,
+            Node::Or(..) => 2,
+            Node::And(..) => 3,
+            Node::Not(_) => 4,
+            Node::Rel(..) => 5,
+            Node::Add(..) => 6,
+            Node::Neg(_) => 7,
+            Node::Mul(..) | Node::Div(..) => 8,
+            Node::Pow(..) => 9,
+            _ => 10,
+        };
+        let paren = prec < outer || (prec == 7 && outer == 7);
+        if paren {
+            out.push('(');
+        }
+        let w = |x: ExprId, p: u8, out: &mut String| self.write_prec(x, name, out, p);
+        match self.node(id) {
+            Node::Const(b) => {
+                let x = f64::from_bits(b);
+                if x < 0.0 && outer > 6 {
+                    write!(out, "({})", fmt_num(x))?;
+                } else {
+                    out.push_str(&fmt_num(x));
+                }
+            }
+            Node::Var(s) => out.push_str(&name(s)),
+            Node::Pre(s) => write!(out, "pre({})", name(s))?,
+            Node::Time => out.push_str("time"),
+            Node::Initial => out.push_str("initial()"),
+            Node::Add(a, b) => {
+                w(a, 6, out)?;
+                match self.node(b) {
+                    Node::Neg(x) => {
+                        out.push_str(" - ");
+                        w(x, 7, out)?;
+                    }
+                    Node::Const(c) if f64::from_bits(c) < 0.0 => {
+                        write!(out, " - {}", fmt_num(-f64::from_bits(c)))?;
+                    }
+                    _ => {
+                        out.push_str(" + ");
+                        w(b, 6, out)?;
+                    }
+                }
+            }
+            Node::Mul(a, b) => {
+                w(a, 8, out)?;
+                out.push_str(" * ");
+                w(b, 9, out)?;
+            }
+            Node::Div(a, b) => {
+                w(a, 8, out)?;
+                out.push_str(" / ");
+                w(b, 9, out)?;
+            }
+            Node::Pow(a, b) => {
+                w(a, 10, out)?;
+                out.push_str(" ^ ");
+                w(b, 10, out)?;
+            }
+            Node::Neg(a) => {
+                out.push('-');
+                w(a, 8, out)?;
+            }
+            Node::Fn1(f, a) => {
+                write!(out, "{}(", f.name())?;
+                w(a, 0, out)?;
+                out.push(')');
+            }
+            Node::Fn2(f, a, b) => {
+                write!(out, "{}(", f.name())?;
+                w(a, 0, out)?;
+                out.push_str(", ");
+                w(b, 0, out)?;
+                out.push(')');
+            }
+            Node::Rel(op, a, b) => {
+                w(a, 6, out)?;
+                write!(out, " {} ", op.symbol())?;
+                w(b, 6, out)?;
+            }
+            Node::And(a, b) => {
+                w(a, 3, out)?;
+                out.push_str(" and ");
+                w(b, 4, out)?;
+            }
+            Node::Or(a, b) => {
+                w(a, 2, out)?;
+                out.push_str(" or ");
+                w(b, 3, out)?;
+            }
+            Node::Not(a) => {
+                out.push_str("not ");
+                w(a, 5, out)?;
+            }
+            Node::If(c, a, b) => {
+                out.push_str("if ");
+                w(c, 0, out)?;
+                out.push_str(" then ");
+                w(a, 0, out)?;
+                out.push_str(" else ");
+                w(b, 1, out)?;
+            }
+            Node::NoEvent(a) => {
+                out.push_str("noEvent(");
+                w(a, 0, out)?;
+                out.push(')');
+            }
+            Node::Sample(a, b) => {
+                out.push_str("sample(");
+                w(a, 0, out)?;
+                out.push_str(", ");
+                w(b, 0, out)?;
+                out.push(')');
+            }
+        }
+        if paren {
+            out.push(')');
+        }
+        Ok(())
+    }
+
+    /// `id` as a string (see [`ExprArena::write`]).
+    pub fn to_string(&self, id: ExprId, name: &dyn Fn(ScalarId) -> String) -> String {
+        let mut s = String::new();
+        let _ = self.write(id, name, &mut s);
+        s
+    }
+}
+
+/// Shortest text that reads back as the same f64.
+pub fn fmt_num(x: f64) -> String {
+    if x.is_finite() && x == x.trunc() && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// What [`ExprArena::eval`] needs.
+pub trait EvalEnv {
+    fn value(&self, s: ScalarId) -> f64;
+    fn pre(&self, s: ScalarId) -> f64 {
+        self.value(s)
+    }
+    fn time(&self) -> f64 {
+        0.0
+    }
+    fn initial(&self) -> bool {
+        false
+    }
+}
+
+impl EvalEnv for [f64] {
+    fn value(&self, s: ScalarId) -> f64 {
+        self[s.index()]
+    }
+}

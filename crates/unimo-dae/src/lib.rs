@@ -1,0 +1,39 @@
+//! The symbolic back end: a hash-consed expression arena, symbolic differentiation,
+//! lowering of the flat model to a hybrid DAE (scalarized, functions inlined), alias
+//! elimination and the causal plan made with `unimo-structure`.
+//!
+//! Invariants: no printing and no file access; every problem is a coded `E3xxx`
+//! error; the DAE holds no structural results (those are in the plan).
+
+pub mod algo;
+pub mod alias;
+pub mod analysis;
+pub mod dae;
+pub mod diff;
+pub mod dump;
+pub mod equations;
+pub mod error;
+pub mod events;
+pub mod expr;
+pub mod lower;
+pub mod plan;
+pub mod tensor;
+
+pub use dae::Dae;
+pub use equations::lower;
+pub use error::DaeError;
+
+/// Lowering, alias elimination and structural analysis in one call.
+pub fn analyze_model(
+    model: &unimo_flat::FlatModel,
+) -> Result<(Dae, analysis::Analysis), Vec<unimo_source::Diagnostic>> {
+    let (mut dae, diags) = lower(model);
+    if diags.iter().any(|d| d.is_error()) {
+        return Err(diags);
+    }
+    let aliases = alias::eliminate_aliases(&mut dae);
+    let mut a = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()])?;
+    a.plan.stats.aliases_removed = aliases.aliases;
+    a.plan.stats.constants_removed = aliases.constants;
+    Ok((dae, a))
+}

@@ -1,0 +1,160 @@
+//! Evaluating the compiled plan: explicit steps in order, Newton on each block with its
+//! symbolic Jacobian and a small dense LU.
+
+use crate::model::{CompiledBlock, CompiledModel, CompiledStep};
+use crate::tape::EventState;
+
+/// Iterations of Newton's method on a block before it fails.
+const MAX_NEWTON_ITERATIONS: usize = 50;
+
+/// A block whose Newton iteration did not converge.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlockFailure {
+    pub variables: Vec<String>,
+    pub residual: f64,
+    pub reason: String,
+}
+
+/// Runs every step of the plan: afterwards all unknowns are consistent with the states.
+pub fn eval_steps(
+    m: &CompiledModel,
+    r: &mut [f64],
+    ev: &mut EventState,
+    work: &mut Workspace,
+) -> Result<(), BlockFailure> {
+    for s in &m.steps {
+        match s {
+            CompiledStep::Explicit(t) => t.run(r, ev),
+            CompiledStep::Block(b) => newton(b, r, ev, work)?,
+        }
+    }
+    Ok(())
+}
+
+/// Scratch memory for Newton (allocated once per simulation).
+#[derive(Default, Debug)]
+pub struct Workspace {
+    matrix: Vec<f64>,
+    rhs: Vec<f64>,
+    perm: Vec<usize>,
+}
+
+fn newton(
+    b: &CompiledBlock,
+    r: &mut [f64],
+    ev: &mut EventState,
+    w: &mut Workspace,
+) -> Result<(), BlockFailure> {
+    let n = b.iteration.len();
+    w.matrix.resize(n * n, 0.0);
+    w.rhs.resize(n, 0.0);
+    w.perm.resize(n, 0);
+    let fail = |reason: &str, res: f64| BlockFailure {
+        variables: b.names.clone(),
+        residual: res,
+        reason: reason.to_owned(),
+    };
+    let mut last_norm = f64::INFINITY;
+    for it in 0..MAX_NEWTON_ITERATIONS {
+        b.residual_tape.run(r, ev);
+        let mut norm = 0.0f64;
+        for (k, &reg) in b.residuals.iter().enumerate() {
+            let f = r[reg as usize];
+            w.rhs[k] = -f;
+            norm = norm.max(f.abs());
+        }
+        if !norm.is_finite() {
+            return Err(fail("the residual is not finite", norm));
+        }
+        if norm == 0.0 {
+            return Ok(());
+        }
+        b.jacobian_tape.run(r, ev);
+        for (k, &reg) in b.jacobian.iter().enumerate() {
+            w.matrix[k] = r[reg as usize];
+        }
+        if !lu_solve(n, &mut w.matrix, &mut w.rhs, &mut w.perm) {
+            return Err(fail("the block's Jacobian is singular", norm));
+        }
+        let mut converged = true;
+        for (k, &reg) in b.iteration.iter().enumerate() {
+            let x = r[reg as usize];
+            let dx = w.rhs[k];
+            r[reg as usize] = x + dx;
+            if dx.abs() > 1e-13 * (1.0 + x.abs()) {
+                converged = false;
+            }
+        }
+        if b.linear && it >= 1 && norm >= last_norm {
+            // A linear block is solved by the first step; more is rounding.
+            b.residual_tape.run(r, ev);
+            return Ok(());
+        }
+        if converged {
+            // Bring the inner (torn) variables up to date with the final iterate.
+            b.residual_tape.run(r, ev);
+            return Ok(());
+        }
+        last_norm = norm;
+    }
+    b.residual_tape.run(r, ev);
+    let norm = b
+        .residuals
+        .iter()
+        .map(|&g| r[g as usize].abs())
+        .fold(0.0, f64::max);
+    if norm <= 1e-10 {
+        return Ok(());
+    }
+    Err(fail(
+        "Newton's method did not converge in 50 iterations",
+        norm,
+    ))
+}
+
+/// Solves `a x = b` in place (LU with partial pivoting); false when singular.
+pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> bool {
+    for (i, p) in perm.iter_mut().enumerate().take(n) {
+        *p = i;
+    }
+    for k in 0..n {
+        let mut piv = k;
+        let mut best = a[k * n + k].abs();
+        for i in k + 1..n {
+            let v = a[i * n + k].abs();
+            if v > best {
+                best = v;
+                piv = i;
+            }
+        }
+        if best == 0.0 || !best.is_finite() {
+            return false;
+        }
+        if piv != k {
+            for j in 0..n {
+                a.swap(k * n + j, piv * n + j);
+            }
+            b.swap(k, piv);
+            perm.swap(k, piv);
+        }
+        let d = a[k * n + k];
+        for i in k + 1..n {
+            let f = a[i * n + k] / d;
+            if f != 0.0 {
+                a[i * n + k] = f;
+                for j in k + 1..n {
+                    a[i * n + j] -= f * a[k * n + j];
+                }
+                b[i] -= f * b[k];
+            }
+        }
+    }
+    for k in (0..n).rev() {
+        let mut s = b[k];
+        for j in k + 1..n {
+            s -= a[k * n + j] * b[j];
+        }
+        b[k] = s / a[k * n + k];
+    }
+    true
+}

@@ -1,0 +1,5 @@
+//! The runtime: compiled evaluation of the causal plan, initialization, events and the simulation driver.
+pub mod eval;
+pub mod model;
+pub mod sim;
+pub mod tape;

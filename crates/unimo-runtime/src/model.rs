@@ -1,0 +1,414 @@
+//! The compiled model: every expression the runtime evaluates, compiled to tapes over
+//! one register file: parameters, start values, the plan's steps (explicit assignments
+//! and Newton blocks with their symbolic Jacobians), zero crossings, `when` conditions
+//! and actions, assertions and alias outputs.
+
+use crate::tape::{Compiler, EventState, Layout, Reg, Tape};
+use std::collections::HashMap;
+use unimo_dae::dae::{Dae, ScalarKind, WhenAction};
+use unimo_dae::events::zero_crossings;
+use unimo_dae::expr::{ExprId, Node, ScalarId};
+use unimo_dae::plan::{Plan, PlanStep};
+
+/// A Newton block in compiled form.
+#[derive(Clone, Debug)]
+pub struct CompiledBlock {
+    pub iteration: Vec<Reg>,
+    /// Inner assignments then residuals.
+    pub residual_tape: Tape,
+    pub residuals: Vec<Reg>,
+    pub jacobian_tape: Tape,
+    /// Row-major, `residuals.len() x iteration.len()`.
+    pub jacobian: Vec<Reg>,
+    pub linear: bool,
+    /// Names of the iteration variables (for errors).
+    pub names: Vec<String>,
+}
+
+#[derive(Clone, Debug)]
+pub enum CompiledStep {
+    Explicit(Tape),
+    Block(CompiledBlock),
+}
+
+/// A compiled `when` action.
+#[derive(Clone, Debug)]
+pub enum Action {
+    Assign { target: Reg, value: Reg },
+    Reinit { target: Reg, value: Reg },
+    Terminate(String),
+    Assert { condition: Reg, message: String },
+}
+
+#[derive(Clone, Debug)]
+pub struct CompiledWhen {
+    /// Per branch: condition registers and actions.
+    pub branches: Vec<(Vec<Reg>, Vec<Action>)>,
+}
+
+/// Everything the simulator runs.
+#[derive(Clone, Debug)]
+pub struct CompiledModel {
+    pub layout: Layout,
+    pub n_registers: usize,
+    pub parameters: Tape,
+    pub starts: Tape,
+    pub steps: Vec<CompiledStep>,
+    /// Zero-crossing functions: `g_k = reg_a - reg_b` of relation k.
+    pub roots_tape: Tape,
+    pub roots: Vec<(Reg, Reg)>,
+    /// The relation each root belongs to (its kind decides the post-crossing value).
+    pub root_ops: Vec<unimo_dae::expr::RelOp>,
+    /// `sample(start, interval)`: registers of start and interval.
+    pub samples: Vec<(Reg, Reg)>,
+    /// Conditions and action values of every `when`, computed in event mode.
+    pub when_tape: Tape,
+    pub whens: Vec<CompiledWhen>,
+    /// Every distinct condition register (their previous values decide edges).
+    pub conditions: Vec<Reg>,
+    pub assert_tape: Tape,
+    pub assertions: Vec<(Reg, String, bool)>,
+    pub alias_tape: Tape,
+    pub states: Vec<Reg>,
+    pub derivatives: Vec<Reg>,
+    pub discretes: Vec<Reg>,
+    pub state_names: Vec<String>,
+    /// Scalars written to results: name and register.
+    pub outputs: Vec<(String, Reg)>,
+    /// Nominal values of the states (for tolerances).
+    pub nominals: Vec<f64>,
+    /// Start attributes: which states have `fixed = true`.
+    pub fixed: Vec<bool>,
+    /// Initial equations as residual registers, computed by `initial_tape` after steps.
+    pub initial_tape: Tape,
+    pub initial_residuals: Vec<Reg>,
+    pub ops_total: usize,
+}
+
+impl CompiledModel {
+    pub fn new_event_state(&self) -> EventState {
+        EventState {
+            event_mode: false,
+            relations: vec![0.0; self.roots.len()],
+            forced: vec![None; self.roots.len()],
+            samples: vec![0.0; self.samples.len()],
+        }
+    }
+}
+
+/// Parameters in dependency order (a binding is computed after what it uses).
+fn parameter_order(dae: &Dae) -> Vec<ScalarId> {
+    let mut order = Vec::new();
+    let mut state = vec![0u8; dae.scalars.len()];
+    for s in dae.ids() {
+        if !matches!(
+            dae.scalar(s).kind,
+            ScalarKind::Parameter | ScalarKind::Constant
+        ) {
+            continue;
+        }
+        let mut stack = vec![(s, false)];
+        while let Some((x, done)) = stack.pop() {
+            if done {
+                if state[x.index()] != 2 {
+                    state[x.index()] = 2;
+                    order.push(x);
+                }
+                continue;
+            }
+            if state[x.index()] != 0 {
+                continue;
+            }
+            state[x.index()] = 1;
+            stack.push((x, true));
+            if let Some(b) = dae.scalar(x).binding {
+                for d in dae.arena.vars(b) {
+                    if state[d.index()] == 0
+                        && matches!(
+                            dae.scalar(d).kind,
+                            ScalarKind::Parameter | ScalarKind::Constant
+                        )
+                    {
+                        stack.push((d, false));
+                    }
+                }
+            }
+        }
+    }
+    order
+}
+
+pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
+    let layout = Layout::new(dae.scalars.len());
+    let zc = zero_crossings(dae);
+    let relation_index: HashMap<ExprId, u32> = zc
+        .relations
+        .iter()
+        .enumerate()
+        .map(|(k, &e)| (e, k as u32))
+        .collect();
+    let sample_index: HashMap<ExprId, u32> = zc
+        .samples
+        .iter()
+        .enumerate()
+        .map(|(k, &e)| (e, k as u32))
+        .collect();
+    let mut c = Compiler::new(&dae.arena, layout, &relation_index, &sample_index);
+
+    let mut parameters = Tape::default();
+    let mut memo = HashMap::new();
+    for p in parameter_order(dae) {
+        if let Some(b) = dae.scalar(p).binding {
+            c.assign(p, b, &mut parameters, &mut memo);
+        } else if let Some(st) = dae.scalar(p).start {
+            c.assign(p, st, &mut parameters, &mut memo);
+        }
+    }
+    let mut starts = Tape::default();
+    let mut memo = HashMap::new();
+    for s in dae.ids() {
+        let sc = dae.scalar(s);
+        if matches!(sc.kind, ScalarKind::Parameter | ScalarKind::Constant) || sc.alias.is_some() {
+            continue;
+        }
+        if let Some(st) = sc.start {
+            c.assign(s, st, &mut starts, &mut memo);
+        }
+    }
+
+    let mut steps = Vec::new();
+    for step in &plan.steps {
+        match step {
+            PlanStep::Assign { var, value, .. } => {
+                let mut t = Tape::default();
+                let mut memo = HashMap::new();
+                c.assign(*var, *value, &mut t, &mut memo);
+                steps.push(CompiledStep::Explicit(t));
+            }
+            PlanStep::Block(b) => {
+                let mut rt = Tape::default();
+                let mut memo = HashMap::new();
+                for &(v, e) in &b.inner {
+                    c.assign(v, e, &mut rt, &mut memo);
+                }
+                let residuals = b
+                    .residuals
+                    .iter()
+                    .map(|&r| c.expr(r, &mut rt, &mut memo))
+                    .collect();
+                let mut jt = Tape::default();
+                let mut memo = HashMap::new();
+                let jacobian = b
+                    .jacobian
+                    .iter()
+                    .map(|&j| c.expr(j, &mut jt, &mut memo))
+                    .collect();
+                steps.push(CompiledStep::Block(CompiledBlock {
+                    iteration: b.iteration_vars.iter().map(|&v| layout.var(v)).collect(),
+                    residual_tape: rt,
+                    residuals,
+                    jacobian_tape: jt,
+                    jacobian,
+                    linear: b.linear,
+                    names: b.iteration_vars.iter().map(|&v| dae.name(v)).collect(),
+                }));
+            }
+        }
+    }
+
+    let mut roots_tape = Tape::default();
+    let mut memo = HashMap::new();
+    let mut roots = Vec::new();
+    let mut root_ops = Vec::new();
+    for &r in &zc.relations {
+        let Node::Rel(op, a, b) = dae.arena.node(r) else {
+            unreachable!("zero crossings are relations")
+        };
+        let ra = c.expr(a, &mut roots_tape, &mut memo);
+        let rb = c.expr(b, &mut roots_tape, &mut memo);
+        roots.push((ra, rb));
+        root_ops.push(op);
+    }
+    let mut samples = Vec::new();
+    let mut sample_memo = HashMap::new();
+    let mut sample_tape = Tape::default();
+    for &s in &zc.samples {
+        let Node::Sample(a, b) = dae.arena.node(s) else {
+            unreachable!("samples")
+        };
+        let ra = c.expr(a, &mut sample_tape, &mut sample_memo);
+        let rb = c.expr(b, &mut sample_tape, &mut sample_memo);
+        samples.push((ra, rb));
+    }
+    // Sample arguments are parameter expressions: computed with the parameters.
+    parameters.ops.extend(sample_tape.ops);
+
+    let mut when_tape = Tape::default();
+    let mut memo = HashMap::new();
+    let mut whens = Vec::new();
+    let mut conditions = Vec::new();
+    for w in &dae.whens {
+        let mut branches = Vec::new();
+        for b in &w.branches {
+            let conds: Vec<Reg> = b
+                .conditions
+                .iter()
+                .map(|&e| c.expr(e, &mut when_tape, &mut memo))
+                .collect();
+            conditions.extend(&conds);
+            let mut actions = Vec::new();
+            for (a, _) in &b.actions {
+                actions.push(match a {
+                    WhenAction::Assign { target, value } => Action::Assign {
+                        target: layout.var(*target),
+                        value: c.expr(*value, &mut when_tape, &mut memo),
+                    },
+                    WhenAction::Reinit { state, value } => Action::Reinit {
+                        target: layout.var(*state),
+                        value: c.expr(*value, &mut when_tape, &mut memo),
+                    },
+                    WhenAction::Terminate { message } => Action::Terminate(message.clone()),
+                    WhenAction::Assert { condition, message } => Action::Assert {
+                        condition: c.expr(*condition, &mut when_tape, &mut memo),
+                        message: message.clone(),
+                    },
+                });
+            }
+            branches.push((conds, actions));
+        }
+        whens.push(CompiledWhen { branches });
+    }
+    conditions.sort();
+    conditions.dedup();
+
+    let mut assert_tape = Tape::default();
+    let mut memo = HashMap::new();
+    let assertions = dae
+        .assertions
+        .iter()
+        .map(|a| {
+            (
+                c.expr(a.condition, &mut assert_tape, &mut memo),
+                a.message.clone(),
+                a.warning,
+            )
+        })
+        .collect();
+
+    let mut alias_tape = Tape::default();
+    let mut memo = HashMap::new();
+    for s in dae.ids() {
+        if let Some(v) = dae.scalar(s).alias {
+            c.assign(s, v, &mut alias_tape, &mut memo);
+        }
+    }
+
+    // Initial equations, plus `v = start` for every unknown that is not a state and
+    // has `fixed = true` (states with fixed start are simply not free).
+    let mut initial_tape = Tape::default();
+    let mut memo = HashMap::new();
+    let mut pairs: Vec<(ExprId, ExprId)> = dae
+        .initial_equations
+        .iter()
+        .map(|e| (e.lhs, e.rhs))
+        .collect();
+    let state_set: std::collections::HashSet<ScalarId> = plan.states.iter().copied().collect();
+    let mut arena_starts = Vec::new();
+    for s in dae.ids() {
+        let sc = dae.scalar(s);
+        if sc.fixed == Some(true)
+            && sc.alias.is_none()
+            && !state_set.contains(&s)
+            && matches!(sc.kind, ScalarKind::Continuous | ScalarKind::Derivative)
+        {
+            if let Some(st) = sc.start {
+                arena_starts.push((s, st));
+            }
+        }
+    }
+    let mut initial_regs = Vec::new();
+    for (l, r) in pairs.drain(..) {
+        let lr = c.expr(l, &mut initial_tape, &mut memo);
+        let rr = c.expr(r, &mut initial_tape, &mut memo);
+        let d = c.temp_public();
+        initial_tape.ops.push(crate::tape::Op::Sub(d, lr, rr));
+        initial_regs.push(d);
+    }
+    for (s, st) in arena_starts {
+        let rr = c.expr(st, &mut initial_tape, &mut memo);
+        let d = c.temp_public();
+        initial_tape
+            .ops
+            .push(crate::tape::Op::Sub(d, layout.var(s), rr));
+        initial_regs.push(d);
+    }
+
+    let discretes = dae
+        .ids()
+        .filter(|&s| dae.scalar(s).kind == ScalarKind::Discrete && dae.scalar(s).alias.is_none())
+        .map(|s| layout.var(s))
+        .collect();
+    let outputs = dae
+        .ids()
+        .filter(|&s| {
+            !matches!(
+                dae.scalar(s).kind,
+                ScalarKind::Parameter | ScalarKind::Constant
+            )
+        })
+        .map(|s| (dae.name(s), layout.var(s)))
+        .collect();
+    let nominals = plan
+        .states
+        .iter()
+        .map(|&s| {
+            dae.scalar(s)
+                .nominal
+                .and_then(|e| dae.arena.as_const(e))
+                .map(f64::abs)
+                .unwrap_or(1.0)
+        })
+        .collect();
+    let fixed = plan
+        .states
+        .iter()
+        .map(|&s| dae.scalar(s).fixed == Some(true))
+        .collect();
+    let n_registers = c.n_registers();
+    let mut m = CompiledModel {
+        layout,
+        n_registers,
+        parameters,
+        starts,
+        steps,
+        roots_tape,
+        roots,
+        root_ops,
+        samples,
+        when_tape,
+        whens,
+        conditions,
+        assert_tape,
+        assertions,
+        alias_tape,
+        states: plan.states.iter().map(|&s| layout.var(s)).collect(),
+        derivatives: plan.derivatives.iter().map(|&s| layout.var(s)).collect(),
+        discretes,
+        state_names: plan.states.iter().map(|&s| dae.name(s)).collect(),
+        outputs,
+        nominals,
+        fixed,
+        initial_tape,
+        initial_residuals: initial_regs,
+        ops_total: 0,
+    };
+    m.ops_total = m
+        .steps
+        .iter()
+        .map(|s| match s {
+            CompiledStep::Explicit(t) => t.ops.len(),
+            CompiledStep::Block(b) => b.residual_tape.ops.len() + b.jacobian_tape.ops.len(),
+        })
+        .sum();
+    m
+}

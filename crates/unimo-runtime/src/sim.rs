@@ -1,0 +1,910 @@
+//! The simulation driver: initialization, integration with one of our solvers, output
+//! on a grid, and Modelica event semantics (zero crossings located on the dense
+//! output, event iteration with `pre` values, `reinit` at the end of the event step,
+//! sample time events, restart after each event).
+
+use crate::eval::{eval_steps, BlockFailure, Workspace};
+use crate::model::{Action, CompiledModel};
+use crate::tape::EventState;
+use unimo_dae::expr::RelOp;
+use unimo_solve::{Direction, EvalError, Method, Options, SolveError, Solver, StopReason, System};
+
+/// Internal steps of one simulation before it is stopped.
+const MAX_STEPS: u64 = 20_000_000;
+/// Event iterations at one instant before the event is declared non-converging.
+const MAX_EVENT_ITERATIONS: usize = 100;
+/// Events closer than this (relative to the time scale) count towards chattering.
+const CHATTER_WINDOW: f64 = 1e-9;
+/// Consecutive close events that mean chattering (Zeno behaviour).
+const CHATTER_COUNT: usize = 200;
+
+#[derive(Clone, Debug)]
+pub struct SimOptions {
+    pub start: f64,
+    pub stop: f64,
+    pub rtol: f64,
+    pub atol: f64,
+    pub method: Method,
+    /// Output grid spacing (points at start + k * interval), plus every event.
+    pub interval: f64,
+    /// Also write a row after every internal step.
+    pub every_step: bool,
+}
+
+/// Why a simulation stopped early.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimError {
+    Init {
+        message: String,
+        culprits: Vec<String>,
+    },
+    Solver {
+        time: f64,
+        step: Option<f64>,
+        message: String,
+        culprits: Vec<String>,
+    },
+    Block {
+        time: f64,
+        failure: BlockFailure,
+    },
+    Assert {
+        time: f64,
+        message: String,
+    },
+    EventIteration {
+        time: f64,
+        culprits: Vec<String>,
+    },
+    Chattering {
+        time: f64,
+        crossing: String,
+        events: usize,
+    },
+}
+
+impl SimError {
+    pub fn code(&self) -> &'static str {
+        match self {
+            SimError::Init { .. } => "E4001",
+            SimError::Solver { .. } => "E4002",
+            SimError::Block { .. } => "E4003",
+            SimError::Assert { .. } => "E4004",
+            SimError::EventIteration { .. } => "E4005",
+            SimError::Chattering { .. } => "E4006",
+        }
+    }
+
+    pub fn message(&self) -> String {
+        match self {
+            SimError::Init { message, culprits } => {
+                format!("initialization failed: {message} (variables: {})", culprits.join(", "))
+            }
+            SimError::Solver { time, step, message, culprits } => format!(
+                "the solver failed at t = {time}{}: {message}; worst variables: {}",
+                step.map(|h| format!(", step size {h:e}")).unwrap_or_default(),
+                culprits.join(", ")
+            ),
+            SimError::Block { time, failure } => format!(
+                "an algebraic loop failed at t = {time}: {} (residual {:e}); its iteration variables: {}",
+                failure.reason,
+                failure.residual,
+                failure.variables.join(", ")
+            ),
+            SimError::Assert { time, message } => format!("assertion failed at t = {time}: {message}"),
+            SimError::EventIteration { time, culprits } => format!(
+                "event iteration did not converge at t = {time} after {MAX_EVENT_ITERATIONS} iterations; still changing: {}",
+                culprits.join(", ")
+            ),
+            SimError::Chattering { time, crossing, events } => format!(
+                "chattering at t = {time}: {events} events in a row less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`"
+            ),
+        }
+    }
+}
+
+/// One logged event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord {
+    pub time: f64,
+    pub what: String,
+}
+
+/// Counters of a run.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SimStats {
+    pub solver: unimo_solve::Stats,
+    pub events: usize,
+    pub event_iterations: usize,
+    pub rhs_evaluations: u64,
+}
+
+/// Results computed so far (also after a failure).
+#[derive(Clone, Debug, Default)]
+pub struct SimResult {
+    pub names: Vec<String>,
+    pub times: Vec<f64>,
+    pub rows: Vec<Vec<f64>>,
+    pub events: Vec<EventRecord>,
+    pub stats: SimStats,
+    pub error: Option<SimError>,
+    pub terminated: Option<String>,
+    /// Final state values (for references).
+    pub final_states: Vec<f64>,
+}
+
+/// The ODE in the states that the solvers see.
+struct Ode<'a> {
+    m: &'a CompiledModel,
+    regs: Vec<f64>,
+    ev: EventState,
+    work: Workspace,
+    differential: Vec<bool>,
+    evaluations: u64,
+    last_failure: Option<BlockFailure>,
+}
+
+impl Ode<'_> {
+    fn load(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
+        self.regs[self.m.layout.time as usize] = t;
+        for (k, &reg) in self.m.states.iter().enumerate() {
+            self.regs[reg as usize] = x[k];
+        }
+        self.evaluations += 1;
+        eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work).map_err(|f| {
+            let msg = format!("{} in the loop of {}", f.reason, f.variables.join(", "));
+            self.last_failure = Some(f);
+            EvalError::failed(msg)
+        })
+    }
+}
+
+impl System for Ode<'_> {
+    fn len(&self) -> usize {
+        self.m.states.len()
+    }
+
+    fn differential(&self) -> &[bool] {
+        &self.differential
+    }
+
+    fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.load(t, x)?;
+        for (k, &reg) in self.m.derivatives.iter().enumerate() {
+            let v = self.regs[reg as usize];
+            if !v.is_finite() {
+                return Err(EvalError::domain(format!(
+                    "der({}) is {v}",
+                    self.m.state_names[k]
+                )));
+            }
+            out[k] = v;
+        }
+        Ok(())
+    }
+
+    fn n_roots(&self) -> usize {
+        self.m.roots.len()
+    }
+
+    fn roots(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.load(t, x)?;
+        self.m.roots_tape.run(&mut self.regs, &mut self.ev);
+        for (k, &(a, b)) in self.m.roots.iter().enumerate() {
+            out[k] = self.regs[a as usize] - self.regs[b as usize];
+        }
+        Ok(())
+    }
+}
+
+/// The relation's value just after its zero crossing went in `dir`.
+fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {
+    let falling = dir == Direction::Falling;
+    match op {
+        RelOp::Lt | RelOp::Le => Some(f64::from(falling)),
+        RelOp::Gt | RelOp::Ge => Some(f64::from(!falling)),
+        RelOp::Eq | RelOp::Ne => None,
+    }
+}
+
+pub struct Simulator<'a> {
+    ode: Ode<'a>,
+    cond_prev: Vec<f64>,
+    result: SimResult,
+    reinit_buffer: Vec<(u32, f64)>,
+    sample_next: Vec<f64>,
+    chatter: (usize, f64),
+    terminate: Option<String>,
+}
+
+impl<'a> Simulator<'a> {
+    pub fn new(m: &'a CompiledModel) -> Simulator<'a> {
+        let ode = Ode {
+            m,
+            regs: vec![0.0; m.n_registers],
+            ev: m.new_event_state(),
+            work: Workspace::default(),
+            differential: vec![true; m.states.len()],
+            evaluations: 0,
+            last_failure: None,
+        };
+        Simulator {
+            ode,
+            cond_prev: vec![0.0; m.n_registers],
+            result: SimResult::default(),
+            reinit_buffer: Vec::new(),
+            sample_next: Vec::new(),
+            chatter: (0, f64::NEG_INFINITY),
+            terminate: None,
+        }
+    }
+
+    fn m(&self) -> &'a CompiledModel {
+        self.ode.m
+    }
+
+    fn states(&self) -> Vec<f64> {
+        self.m()
+            .states
+            .iter()
+            .map(|&r| self.ode.regs[r as usize])
+            .collect()
+    }
+
+    fn record(&mut self, t: f64) {
+        let m = self.m();
+        m.alias_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        let row = m
+            .outputs
+            .iter()
+            .map(|&(_, r)| self.ode.regs[r as usize])
+            .collect();
+        self.result.times.push(t);
+        self.result.rows.push(row);
+    }
+
+    fn eval_plan(&mut self) -> Result<(), SimError> {
+        let t = self.ode.regs[self.m().layout.time as usize];
+        let m = self.m();
+        eval_steps(m, &mut self.ode.regs, &mut self.ode.ev, &mut self.ode.work)
+            .map_err(|failure| SimError::Block { time: t, failure })
+    }
+
+    /// Consistent initial values: parameters, start values, initial equations solved
+    /// for the states they determine, then the initial event (`initial()` true).
+    fn initialize(&mut self, t0: f64) -> Result<(), SimError> {
+        let m = self.m();
+        let layout = m.layout;
+        self.ode.regs[layout.time as usize] = t0;
+        self.ode.regs[layout.initial as usize] = 1.0;
+        m.parameters.run(&mut self.ode.regs, &mut self.ode.ev);
+        m.starts.run(&mut self.ode.regs, &mut self.ode.ev);
+        // pre(v) starts at the start value.
+        for s in 0..layout.n_scalars {
+            self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
+        }
+        self.ode.ev.event_mode = true;
+        if !m.initial_residuals.is_empty() {
+            self.solve_initial_equations()?;
+        }
+        // `when` conditions fire at initialization only through `initial()`: their
+        // values with initial() false are the baseline the edges are taken against.
+        self.ode.regs[layout.initial as usize] = 0.0;
+        self.eval_plan()?;
+        let m = self.m();
+        m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        for &c in &m.conditions {
+            self.cond_prev[c as usize] = self.ode.regs[c as usize];
+        }
+        self.ode.regs[layout.initial as usize] = 1.0;
+        self.event_iteration(t0, true)?;
+        self.ode.regs[layout.initial as usize] = 0.0;
+        self.ode.ev.event_mode = false;
+        let m = self.m();
+        m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        for &c in &m.conditions {
+            self.cond_prev[c as usize] = self.ode.regs[c as usize];
+        }
+        // Sample instants.
+        self.sample_next = m
+            .samples
+            .iter()
+            .map(|&(s, _)| self.ode.regs[s as usize])
+            .collect();
+        Ok(())
+    }
+
+    /// Newton on the initial equations; the unknowns are the states not `fixed`, the
+    /// ones that influence the residuals most chosen by pivoting when there are more
+    /// free states than equations.
+    fn solve_initial_equations(&mut self) -> Result<(), SimError> {
+        let m = self.m();
+        let n_eq = m.initial_residuals.len();
+        let free: Vec<usize> = (0..m.states.len()).filter(|&k| !m.fixed[k]).collect();
+        let names = |ks: &[usize]| {
+            ks.iter()
+                .map(|&k| m.state_names[k].clone())
+                .collect::<Vec<_>>()
+        };
+        if free.len() < n_eq {
+            return Err(SimError::Init {
+                message: format!(
+                    "{n_eq} initial equations but only {} states without fixed = true",
+                    free.len()
+                ),
+                culprits: names(&free),
+            });
+        }
+        let residual = |me: &mut Self| -> Result<Vec<f64>, SimError> {
+            me.eval_plan()?;
+            let m = me.m();
+            m.initial_tape.run(&mut me.ode.regs, &mut me.ode.ev);
+            Ok(m.initial_residuals
+                .iter()
+                .map(|&r| me.ode.regs[r as usize])
+                .collect())
+        };
+        let mut chosen: Option<Vec<usize>> = None;
+        for _ in 0..50 {
+            let f = residual(self)?;
+            let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            if norm <= 1e-12 {
+                return Ok(());
+            }
+            // Finite-difference Jacobian over the free states.
+            let mut jac = vec![0.0; n_eq * free.len()];
+            for (j, &k) in free.iter().enumerate() {
+                let reg = m.states[k] as usize;
+                let x = self.ode.regs[reg];
+                let h = 1e-7 * x.abs().max(1e-3);
+                self.ode.regs[reg] = x + h;
+                let fp = residual(self)?;
+                self.ode.regs[reg] = x;
+                for i in 0..n_eq {
+                    jac[i * free.len() + j] = (fp[i] - f[i]) / h;
+                }
+            }
+            let cols = chosen.get_or_insert_with(|| pick_columns(&jac, n_eq, free.len()));
+            if cols.len() < n_eq {
+                return Err(SimError::Init {
+                    message: "the initial equations do not determine the states (singular)".into(),
+                    culprits: names(&free),
+                });
+            }
+            let mut a = vec![0.0; n_eq * n_eq];
+            for i in 0..n_eq {
+                for (jj, &j) in cols.iter().enumerate() {
+                    a[i * n_eq + jj] = jac[i * free.len() + j];
+                }
+            }
+            let mut b: Vec<f64> = f.iter().map(|x| -x).collect();
+            let mut perm = vec![0; n_eq];
+            if !crate::eval::lu_solve(n_eq, &mut a, &mut b, &mut perm) {
+                return Err(SimError::Init {
+                    message: "the initial equations have a singular Jacobian".into(),
+                    culprits: names(&free),
+                });
+            }
+            for (jj, &j) in cols.iter().enumerate() {
+                let reg = m.states[free[j]] as usize;
+                self.ode.regs[reg] += b[jj];
+            }
+        }
+        let f = residual(self)?;
+        let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if norm <= 1e-9 {
+            return Ok(());
+        }
+        Err(SimError::Init {
+            message: format!(
+                "Newton on the initial equations did not converge (residual {norm:e})"
+            ),
+            culprits: names(&free),
+        })
+    }
+
+    /// Modelica's event iteration at `t`: evaluate with `pre` values, fire `when`
+    /// branches whose condition became true, repeat until no discrete value changes;
+    /// then apply `reinit`s.
+    fn event_iteration(&mut self, t: f64, _initial: bool) -> Result<(), SimError> {
+        let m = self.m();
+        let layout = m.layout;
+        self.ode.regs[layout.time as usize] = t;
+        self.ode.ev.event_mode = true;
+        self.reinit_buffer.clear();
+        let mut iterations = 0;
+        loop {
+            iterations += 1;
+            self.result.stats.event_iterations += 1;
+            // pre := current, for every variable.
+            for s in 0..layout.n_scalars {
+                self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
+            }
+            self.eval_plan()?;
+            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            let mut assigned: Vec<(u32, f64)> = Vec::new();
+            for w in &m.whens {
+                for (conds, actions) in &w.branches {
+                    let fires = conds.iter().any(|&c| {
+                        let now = self.ode.regs[c as usize] != 0.0;
+                        let before = self.cond_prev[c as usize] != 0.0;
+                        now && !before
+                    });
+                    let active = conds.iter().any(|&c| self.ode.regs[c as usize] != 0.0);
+                    if fires {
+                        for a in actions {
+                            match a {
+                                Action::Assign { target, value } => {
+                                    assigned.push((*target, self.ode.regs[*value as usize]))
+                                }
+                                Action::Reinit { target, value } => self
+                                    .reinit_buffer
+                                    .push((*target, self.ode.regs[*value as usize])),
+                                Action::Terminate(msg) => self.terminate = Some(msg.clone()),
+                                Action::Assert { condition, message } => {
+                                    if self.ode.regs[*condition as usize] == 0.0 {
+                                        return Err(SimError::Assert {
+                                            time: t,
+                                            message: message.clone(),
+                                        });
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    // elsewhen: later branches only when this one is not active.
+                    if active {
+                        break;
+                    }
+                }
+            }
+            for &c in &m.conditions {
+                self.cond_prev[c as usize] = self.ode.regs[c as usize];
+            }
+            let mut changed = Vec::new();
+            for (target, v) in assigned {
+                if self.ode.regs[target as usize] != v {
+                    changed.push(target);
+                }
+                self.ode.regs[target as usize] = v;
+            }
+            // Discrete variables defined by equations (not `when`) changed too?
+            for &d in &m.discretes {
+                let pre = self.ode.regs[(layout.pre_base + d) as usize];
+                if self.ode.regs[d as usize] != pre && !changed.contains(&d) {
+                    changed.push(d);
+                }
+            }
+            // Relations forced by the located crossing hold only for the first pass.
+            for f in self.ode.ev.forced.iter_mut() {
+                *f = None;
+            }
+            if changed.is_empty() {
+                break;
+            }
+            if iterations >= MAX_EVENT_ITERATIONS {
+                let culprits = changed
+                    .iter()
+                    .filter_map(|&r| {
+                        m.outputs
+                            .iter()
+                            .find(|(_, x)| *x == r)
+                            .map(|(n, _)| n.clone())
+                    })
+                    .collect();
+                return Err(SimError::EventIteration { time: t, culprits });
+            }
+        }
+        // reinit at the end of the event step.
+        let reinits = std::mem::take(&mut self.reinit_buffer);
+        let any_reinit = !reinits.is_empty();
+        for &(target, v) in &reinits {
+            self.ode.regs[target as usize] = v;
+        }
+        if any_reinit {
+            self.eval_plan()?;
+            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            for &c in &m.conditions {
+                self.cond_prev[c as usize] = self.ode.regs[c as usize];
+            }
+        }
+        for s in 0..layout.n_scalars {
+            self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
+        }
+        self.ode.ev.event_mode = false;
+        Ok(())
+    }
+
+    fn solver_error(&self, e: SolveError) -> SimError {
+        let m = self.m();
+        let (time, step, worst) = match &e {
+            SolveError::StepSizeTooSmall { time, step, worst }
+            | SolveError::NewtonFailed { time, step, worst }
+            | SolveError::ErrorTestFailed { time, step, worst } => {
+                (*time, Some(*step), worst.clone())
+            }
+            SolveError::TooManySteps { time, .. } | SolveError::Eval { time, .. } => {
+                (*time, None, Vec::new())
+            }
+            SolveError::SingularMatrix { time, step } => (*time, Some(*step), Vec::new()),
+            _ => (f64::NAN, None, Vec::new()),
+        };
+        let mut culprits: Vec<String> = worst
+            .iter()
+            .take(5)
+            .filter_map(|&(k, w)| m.state_names.get(k).map(|n| format!("{n} ({w:.3e})")))
+            .collect();
+        if let Some(f) = &self.ode.last_failure {
+            culprits.extend(f.variables.iter().cloned());
+        }
+        SimError::Solver {
+            time,
+            step,
+            message: e.to_string(),
+            culprits,
+        }
+    }
+
+    /// Runs the simulation. The result holds everything computed, also on failure.
+    pub fn run(mut self, o: &SimOptions) -> SimResult {
+        let m = self.m();
+        self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
+        if let Err(e) = self.initialize(o.start) {
+            self.result.error = Some(e);
+            return self.result;
+        }
+        self.record(o.start);
+        let x0 = self.states();
+        let mut options = Options::with_tolerances(o.rtol, o.atol);
+        if !m.states.is_empty() {
+            options.absolute_tolerance = unimo_solve::Tolerance::PerComponent(
+                m.nominals.iter().map(|n| o.atol * n).collect(),
+            );
+        }
+        options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
+        if m.states.is_empty() {
+            return self.run_without_states(o);
+        }
+        let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
+            Ok(s) => s,
+            Err(e) => {
+                self.result.error = Some(self.solver_error(e));
+                return self.result;
+            }
+        };
+        let mut next_output = 1usize;
+        let grid = |k: usize| o.start + k as f64 * o.interval;
+        let mut buf = vec![0.0; m.states.len()];
+        let mut steps_taken: u64 = 0;
+        loop {
+            let t_event = self
+                .sample_next
+                .iter()
+                .copied()
+                .fold(f64::INFINITY, f64::min);
+            let t_stop = o.stop.min(t_event);
+            let prev = solver.current_time();
+            let reason = match solver.step(&mut self.ode, t_stop) {
+                Ok(r) => r,
+                Err(e) => {
+                    self.result.error = Some(self.solver_error(e));
+                    break;
+                }
+            };
+            let now = solver.current_time();
+            steps_taken += 1;
+            if steps_taken > MAX_STEPS {
+                self.result.error = Some(SimError::Solver {
+                    time: now,
+                    step: None,
+                    message: format!("more than {MAX_STEPS} steps; the problem may be stiffer or more oscillatory than the method can handle"),
+                    culprits: Vec::new(),
+                });
+                break;
+            }
+            // Output grid points inside (prev, now].
+            while grid(next_output) <= now * (1.0 + 1e-14) && grid(next_output) <= o.stop {
+                let tg = grid(next_output).min(now);
+                if tg > prev && solver.interpolate(tg, &mut buf).is_ok() {
+                    if let Err(e) = self.load_state(tg, &buf) {
+                        self.result.error = Some(e);
+                        return self.finish(&solver);
+                    }
+                    if tg < now || !matches!(reason, StopReason::Root { .. }) {
+                        self.record(tg);
+                    }
+                }
+                next_output += 1;
+            }
+            match reason {
+                StopReason::InternalStep => {
+                    if o.every_step {
+                        let x = solver.state().to_vec();
+                        if let Err(e) = self.load_state(now, &x) {
+                            self.result.error = Some(e);
+                            break;
+                        }
+                        self.record(now);
+                    }
+                    if let Err(e) = self.check_assertions(now) {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                }
+                StopReason::ReachedStop => {
+                    let x = solver.state().to_vec();
+                    if let Err(e) = self.load_state(now, &x) {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                    if now >= o.stop {
+                        if self.result.times.last() != Some(&now) {
+                            self.record(now);
+                        }
+                        break;
+                    }
+                    // A sample instant.
+                    if let Err(e) = self.sample_event(now, &mut solver) {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                }
+                StopReason::Root { t, components } => {
+                    let x = solver.state().to_vec();
+                    if let Err(e) = self.state_event(t, &x, &components, &mut solver) {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                    if let Some(msg) = self.terminate.take() {
+                        self.result.terminated = Some(msg);
+                        break;
+                    }
+                    // Grid points at exactly t were written as the left limit.
+                    while grid(next_output) <= t && grid(next_output) <= o.stop {
+                        next_output += 1;
+                    }
+                }
+            }
+        }
+        self.finish(&solver)
+    }
+
+    fn finish(mut self, solver: &Solver) -> SimResult {
+        self.result.stats.solver = solver.stats();
+        self.result.stats.rhs_evaluations = self.ode.evaluations;
+        self.result.final_states = self.states();
+        self.result
+    }
+
+    fn run_without_states(mut self, o: &SimOptions) -> SimResult {
+        let n = ((o.stop - o.start) / o.interval).round().max(0.0) as usize;
+        for k in 1..=n {
+            let t = o.start + k as f64 * o.interval;
+            if let Err(e) = self.load_state(t, &[]) {
+                self.result.error = Some(e);
+                break;
+            }
+            self.record(t);
+        }
+        self.result
+    }
+
+    fn load_state(&mut self, t: f64, x: &[f64]) -> Result<(), SimError> {
+        let m = self.m();
+        self.ode.regs[m.layout.time as usize] = t;
+        for (k, &r) in m.states.iter().enumerate() {
+            self.ode.regs[r as usize] = x[k];
+        }
+        self.eval_plan()
+    }
+
+    fn check_assertions(&mut self, t: f64) -> Result<(), SimError> {
+        let m = self.m();
+        if m.assertions.is_empty() {
+            return Ok(());
+        }
+        m.assert_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        for (r, msg, warning) in &m.assertions {
+            if self.ode.regs[*r as usize] == 0.0 && !warning {
+                return Err(SimError::Assert {
+                    time: t,
+                    message: msg.clone(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn state_event(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        components: &[(usize, Direction)],
+        solver: &mut Solver,
+    ) -> Result<(), SimError> {
+        let m = self.m();
+        self.load_state(t, x)?;
+        self.record(t);
+        for &(k, dir) in components {
+            self.ode.ev.forced[k] = after_crossing(m.root_ops[k], dir);
+        }
+        let what = components
+            .iter()
+            .map(|&(k, d)| {
+                format!(
+                    "z{k} {}",
+                    if d == Direction::Rising {
+                        "rising"
+                    } else {
+                        "falling"
+                    }
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        self.after_event(t, what, components.first().map(|c| c.0), solver)?;
+        self.settle_relations(t, components);
+        Ok(())
+    }
+
+    /// After an event the solver does not report the crossings it just reported again,
+    /// so a relation whose function is still (numerically) zero takes the value it
+    /// will have just after `t`: the side `g` moves to along the flow.
+    fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) {
+        let m = self.m();
+        if components.is_empty() {
+            return;
+        }
+        let x = self.states();
+        let n = x.len();
+        let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
+            let mut out = vec![0.0; m.roots.len()];
+            me.ode.roots(t, x, &mut out).ok()?;
+            Some(out)
+        };
+        let Some(g0) = g(self, t, &x) else { return };
+        let dx: Vec<f64> = m
+            .derivatives
+            .iter()
+            .map(|&r| self.ode.regs[r as usize])
+            .collect();
+        let delta = 1e-8 * t.abs().max(1.0);
+        let x1: Vec<f64> = (0..n).map(|i| x[i] + delta * dx[i]).collect();
+        let Some(g1) = g(self, t + delta, &x1) else {
+            return;
+        };
+        let mut changed = false;
+        for &(k, _) in components {
+            let (a, b) = m.roots[k];
+            let _ = (a, b);
+            let slope = (g1[k] - g0[k]) / delta;
+            let near_zero = g0[k].abs()
+                <= 1e-10 * (1.0 + g0[k].abs())
+                    + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs();
+            if !near_zero || slope == 0.0 {
+                continue;
+            }
+            let dir = if slope > 0.0 {
+                Direction::Rising
+            } else {
+                Direction::Falling
+            };
+            if let Some(v) = after_crossing(m.root_ops[k], dir) {
+                if self.ode.ev.relations[k] != v {
+                    self.ode.ev.relations[k] = v;
+                    changed = true;
+                }
+            }
+        }
+        // Restore the registers to the state at t with the settled relations.
+        let _ = self.load_state(t, &x);
+        if changed {
+            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            for &c in &m.conditions {
+                self.cond_prev[c as usize] = self.ode.regs[c as usize];
+            }
+        }
+    }
+
+    fn sample_event(&mut self, t: f64, solver: &mut Solver) -> Result<(), SimError> {
+        let m = self.m();
+        let mut due = Vec::new();
+        for (k, next) in self.sample_next.iter_mut().enumerate() {
+            if *next <= t * (1.0 + 1e-15) + 1e-300 {
+                due.push(k);
+                let interval = self.ode.regs[m.samples[k].1 as usize];
+                *next += interval;
+            }
+        }
+        self.record(t);
+        for &k in &due {
+            self.ode.ev.samples[k] = 1.0;
+        }
+        let r = self.after_event(t, format!("sample {due:?}"), None, solver);
+        for s in self.ode.ev.samples.iter_mut() {
+            *s = 0.0;
+        }
+        r
+    }
+
+    fn after_event(
+        &mut self,
+        t: f64,
+        what: String,
+        crossing: Option<usize>,
+        solver: &mut Solver,
+    ) -> Result<(), SimError> {
+        self.event_iteration(t, false)?;
+        self.result.stats.events += 1;
+        self.result.events.push(EventRecord { time: t, what });
+        // Chattering: many events in a row at (almost) the same time.
+        let scale = t.abs().max(1.0);
+        if t - self.chatter.1 <= CHATTER_WINDOW * scale {
+            self.chatter.0 += 1;
+        } else {
+            self.chatter.0 = 0;
+        }
+        self.chatter.1 = t;
+        if self.chatter.0 >= CHATTER_COUNT {
+            let m = self.m();
+            let crossing = crossing
+                .map(|k| format!("z{k} ({} relation)", m.root_ops[k].symbol()))
+                .unwrap_or_else(|| "a time event".into());
+            return Err(SimError::Chattering {
+                time: t,
+                crossing,
+                events: self.chatter.0,
+            });
+        }
+        self.record(t);
+        let x = self.states();
+        solver
+            .reset(&mut self.ode, t, &x)
+            .map_err(|e| self.solver_error(e))
+    }
+}
+
+/// Convenience: compile-time model in, results out.
+pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
+    Simulator::new(m).run(o)
+}
+
+/// Picks `k` columns of the `rows x cols` matrix `a` that make it best conditioned
+/// (greedy Gaussian elimination with complete pivoting on the columns).
+fn pick_columns(a: &[f64], rows: usize, cols: usize) -> Vec<usize> {
+    let mut a = a.to_vec();
+    let mut chosen = Vec::new();
+    let mut used = vec![false; cols];
+    let mut used_row = vec![false; rows];
+    for _ in 0..rows {
+        let mut best = (0.0, usize::MAX, usize::MAX);
+        for i in 0..rows {
+            if used_row[i] {
+                continue;
+            }
+            for j in 0..cols {
+                if !used[j] && a[i * cols + j].abs() > best.0 {
+                    best = (a[i * cols + j].abs(), i, j);
+                }
+            }
+        }
+        if best.1 == usize::MAX || best.0 < 1e-14 {
+            break;
+        }
+        let (_, pi, pj) = best;
+        used[pj] = true;
+        used_row[pi] = true;
+        chosen.push(pj);
+        let p = a[pi * cols + pj];
+        for i in 0..rows {
+            if i != pi {
+                let f = a[i * cols + pj] / p;
+                for j in 0..cols {
+                    a[i * cols + j] -= f * a[pi * cols + j];
+                }
+            }
+        }
+    }
+    chosen.sort();
+    chosen
+}

@@ -1,0 +1,335 @@
+//! The compiled form of expressions: a flat list of register instructions. Compiling
+//! walks the expression graph once (shared nodes compiled once); evaluating runs the
+//! list over a register file with no lookups, allocation or recursion.
+//!
+//! Relations outside `noEvent` are compiled with an index into the relation state:
+//! between events they return the stored value (so the right-hand side stays smooth
+//! while the solver steps across a crossing), in event mode they are computed and
+//! stored.
+
+use std::collections::HashMap;
+use unimo_dae::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
+
+/// A register index.
+pub type Reg = u32;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Op {
+    Const(Reg, f64),
+    Copy(Reg, Reg),
+    Add(Reg, Reg, Reg),
+    Sub(Reg, Reg, Reg),
+    Mul(Reg, Reg, Reg),
+    Div(Reg, Reg, Reg),
+    Pow(Reg, Reg, Reg),
+    /// `x^n` for a small integer `n`.
+    Powi(Reg, Reg, i32),
+    Neg(Reg, Reg),
+    Fn1(Fn1, Reg, Reg),
+    Fn2(Fn2, Reg, Reg, Reg),
+    /// A relation evaluated literally (inside `noEvent`).
+    Rel(RelOp, Reg, Reg, Reg),
+    /// A relation with event semantics: relation state index.
+    RelEvent(RelOp, Reg, Reg, Reg, u32),
+    And(Reg, Reg, Reg),
+    Or(Reg, Reg, Reg),
+    Not(Reg, Reg),
+    /// `dst = if c then a else b` (both operands were computed).
+    Select(Reg, Reg, Reg, Reg),
+    /// `dst = sample state k` (true only during the event at a sample instant).
+    Sample(Reg, u32),
+}
+
+/// Where special values live in the register file.
+#[derive(Clone, Copy, Debug)]
+pub struct Layout {
+    pub n_scalars: u32,
+    /// Registers `pre_base + s` hold `pre(s)`.
+    pub pre_base: u32,
+    pub time: Reg,
+    pub initial: Reg,
+    /// First temporary register.
+    pub temp_base: u32,
+}
+
+impl Layout {
+    pub fn new(n_scalars: usize) -> Layout {
+        let n = n_scalars as u32;
+        Layout {
+            n_scalars: n,
+            pre_base: n,
+            time: 2 * n,
+            initial: 2 * n + 1,
+            temp_base: 2 * n + 2,
+        }
+    }
+
+    pub fn var(&self, s: ScalarId) -> Reg {
+        s.0
+    }
+}
+
+/// Relation and sample state shared by all tapes of a model.
+#[derive(Clone, Debug, Default)]
+pub struct EventState {
+    /// In event mode relations are computed and stored; otherwise they are read.
+    pub event_mode: bool,
+    pub relations: Vec<f64>,
+    /// Forced outcome of a relation whose crossing was just located (1.0/0.0), used in
+    /// event mode instead of the literal comparison (which may be on the wrong side of
+    /// the root by rounding).
+    pub forced: Vec<Option<f64>>,
+    pub samples: Vec<f64>,
+}
+
+/// A compiled instruction list.
+#[derive(Clone, Debug, Default)]
+pub struct Tape {
+    pub ops: Vec<Op>,
+}
+
+impl Tape {
+    #[inline]
+    pub fn run(&self, r: &mut [f64], ev: &mut EventState) {
+        for op in &self.ops {
+            match *op {
+                Op::Const(d, x) => r[d as usize] = x,
+                Op::Copy(d, a) => r[d as usize] = r[a as usize],
+                Op::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
+                Op::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
+                Op::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
+                Op::Div(d, a, b) => r[d as usize] = r[a as usize] / r[b as usize],
+                Op::Pow(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
+                Op::Powi(d, a, n) => r[d as usize] = r[a as usize].powi(n),
+                Op::Neg(d, a) => r[d as usize] = -r[a as usize],
+                Op::Fn1(f, d, a) => r[d as usize] = f.apply(r[a as usize]),
+                Op::Fn2(f, d, a, b) => r[d as usize] = f.apply(r[a as usize], r[b as usize]),
+                Op::Rel(op, d, a, b) => {
+                    r[d as usize] = f64::from(op.apply(r[a as usize], r[b as usize]))
+                }
+                Op::RelEvent(op, d, a, b, k) => {
+                    let k = k as usize;
+                    if ev.event_mode {
+                        let v = match ev.forced[k] {
+                            Some(v) => v,
+                            None => f64::from(op.apply(r[a as usize], r[b as usize])),
+                        };
+                        ev.relations[k] = v;
+                    }
+                    r[d as usize] = ev.relations[k];
+                }
+                Op::And(d, a, b) => {
+                    r[d as usize] = f64::from(r[a as usize] != 0.0 && r[b as usize] != 0.0)
+                }
+                Op::Or(d, a, b) => {
+                    r[d as usize] = f64::from(r[a as usize] != 0.0 || r[b as usize] != 0.0)
+                }
+                Op::Not(d, a) => r[d as usize] = f64::from(r[a as usize] == 0.0),
+                Op::Select(d, c, a, b) => {
+                    r[d as usize] = if r[c as usize] != 0.0 {
+                        r[a as usize]
+                    } else {
+                        r[b as usize]
+                    }
+                }
+                Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
+            }
+        }
+    }
+}
+
+/// Compiles expressions into tapes; temporaries are allocated from a shared counter so
+/// that tapes of one model can share the register file.
+pub struct Compiler<'a> {
+    pub arena: &'a ExprArena,
+    pub layout: Layout,
+    next_temp: u32,
+    /// Relation node -> relation state index (relations with event semantics).
+    pub relation_index: &'a HashMap<ExprId, u32>,
+    pub sample_index: &'a HashMap<ExprId, u32>,
+    /// Nodes already computed by earlier, still-valid tapes.
+    pub shared: HashMap<ExprId, Reg>,
+}
+
+impl<'a> Compiler<'a> {
+    pub fn new(
+        arena: &'a ExprArena,
+        layout: Layout,
+        relation_index: &'a HashMap<ExprId, u32>,
+        sample_index: &'a HashMap<ExprId, u32>,
+    ) -> Self {
+        Compiler {
+            arena,
+            layout,
+            next_temp: layout.temp_base,
+            relation_index,
+            sample_index,
+            shared: HashMap::new(),
+        }
+    }
+
+    /// Registers in use so far (the register file's size).
+    pub fn n_registers(&self) -> usize {
+        self.next_temp as usize
+    }
+
+    /// A fresh temporary register.
+    pub fn temp_public(&mut self) -> Reg {
+        self.temp()
+    }
+
+    fn temp(&mut self) -> Reg {
+        let r = self.next_temp;
+        self.next_temp += 1;
+        r
+    }
+
+    /// Compiles `e` into `tape` with a local memo; returns the register with its value.
+    pub fn expr(&mut self, e: ExprId, tape: &mut Tape, memo: &mut HashMap<ExprId, Reg>) -> Reg {
+        self.expr_in(e, tape, memo, false)
+    }
+
+    fn expr_in(
+        &mut self,
+        e: ExprId,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+        no_event: bool,
+    ) -> Reg {
+        if let Some(&r) = memo.get(&e).or_else(|| self.shared.get(&e)) {
+            return r;
+        }
+        // Iterative post-order so deep expressions cannot overflow the stack.
+        let mut stack: Vec<(ExprId, bool, bool)> = vec![(e, no_event, false)];
+        while let Some((x, ne, expanded)) = stack.pop() {
+            if memo.contains_key(&x) || self.shared.contains_key(&x) {
+                continue;
+            }
+            let node = self.arena.node(x);
+            match node {
+                Node::Var(s) => {
+                    memo.insert(x, self.layout.var(s));
+                    continue;
+                }
+                Node::Pre(s) => {
+                    memo.insert(x, self.layout.pre_base + s.0);
+                    continue;
+                }
+                Node::Time => {
+                    memo.insert(x, self.layout.time);
+                    continue;
+                }
+                Node::Initial => {
+                    memo.insert(x, self.layout.initial);
+                    continue;
+                }
+                _ => {}
+            }
+            let child_ne = ne || matches!(node, Node::NoEvent(_));
+            if !expanded {
+                stack.push((x, ne, true));
+                for c in self.arena.children(x) {
+                    stack.push((c, child_ne, false));
+                }
+                continue;
+            }
+            let out = {
+                let shared = &self.shared;
+                let memo_ref = &*memo;
+                let g = |c: ExprId| -> Reg {
+                    *memo_ref
+                        .get(&c)
+                        .or_else(|| shared.get(&c))
+                        .expect("children first")
+                };
+                let known = |c: ExprId| memo_ref.get(&c).or_else(|| shared.get(&c)).copied();
+                match node {
+                    Node::Const(b) => Ok(Op::Const(0, f64::from_bits(b))),
+                    Node::NoEvent(a) => Err(g(a)),
+                    Node::Add(a, b) => match self.arena.node(b) {
+                        Node::Neg(nb) if known(nb).is_some() => {
+                            Ok(Op::Sub(0, g(a), known(nb).expect("checked")))
+                        }
+                        _ => Ok(Op::Add(0, g(a), g(b))),
+                    },
+                    Node::Mul(a, b) => Ok(Op::Mul(0, g(a), g(b))),
+                    Node::Div(a, b) => Ok(Op::Div(0, g(a), g(b))),
+                    Node::Pow(a, b) => Ok(match self.arena.as_const(b) {
+                        Some(n) if n == n.trunc() && n.abs() <= 16.0 => Op::Powi(0, g(a), n as i32),
+                        _ => Op::Pow(0, g(a), g(b)),
+                    }),
+                    Node::Neg(a) => Ok(Op::Neg(0, g(a))),
+                    Node::Fn1(f, a) => Ok(Op::Fn1(f, 0, g(a))),
+                    Node::Fn2(f, a, b) => Ok(Op::Fn2(f, 0, g(a), g(b))),
+                    Node::Rel(op, a, b) => Ok(match (ne, self.relation_index.get(&x)) {
+                        (false, Some(&k)) => Op::RelEvent(op, 0, g(a), g(b), k),
+                        _ => Op::Rel(op, 0, g(a), g(b)),
+                    }),
+                    Node::And(a, b) => Ok(Op::And(0, g(a), g(b))),
+                    Node::Or(a, b) => Ok(Op::Or(0, g(a), g(b))),
+                    Node::Not(a) => Ok(Op::Not(0, g(a))),
+                    Node::If(c, a, b) => Ok(Op::Select(0, g(c), g(a), g(b))),
+                    Node::Sample(..) => Ok(Op::Sample(
+                        0,
+                        self.sample_index.get(&x).copied().unwrap_or(0),
+                    )),
+                    Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
+                        unreachable!("leaves are handled above")
+                    }
+                }
+            };
+            let op = match out {
+                Ok(op) => op,
+                Err(alias) => {
+                    memo.insert(x, alias);
+                    continue;
+                }
+            };
+            let d = self.temp();
+            tape.ops.push(with_dst(op, d));
+            memo.insert(x, d);
+        }
+        *memo
+            .get(&e)
+            .or_else(|| self.shared.get(&e))
+            .expect("compiled")
+    }
+
+    /// Compiles `target := e` (a store into a scalar's register).
+    pub fn assign(
+        &mut self,
+        target: ScalarId,
+        e: ExprId,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+    ) {
+        let r = self.expr(e, tape, memo);
+        let d = self.layout.var(target);
+        if r != d {
+            tape.ops.push(Op::Copy(d, r));
+        }
+    }
+}
+
+fn with_dst(op: Op, d: Reg) -> Op {
+    match op {
+        Op::Add(_, a, b) => Op::Add(d, a, b),
+        Op::Sub(_, a, b) => Op::Sub(d, a, b),
+        Op::Mul(_, a, b) => Op::Mul(d, a, b),
+        Op::Div(_, a, b) => Op::Div(d, a, b),
+        Op::Pow(_, a, b) => Op::Pow(d, a, b),
+        Op::Powi(_, a, n) => Op::Powi(d, a, n),
+        Op::Neg(_, a) => Op::Neg(d, a),
+        Op::Fn1(f, _, a) => Op::Fn1(f, d, a),
+        Op::Fn2(f, _, a, b) => Op::Fn2(f, d, a, b),
+        Op::Rel(o, _, a, b) => Op::Rel(o, d, a, b),
+        Op::RelEvent(o, _, a, b, k) => Op::RelEvent(o, d, a, b, k),
+        Op::And(_, a, b) => Op::And(d, a, b),
+        Op::Or(_, a, b) => Op::Or(d, a, b),
+        Op::Not(_, a) => Op::Not(d, a),
+        Op::Select(_, c, a, b) => Op::Select(d, c, a, b),
+        Op::Sample(_, k) => Op::Sample(d, k),
+        Op::Const(_, x) => Op::Const(d, x),
+        Op::Copy(_, a) => Op::Copy(d, a),
+    }
+}

@@ -1,0 +1,373 @@
+//! Dormand–Prince 5(4) (Hairer's DOPRI5) for non-stiff ODEs.
+//!
+//! * Seven stages with FSAL (the last stage is `f` at the new point), fifth-order solution,
+//!   embedded fourth-order error estimate `err = h Σ e_i k_i`.
+//! * Error norm: `sqrt(mean((err_i / sc_i)^2))`, `sc_i = atol_i + rtol_i max(|x_i|, |x_new_i|)`;
+//!   a step is accepted when the norm is at most 1.
+//! * Step control: Hairer's PI controller `h_new = h / fac`,
+//!   `fac = err^(0.2 - 0.75 β) / err_old^β / 0.9` with `β = 0.04`, the ratio limited to
+//!   `[0.2, 10]`; after a rejection the step may not grow.
+//! * Dense output: the free continuous extension of order 4 (Hairer's `CONTD5`), exact for
+//!   polynomial solutions up to degree 4.
+//! * Systems with algebraic rows are refused ([`SolveError::AlgebraicRowsNotSupported`]).
+
+use crate::dense_output::DenseOutput;
+use crate::error::{EvalError, SolveError};
+use crate::evaluate::rhs_checked;
+use crate::integrator::{eval_failure, Integrator, ProblemSetup};
+use crate::norm::{weighted_rms, worst_components, Tolerances};
+use crate::options::{Method, Options};
+use crate::stats::Stats;
+use crate::step_control::{clip_to_limit, initial_step, minimum_step, InitialStepProblem};
+use crate::system::System;
+
+const C2: f64 = 0.2;
+const C3: f64 = 0.3;
+const C4: f64 = 0.8;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 0.2;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+const SAFETY: f64 = 0.9;
+const BETA: f64 = 0.04;
+const MAX_SHRINK_DIVISOR: f64 = 5.0; // h_new >= h / 5
+const MAX_GROWTH_DIVISOR: f64 = 0.1; // h_new <= h * 10
+const MAX_CONSECUTIVE_FAILURES: usize = 30;
+
+/// Hairer's continuous extension, valid on `[start, end]`.
+#[derive(Debug, Clone)]
+pub struct Dopri5DenseOutput {
+    start: f64,
+    end: f64,
+    coefficients: [Vec<f64>; 5],
+    end_state: Vec<f64>,
+}
+
+impl DenseOutput for Dopri5DenseOutput {
+    fn interval(&self) -> (f64, f64) {
+        (self.start, self.end)
+    }
+
+    fn evaluate(&self, t: f64, out: &mut [f64]) {
+        let step = self.end - self.start;
+        if t == self.end || step == 0.0 {
+            out.copy_from_slice(&self.end_state);
+            return;
+        }
+        let theta = (t - self.start) / step;
+        let theta1 = 1.0 - theta;
+        let [r1, r2, r3, r4, r5] = &self.coefficients;
+        for i in 0..out.len() {
+            out[i] = r1[i] + theta * (r2[i] + theta1 * (r3[i] + theta * (r4[i] + theta1 * r5[i])));
+        }
+    }
+}
+
+/// The Dormand–Prince 5(4) integrator.
+#[derive(Debug, Clone)]
+pub struct Dopri5 {
+    setup: ProblemSetup,
+    t: f64,
+    x: Vec<f64>,
+    /// `f(t, x)` (first stage of the next step).
+    f_current: Vec<f64>,
+    step_size: Option<f64>,
+    previous_error: f64,
+    last_rejected: bool,
+    stages: [Vec<f64>; 7],
+    stage_state: Vec<f64>,
+    x_new: Vec<f64>,
+    error_vector: Vec<f64>,
+    scale: Vec<f64>,
+    dense: Dopri5DenseOutput,
+    stats: Stats,
+}
+
+impl Dopri5 {
+    /// Creates the integrator at `(t0, x0)`; fails for systems with algebraic rows.
+    pub fn new(
+        system: &mut dyn System,
+        t0: f64,
+        x0: &[f64],
+        options: Options,
+    ) -> Result<Self, SolveError> {
+        let setup = ProblemSetup::new(system, t0, x0, options)?;
+        if setup.algebraic_rows() > 0 {
+            return Err(SolveError::AlgebraicRowsNotSupported {
+                method: Method::Dopri5.name(),
+                algebraic_rows: setup.algebraic_rows(),
+            });
+        }
+        let size = setup.size;
+        let zeros = || vec![0.0; size];
+        let mut integrator = Dopri5 {
+            setup,
+            t: t0,
+            x: x0.to_vec(),
+            f_current: zeros(),
+            step_size: None,
+            previous_error: 1e-4,
+            last_rejected: false,
+            stages: std::array::from_fn(|_| zeros()),
+            stage_state: zeros(),
+            x_new: zeros(),
+            error_vector: zeros(),
+            scale: zeros(),
+            dense: Dopri5DenseOutput {
+                start: t0,
+                end: t0,
+                coefficients: std::array::from_fn(|_| zeros()),
+                end_state: x0.to_vec(),
+            },
+            stats: Stats::default(),
+        };
+        integrator.restart(system, t0, x0)?;
+        Ok(integrator)
+    }
+
+    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        self.t = t;
+        self.x.copy_from_slice(x);
+        rhs_checked(system, t, x, &mut self.f_current, &mut self.stats)
+            .map_err(|error| eval_failure(t, error))?;
+        self.step_size = self.setup.options.initial_step;
+        self.previous_error = 1e-4;
+        self.last_rejected = false;
+        self.dense.start = t;
+        self.dense.end = t;
+        self.dense.end_state.copy_from_slice(x);
+        Ok(())
+    }
+
+    /// Computes stages 2..7, the new state and the error vector for step `h`.
+    fn attempt(&mut self, system: &mut dyn System, h: f64) -> Result<(), EvalError> {
+        let t = self.t;
+        let size = self.setup.size;
+        self.stages[0].copy_from_slice(&self.f_current);
+        let rows: [(f64, &[f64]); 5] = [
+            (C2, &[A21]),
+            (C3, &[A31, A32]),
+            (C4, &[A41, A42, A43]),
+            (C5, &[A51, A52, A53, A54]),
+            (1.0, &[A61, A62, A63, A64, A65]),
+        ];
+        for (stage, (c, coefficients)) in rows.iter().enumerate() {
+            for i in 0..size {
+                let increment: f64 = coefficients
+                    .iter()
+                    .enumerate()
+                    .map(|(j, a)| a * self.stages[j][i])
+                    .sum();
+                self.stage_state[i] = self.x[i] + h * increment;
+            }
+            let (done, rest) = self.stages.split_at_mut(stage + 1);
+            let _ = done;
+            rhs_checked(
+                system,
+                t + c * h,
+                &self.stage_state,
+                &mut rest[0],
+                &mut self.stats,
+            )?;
+        }
+        let k = &self.stages;
+        for i in 0..size {
+            self.x_new[i] = self.x[i]
+                + h * (A71 * k[0][i]
+                    + A73 * k[2][i]
+                    + A74 * k[3][i]
+                    + A75 * k[4][i]
+                    + A76 * k[5][i]);
+        }
+        let (done, rest) = self.stages.split_at_mut(6);
+        let _ = done;
+        rhs_checked(system, t + h, &self.x_new, &mut rest[0], &mut self.stats)?;
+        let k = &self.stages;
+        for i in 0..size {
+            self.error_vector[i] = h
+                * (E1 * k[0][i]
+                    + E3 * k[2][i]
+                    + E4 * k[3][i]
+                    + E5 * k[4][i]
+                    + E6 * k[5][i]
+                    + E7 * k[6][i]);
+        }
+        Ok(())
+    }
+
+    fn error_norm(&mut self) -> f64 {
+        self.setup
+            .tolerances
+            .scales_of_pair(&self.x, &self.x_new, &mut self.scale);
+        Tolerances::guard_zero_scales(&mut self.scale);
+        weighted_rms(&self.error_vector, &self.scale)
+    }
+
+    /// Stores the continuous extension of the accepted step `[t, t + h]`.
+    fn store_dense_output(&mut self, h: f64, t_end: f64) {
+        let k = &self.stages;
+        let [r1, r2, r3, r4, r5] = &mut self.dense.coefficients;
+        for i in 0..self.setup.size {
+            let difference = self.x_new[i] - self.x[i];
+            let spline = h * k[0][i] - difference;
+            r1[i] = self.x[i];
+            r2[i] = difference;
+            r3[i] = spline;
+            r4[i] = difference - h * k[6][i] - spline;
+            r5[i] = h
+                * (D1 * k[0][i]
+                    + D3 * k[2][i]
+                    + D4 * k[3][i]
+                    + D5 * k[4][i]
+                    + D6 * k[5][i]
+                    + D7 * k[6][i]);
+        }
+        self.dense.start = self.t;
+        self.dense.end = t_end;
+        self.dense.end_state.copy_from_slice(&self.x_new);
+    }
+
+    fn first_step_size(
+        &mut self,
+        system: &mut dyn System,
+        t_limit: f64,
+    ) -> Result<f64, SolveError> {
+        if let Some(step) = self.step_size {
+            return Ok(step);
+        }
+        let problem = InitialStepProblem {
+            t0: self.t,
+            x0: &self.x,
+            f0: &self.f_current,
+            differential: &self.setup.differential,
+            tolerances: &self.setup.tolerances,
+            order: 4,
+            max_step: self.setup.options.max_step,
+            span: t_limit - self.t,
+        };
+        initial_step(&problem, system, &mut self.stats)
+    }
+}
+
+impl Integrator for Dopri5 {
+    fn method(&self) -> Method {
+        Method::Dopri5
+    }
+
+    fn current_time(&self) -> f64 {
+        self.t
+    }
+
+    fn state(&self) -> &[f64] {
+        &self.x
+    }
+
+    fn dense_output(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+
+    fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        if x.len() != self.setup.size {
+            return Err(SolveError::invalid("reset state has the wrong length"));
+        }
+        self.restart(system, t, x)
+    }
+
+    fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
+        if t_limit <= self.t {
+            return Ok(());
+        }
+        let max_step = self.setup.options.max_step;
+        let mut h = self.first_step_size(system, t_limit)?.min(max_step);
+        let exponent = 0.2 - BETA * 0.75;
+        let mut failures = 0usize;
+        loop {
+            if h < minimum_step(self.t) {
+                return Err(SolveError::StepSizeTooSmall {
+                    time: self.t,
+                    step: h,
+                    worst: worst_components(&self.error_vector, &self.scale),
+                });
+            }
+            let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
+            let error = match self.attempt(system, h_try) {
+                Ok(()) => self.error_norm(),
+                Err(error) => {
+                    failures += 1;
+                    self.stats.rejected_steps += 1;
+                    if failures >= MAX_CONSECUTIVE_FAILURES {
+                        return Err(eval_failure(self.t, error));
+                    }
+                    h = 0.25 * h_try;
+                    self.last_rejected = true;
+                    continue;
+                }
+            };
+            if !error.is_finite() {
+                failures += 1;
+                self.stats.rejected_steps += 1;
+                h = 0.25 * h_try;
+                continue;
+            }
+            let factor_raw = error.powf(exponent);
+            if error <= 1.0 {
+                let factor = (factor_raw / self.previous_error.powf(BETA) / SAFETY)
+                    .clamp(MAX_GROWTH_DIVISOR, MAX_SHRINK_DIVISOR);
+                let mut h_new = (h_try / factor).min(max_step);
+                if self.last_rejected {
+                    h_new = h_new.min(h_try);
+                }
+                if hits_limit && h > h_try {
+                    h_new = h_new.max(h.min(max_step));
+                }
+                self.previous_error = error.max(1e-4);
+                let t_end = if hits_limit { t_limit } else { self.t + h_try };
+                self.store_dense_output(h_try, t_end);
+                self.t = t_end;
+                self.x.copy_from_slice(&self.x_new);
+                self.f_current.copy_from_slice(&self.stages[6]);
+                self.stats.steps += 1;
+                self.last_rejected = false;
+                self.step_size = Some(h_new);
+                return Ok(());
+            }
+            self.stats.rejected_steps += 1;
+            self.last_rejected = true;
+            h = h_try / (factor_raw / SAFETY).min(MAX_SHRINK_DIVISOR);
+        }
+    }
+}

@@ -1,0 +1,107 @@
+//! The interface every method implements: take one accepted step without passing a limit,
+//! expose the dense output of that step, restart from a given state.
+
+use crate::dense_output::DenseOutput;
+use crate::error::SolveError;
+use crate::options::Method;
+use crate::stats::Stats;
+use crate::system::System;
+
+/// One integration method (BDF, Radau5, Dormand–Prince) driven step by step.
+///
+/// [`Solver`](crate::Solver) builds on this: it adds output times, `t_stop` and root location.
+pub trait Integrator {
+    /// The method this integrator implements.
+    fn method(&self) -> Method;
+
+    /// Time of the last accepted step's end (the initial time before the first step).
+    fn current_time(&self) -> f64;
+
+    /// State at [`current_time`](Integrator::current_time).
+    fn state(&self) -> &[f64];
+
+    /// Takes one accepted step (retrying with smaller steps as needed) that ends at or before
+    /// `t_limit`; it ends exactly on `t_limit` when the step-size control reaches it.
+    fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError>;
+
+    /// The continuous solution on the last accepted step.
+    fn dense_output(&self) -> &dyn DenseOutput;
+
+    /// Restarts at `(t, x)`: history dropped (BDF back to order 1, Radau fresh), new initial
+    /// step. `x` may differ from the current state (event changes).
+    fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError>;
+
+    /// Work counters.
+    fn stats(&self) -> &Stats;
+}
+
+/// What every method needs from the problem, checked once at construction.
+#[derive(Debug, Clone)]
+pub(crate) struct ProblemSetup {
+    pub size: usize,
+    pub differential: Vec<bool>,
+    pub tolerances: crate::norm::Tolerances,
+    pub options: crate::options::Options,
+}
+
+impl ProblemSetup {
+    /// Validates sizes, tolerances, options and the initial point.
+    pub fn new(
+        system: &dyn System,
+        t0: f64,
+        x0: &[f64],
+        options: crate::options::Options,
+    ) -> Result<Self, SolveError> {
+        options.validate()?;
+        let size = system.len();
+        let differential = system.differential().to_vec();
+        if differential.len() != size || x0.len() != size {
+            return Err(SolveError::invalid(format!(
+                "system has {size} unknowns, {} differential flags and {} initial values",
+                differential.len(),
+                x0.len()
+            )));
+        }
+        if !t0.is_finite() {
+            return Err(SolveError::invalid(format!(
+                "initial time {t0} is not finite"
+            )));
+        }
+        if let Some(i) = x0.iter().position(|v| !v.is_finite()) {
+            return Err(SolveError::invalid(format!(
+                "initial value x[{i}] = {} is not finite",
+                x0[i]
+            )));
+        }
+        let relative = options
+            .relative_tolerance
+            .expand(size, "relative tolerance")?;
+        let absolute = options
+            .absolute_tolerance
+            .expand(size, "absolute tolerance")?;
+        if let Some(i) = (0..size).find(|&i| relative[i] == 0.0 && absolute[i] == 0.0) {
+            return Err(SolveError::invalid(format!(
+                "component {i} has zero relative and absolute tolerance"
+            )));
+        }
+        Ok(ProblemSetup {
+            size,
+            differential,
+            tolerances: crate::norm::Tolerances { relative, absolute },
+            options,
+        })
+    }
+
+    /// Number of algebraic rows.
+    pub fn algebraic_rows(&self) -> usize {
+        self.differential.iter().filter(|d| !**d).count()
+    }
+}
+
+/// Converts a failed evaluation at a point that cannot be retried into a [`SolveError`].
+pub(crate) fn eval_failure(time: f64, error: crate::error::EvalError) -> SolveError {
+    SolveError::Eval {
+        time,
+        message: error.to_string(),
+    }
+}

@@ -1,0 +1,315 @@
+//! LU factorizations of the shifted iteration matrices `shift * M - J` of the implicit
+//! methods (real shift for BDF and the real Radau block, complex shift for the complex Radau
+//! block), with faer: dense partial-pivoting LU factored in place in preallocated storage, or
+//! sparse LU (symbolic analysis once, numeric factorization on every refactor) on the
+//! Jacobian's pattern plus the diagonal.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor as dense_factor, solve as dense_solve};
+use faer::linalg::solvers::SolveCore;
+use faer::perm::PermRef;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{c64, Conj, Mat, MatMut, Par};
+
+use crate::system::{JacobianMatrix, SparsityPattern};
+
+/// Scalars the iteration matrices are built from: `f64` and `c64`.
+pub(crate) trait LuScalar:
+    faer::traits::ComplexField + Copy + From<f64> + std::ops::Sub<Output = Self> + std::ops::AddAssign
+{
+    /// Nonzero and finite.
+    fn is_usable_pivot(self) -> bool;
+}
+
+impl LuScalar for f64 {
+    fn is_usable_pivot(self) -> bool {
+        self != 0.0 && self.is_finite()
+    }
+}
+
+impl LuScalar for c64 {
+    fn is_usable_pivot(self) -> bool {
+        (self.re != 0.0 || self.im != 0.0) && self.re.is_finite() && self.im.is_finite()
+    }
+}
+
+/// The factorization failed: a zero or non-finite pivot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct SingularMatrix;
+
+/// Factors and solves `(shift * M - J) y = b` for a diagonal 0/1 mass matrix `M`.
+pub(crate) struct ShiftedLu<T: LuScalar> {
+    size: usize,
+    backend: Backend<T>,
+}
+
+enum Backend<T: LuScalar> {
+    Dense {
+        factors: Mat<T>,
+        permutation: Vec<usize>,
+        permutation_inverse: Vec<usize>,
+        buffer: MemBuffer,
+    },
+    Sparse(Box<SparseBackend<T>>),
+}
+
+struct SparseBackend<T: LuScalar> {
+    pattern: SparsityPattern,
+    diagonal_positions: Vec<usize>,
+    /// Position in `pattern` of each stored entry of the Jacobian's own pattern.
+    jacobian_positions: Option<Vec<usize>>,
+    values: Vec<T>,
+    symbolic: Option<SymbolicLu<usize>>,
+    numeric: Option<Lu<usize, T>>,
+}
+
+impl<T: LuScalar> ShiftedLu<T> {
+    /// Dense LU of a `size × size` matrix.
+    pub fn dense(size: usize) -> Self {
+        let factor_req =
+            dense_factor::lu_in_place_scratch::<usize, T>(size, size, Par::Seq, Default::default());
+        let solve_req = dense_solve::solve_in_place_scratch::<usize, T>(size, 1, Par::Seq);
+        let buffer = MemBuffer::new(factor_req.or(solve_req));
+        ShiftedLu {
+            size,
+            backend: Backend::Dense {
+                factors: Mat::zeros(size, size),
+                permutation: vec![0; size],
+                permutation_inverse: vec![0; size],
+                buffer,
+            },
+        }
+    }
+
+    /// Sparse LU on `jacobian_pattern` plus the diagonal.
+    pub fn sparse(jacobian_pattern: &SparsityPattern) -> Self {
+        let pattern = jacobian_pattern.with_diagonal();
+        let size = pattern.size();
+        let diagonal_positions = (0..size)
+            .map(|i| pattern.position(i, i).unwrap_or(0))
+            .collect();
+        let values = vec![T::from(0.0); pattern.nonzeros()];
+        ShiftedLu {
+            size,
+            backend: Backend::Sparse(Box::new(SparseBackend {
+                pattern,
+                diagonal_positions,
+                jacobian_positions: None,
+                values,
+                symbolic: None,
+                numeric: None,
+            })),
+        }
+    }
+
+    /// Factors `shift * M - J`, where `M_ii = 1` when `differential[i]`.
+    pub fn factor(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        shift: T,
+    ) -> Result<(), SingularMatrix> {
+        match &mut self.backend {
+            Backend::Dense {
+                factors,
+                permutation,
+                permutation_inverse,
+                buffer,
+            } => {
+                factors.fill(T::from(0.0));
+                jacobian.for_each_entry(|i, j, value| {
+                    factors[(i, j)] = T::from(0.0) - T::from(value);
+                });
+                for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
+                    factors[(i, i)] += shift;
+                }
+                dense_factor::lu_in_place(
+                    factors.as_mut(),
+                    permutation,
+                    permutation_inverse,
+                    Par::Seq,
+                    MemStack::new(buffer),
+                    Default::default(),
+                );
+                let singular = (0..self.size).any(|i| !factors[(i, i)].is_usable_pivot());
+                if singular {
+                    Err(SingularMatrix)
+                } else {
+                    Ok(())
+                }
+            }
+            Backend::Sparse(sparse) => sparse.factor(jacobian, differential, shift),
+        }
+    }
+
+    /// Solves in place with the last factorization.
+    pub fn solve(&mut self, rhs: &mut [T]) {
+        let size = self.size;
+        let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, size, 1);
+        match &mut self.backend {
+            Backend::Dense {
+                factors,
+                permutation,
+                permutation_inverse,
+                buffer,
+            } => {
+                let perm = PermRef::new_checked(permutation, permutation_inverse, size);
+                dense_solve::solve_in_place_with_conj(
+                    factors.as_ref(),
+                    factors.as_ref(),
+                    perm,
+                    Conj::No,
+                    rhs_matrix,
+                    Par::Seq,
+                    MemStack::new(buffer),
+                );
+            }
+            Backend::Sparse(sparse) => {
+                if let Some(numeric) = &sparse.numeric {
+                    numeric.solve_in_place_with_conj(Conj::No, rhs_matrix);
+                }
+            }
+        }
+    }
+}
+
+impl<T: LuScalar> SparseBackend<T> {
+    fn factor(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        shift: T,
+    ) -> Result<(), SingularMatrix> {
+        self.values.fill(T::from(0.0));
+        self.scatter_jacobian(jacobian);
+        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
+            self.values[self.diagonal_positions[i]] += shift;
+        }
+        let size = self.pattern.size();
+        let symbolic_matrix = SymbolicSparseColMatRef::new_checked(
+            size,
+            size,
+            self.pattern.column_starts(),
+            None,
+            self.pattern.row_indices(),
+        );
+        if self.symbolic.is_none() {
+            self.symbolic = Some(SymbolicLu::try_new(symbolic_matrix).map_err(|_| SingularMatrix)?);
+        }
+        let Some(symbolic) = self.symbolic.clone() else {
+            return Err(SingularMatrix);
+        };
+        let matrix = SparseColMatRef::new(symbolic_matrix, &self.values);
+        self.numeric = None;
+        let numeric = Lu::try_new_with_symbolic(symbolic, matrix).map_err(|_| SingularMatrix)?;
+        self.numeric = Some(numeric);
+        Ok(())
+    }
+
+    /// Writes `-J` into the values of `pattern`.
+    fn scatter_jacobian(&mut self, jacobian: &JacobianMatrix) {
+        if let Some(jacobian_pattern) = jacobian.pattern() {
+            let positions = self.jacobian_positions.get_or_insert_with(|| {
+                (0..jacobian_pattern.size())
+                    .flat_map(|j| jacobian_pattern.column(j).iter().map(move |&i| (i, j)))
+                    .map(|(i, j)| self.pattern.position(i, j).unwrap_or(0))
+                    .collect()
+            });
+            let mut index = 0;
+            let values = &mut self.values;
+            jacobian.for_each_entry(|_, _, value| {
+                values[positions[index]] += T::from(0.0) - T::from(value);
+                index += 1;
+            });
+        } else {
+            let pattern = &self.pattern;
+            let values = &mut self.values;
+            jacobian.for_each_entry(|i, j, value| {
+                if let Some(position) = pattern.position(i, j) {
+                    values[position] += T::from(0.0) - T::from(value);
+                }
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn example_jacobian(sparse: bool) -> JacobianMatrix {
+        let entries = [
+            (0, 0, 2.0),
+            (1, 0, 1.0),
+            (0, 1, -1.0),
+            (1, 1, 3.0),
+            (2, 2, 0.5),
+        ];
+        let mut jacobian = if sparse {
+            let pattern =
+                SparsityPattern::from_entries(3, entries.iter().map(|(i, j, _)| (*i, *j))).unwrap();
+            JacobianMatrix::sparse(pattern)
+        } else {
+            JacobianMatrix::dense(3)
+        };
+        for (i, j, v) in entries {
+            assert!(jacobian.set(i, j, v));
+        }
+        jacobian
+    }
+
+    fn check_residual(sparse: bool) {
+        let jacobian = example_jacobian(sparse);
+        let differential = [true, true, false];
+        let mut lu = if sparse {
+            ShiftedLu::<f64>::sparse(jacobian.pattern().unwrap())
+        } else {
+            ShiftedLu::<f64>::dense(3)
+        };
+        lu.factor(&jacobian, &differential, 5.0).unwrap();
+        let mut x = [1.0, 2.0, 3.0];
+        lu.solve(&mut x);
+        // (5 M - J) x = b with b = (1, 2, 3)
+        let a = |i: usize, j: usize| {
+            let m = if i == j && differential[i] { 5.0 } else { 0.0 };
+            m - jacobian.get(i, j)
+        };
+        for (i, expected) in [1.0, 2.0, 3.0].iter().enumerate() {
+            let value: f64 = (0..3).map(|j| a(i, j) * x[j]).sum();
+            assert!((value - expected).abs() < 1e-14, "row {i}: {value}");
+        }
+    }
+
+    #[test]
+    fn dense_solves_shifted_system() {
+        check_residual(false);
+    }
+
+    #[test]
+    fn sparse_solves_shifted_system() {
+        check_residual(true);
+    }
+
+    #[test]
+    fn complex_shift_solves() {
+        let jacobian = example_jacobian(false);
+        let mut lu = ShiftedLu::<c64>::dense(3);
+        lu.factor(&jacobian, &[true, true, false], c64::new(1.0, 2.0))
+            .unwrap();
+        let mut x = [c64::new(1.0, 0.0), c64::new(0.0, 1.0), c64::new(1.0, 1.0)];
+        lu.solve(&mut x);
+        // third row: -0.5 x2 = 1 + i
+        assert!((x[2] - c64::new(-2.0, -2.0)).norm() < 1e-14);
+    }
+
+    #[test]
+    fn singular_matrix_is_reported() {
+        let jacobian = JacobianMatrix::dense(2);
+        let mut lu = ShiftedLu::<f64>::dense(2);
+        assert_eq!(
+            lu.factor(&jacobian, &[true, false], 1.0),
+            Err(SingularMatrix)
+        );
+    }
+}

@@ -1,0 +1,728 @@
+//! Radau IIA of order 5 (three stages), after Hairer and Wanner's RADAU5.
+//!
+//! * The stage equations for `M x' = f` are solved by simplified Newton iterations on the
+//!   transformed system: `T^-1 A^-1 T` is block diagonal, so each iteration solves one real
+//!   system with `E1 = (γ/h) M - J` and one complex system with `E2 = ((α + iβ)/h) M - J`
+//!   (faer LU, dense or sparse). Newton starts from the previous step's collocation polynomial.
+//!   The contraction `θ` is monitored; a predicted failure (`θ ≥ 0.99`, or
+//!   `θ^(k_max - k) / (1 - θ) ||Δ|| > κ`) shrinks the step at once.
+//! * Tolerances are transformed as in RADAU5 (`rtol' = 0.1 rtol^(2/3)`,
+//!   `atol' = rtol' atol / rtol`) because the embedded estimate is of order 3 while the method
+//!   has order 5: the achieved accuracy then tracks the requested one.
+//! * Error estimate: `err = (γ/h M - J)^-1 (f(t, x) + M (e1 z1 + e2 z2 + e3 z3)/h)`, the filter
+//!   `(γ/h M - J)^-1` damps the stiff components; at the first step and after a rejection it is
+//!   applied a second time (`f` re-evaluated at `x + err`). Norm: RMS of `err_i / sc_i`,
+//!   `sc_i = atol'_i + rtol'_i |x_i|` (algebraic components included, unscaled: index 1).
+//! * Step control: `h_new = h / clamp(err^(1/4) / fac, 1/8, 5)` with
+//!   `fac = min(0.9, 0.9 (1 + 2 k_max) / (k + 2 k_max))`, combined with Gustafsson's
+//!   predictive controller. The Jacobian is reused while `θ ≤ 0.001`; the LU is reused when in
+//!   addition `h_new / h ∈ [1, 1.2]` (the step is then kept).
+//! * Dense output: the collocation polynomial of the last step (degree 3), exact for
+//!   polynomial solutions up to degree 3.
+//! * Algebraic rows (`M_ii = 0`) enter only through `M` in the iteration matrices: index-1
+//!   DAEs are integrated directly (Radau IIA is stiffly accurate).
+
+// The transformation matrices are quoted with all the digits Hairer and Wanner publish.
+#![allow(clippy::excessive_precision)]
+
+use faer::c64;
+
+use crate::dense_output::DenseOutput;
+use crate::error::{EvalError, SolveError};
+use crate::evaluate::rhs_checked;
+use crate::integrator::{eval_failure, Integrator, ProblemSetup};
+use crate::jacobian::JacobianEvaluator;
+use crate::linear::ShiftedLu;
+use crate::norm::{weighted_rms, worst_components, Tolerances};
+use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
+use crate::stats::Stats;
+use crate::step_control::{clip_to_limit, initial_step, minimum_step, InitialStepProblem};
+use crate::system::System;
+
+const SQRT6: f64 = 2.449_489_742_783_178;
+const C1: f64 = (4.0 - SQRT6) / 10.0;
+const C2: f64 = (4.0 + SQRT6) / 10.0;
+const C1M1: f64 = C1 - 1.0;
+const C2M1: f64 = C2 - 1.0;
+const C1MC2: f64 = C1 - C2;
+const DD1: f64 = -(13.0 + 7.0 * SQRT6) / 3.0;
+const DD2: f64 = (-13.0 + 7.0 * SQRT6) / 3.0;
+const DD3: f64 = -1.0 / 3.0;
+const T11: f64 = 9.123_239_487_089_294_279_2e-2;
+const T12: f64 = -0.141_255_295_020_954_208_43;
+const T13: f64 = -3.002_919_410_514_742_449_2e-2;
+const T21: f64 = 0.241_717_932_707_107_018_96;
+const T22: f64 = 0.204_129_352_293_799_931_99;
+const T23: f64 = 0.382_942_112_757_261_937_79;
+const T31: f64 = 0.966_048_182_615_092_936_19;
+const TI11: f64 = 4.325_579_890_063_155_351_0;
+const TI12: f64 = 0.339_199_251_815_809_869_54;
+const TI13: f64 = 0.541_770_539_935_874_871_19;
+const TI21: f64 = -4.178_718_591_551_904_727_3;
+const TI22: f64 = -0.327_682_820_761_062_387_08;
+const TI23: f64 = 0.476_623_554_500_550_451_96;
+const TI31: f64 = -0.502_872_634_945_786_875_95;
+const TI32: f64 = 2.571_926_949_855_605_429_2;
+const TI33: f64 = -0.596_039_204_828_224_924_97;
+
+const MAX_NEWTON_ITERATIONS: usize = 7;
+const JACOBIAN_REUSE_THETA: f64 = 0.001;
+const SAFETY: f64 = 0.9;
+const QUOT_LOW: f64 = 1.0;
+const QUOT_HIGH: f64 = 1.2;
+const FACTOR_MIN: f64 = 1.0 / 8.0; // h_new <= 8 h
+const FACTOR_MAX: f64 = 5.0; // h_new >= h / 5
+const MAX_CONSECUTIVE_FAILURES: usize = 30;
+const MAX_SINGULAR: usize = 6;
+
+/// Real eigenvalue `γ` and complex pair `α ± iβ` of the inverse Radau IIA matrix.
+fn eigenvalues() -> (f64, f64, f64) {
+    let cbrt81 = 81f64.cbrt();
+    let cbrt9 = 9f64.cbrt();
+    let u1 = (6.0 + cbrt81 - cbrt9) / 30.0;
+    let alpha = (12.0 - cbrt81 + cbrt9) / 60.0;
+    let beta = (cbrt81 + cbrt9) * 3f64.sqrt() / 60.0;
+    let norm = alpha * alpha + beta * beta;
+    (1.0 / u1, alpha / norm, beta / norm)
+}
+
+/// The collocation polynomial of the last step.
+#[derive(Debug, Clone)]
+pub struct Radau5DenseOutput {
+    start: f64,
+    end: f64,
+    /// `cont[0]` is the state at `end`; the polynomial in `s = (t - end) / (end - start)` is
+    /// `cont0 + s (cont1 + (s - c2 + 1) (cont2 + (s - c1 + 1) cont3))`.
+    cont: [Vec<f64>; 4],
+}
+
+impl DenseOutput for Radau5DenseOutput {
+    fn interval(&self) -> (f64, f64) {
+        (self.start, self.end)
+    }
+
+    fn evaluate(&self, t: f64, out: &mut [f64]) {
+        let step = self.end - self.start;
+        if t == self.end || step == 0.0 {
+            out.copy_from_slice(&self.cont[0]);
+            return;
+        }
+        let s = (t - self.end) / step;
+        let [c0, c1, c2, c3] = &self.cont;
+        for i in 0..out.len() {
+            out[i] = c0[i] + s * (c1[i] + (s - C2M1) * (c2[i] + (s - C1M1) * c3[i]));
+        }
+    }
+}
+
+/// Result of one Newton solve.
+enum NewtonOutcome {
+    Converged {
+        iterations: usize,
+    },
+    /// Retry with `h * factor`.
+    Failed {
+        factor: f64,
+        eval_error: Option<EvalError>,
+    },
+}
+
+/// The Radau IIA (order 5) integrator.
+pub struct Radau5 {
+    setup: ProblemSetup,
+    t: f64,
+    x: Vec<f64>,
+    f_current: Vec<f64>,
+    step_size: Option<f64>,
+    jacobian: JacobianEvaluator,
+    /// A Jacobian exists and may be reused.
+    jacobian_valid: bool,
+    /// The Jacobian was evaluated at the current `(t, x)`.
+    jacobian_fresh: bool,
+    real_lu: ShiftedLu<f64>,
+    complex_lu: ShiftedLu<c64>,
+    factored_for: Option<f64>,
+    z: [Vec<f64>; 3],
+    w: [Vec<f64>; 3],
+    stage_state: Vec<f64>,
+    complex_rhs: Vec<c64>,
+    scale: Vec<f64>,
+    error_vector: Vec<f64>,
+    theta: f64,
+    contraction_factor: f64,
+    newton_tolerance: f64,
+    first_step: bool,
+    last_rejected: bool,
+    previous_step: f64,
+    gustafsson: Option<(f64, f64)>,
+    dense: Radau5DenseOutput,
+    stats: Stats,
+}
+
+impl Radau5 {
+    /// Creates the integrator at the consistent point `(t0, x0)`.
+    pub fn new(
+        system: &mut dyn System,
+        t0: f64,
+        x0: &[f64],
+        options: Options,
+    ) -> Result<Self, SolveError> {
+        let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+        transform_tolerances(&mut setup.tolerances);
+        let smallest_rtol = setup
+            .tolerances
+            .relative
+            .iter()
+            .copied()
+            .filter(|r| *r > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let newton_tolerance = if smallest_rtol.is_finite() {
+            (10.0 * f64::EPSILON / smallest_rtol).max(0.03f64.min(smallest_rtol.sqrt()))
+        } else {
+            0.03
+        };
+        let size = setup.size;
+        let sparse = use_sparse(system, setup.options.linear_solver);
+        let (real_lu, complex_lu) = match (sparse, system.sparsity()) {
+            (true, Some(pattern)) => (ShiftedLu::sparse(pattern), ShiftedLu::sparse(pattern)),
+            _ => (ShiftedLu::dense(size), ShiftedLu::dense(size)),
+        };
+        let zeros = || vec![0.0; size];
+        let mut integrator = Radau5 {
+            jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),
+            setup,
+            t: t0,
+            x: x0.to_vec(),
+            f_current: zeros(),
+            step_size: None,
+            jacobian_valid: false,
+            jacobian_fresh: false,
+            real_lu,
+            complex_lu,
+            factored_for: None,
+            z: std::array::from_fn(|_| zeros()),
+            w: std::array::from_fn(|_| zeros()),
+            stage_state: zeros(),
+            complex_rhs: vec![c64::new(0.0, 0.0); size],
+            scale: zeros(),
+            error_vector: zeros(),
+            theta: JACOBIAN_REUSE_THETA,
+            contraction_factor: 1.0,
+            newton_tolerance,
+            first_step: true,
+            last_rejected: false,
+            previous_step: 0.0,
+            gustafsson: None,
+            dense: Radau5DenseOutput {
+                start: t0,
+                end: t0,
+                cont: std::array::from_fn(|_| zeros()),
+            },
+            stats: Stats::default(),
+        };
+        integrator.restart(system, t0, x0)?;
+        Ok(integrator)
+    }
+
+    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        self.t = t;
+        self.x.copy_from_slice(x);
+        rhs_checked(system, t, x, &mut self.f_current, &mut self.stats)
+            .map_err(|error| eval_failure(t, error))?;
+        self.update_scale();
+        self.step_size = self.setup.options.initial_step;
+        self.jacobian_valid = false;
+        self.jacobian_fresh = false;
+        self.factored_for = None;
+        self.theta = JACOBIAN_REUSE_THETA;
+        self.contraction_factor = 1.0;
+        self.first_step = true;
+        self.last_rejected = false;
+        self.gustafsson = None;
+        self.dense.start = t;
+        self.dense.end = t;
+        self.dense.cont[0].copy_from_slice(x);
+        for coefficient in &mut self.dense.cont[1..] {
+            coefficient.fill(0.0);
+        }
+        Ok(())
+    }
+
+    fn update_scale(&mut self) {
+        self.setup.tolerances.scales_of(&self.x, &mut self.scale);
+        Tolerances::guard_zero_scales(&mut self.scale);
+    }
+
+    fn first_step_size(
+        &mut self,
+        system: &mut dyn System,
+        t_limit: f64,
+    ) -> Result<f64, SolveError> {
+        if let Some(step) = self.step_size {
+            return Ok(step);
+        }
+        let problem = InitialStepProblem {
+            t0: self.t,
+            x0: &self.x,
+            f0: &self.f_current,
+            differential: &self.setup.differential,
+            tolerances: &self.setup.tolerances,
+            order: 3,
+            max_step: self.setup.options.max_step,
+            span: t_limit - self.t,
+        };
+        initial_step(&problem, system, &mut self.stats)
+    }
+
+    /// Evaluates the Jacobian at the current point if it is missing or stale.
+    fn ensure_jacobian(&mut self, system: &mut dyn System) -> Result<(), SolveError> {
+        if self.jacobian_valid {
+            return Ok(());
+        }
+        self.jacobian
+            .evaluate(
+                system,
+                self.t,
+                &self.x,
+                &self.f_current,
+                &self.scale,
+                &mut self.stats,
+            )
+            .map_err(|error| eval_failure(self.t, error))?;
+        self.jacobian_valid = true;
+        self.jacobian_fresh = true;
+        self.factored_for = None;
+        Ok(())
+    }
+
+    /// Factors both iteration matrices for step `h`; false when one is singular.
+    fn factor(&mut self, h: f64) -> bool {
+        if self.factored_for == Some(h) {
+            return true;
+        }
+        let (gamma, alpha, beta) = eigenvalues();
+        self.stats.lu_factorizations += 1;
+        let matrix = self.jacobian.matrix();
+        let differential = &self.setup.differential;
+        let real_ok = self.real_lu.factor(matrix, differential, gamma / h).is_ok();
+        let complex_ok = real_ok
+            && self
+                .complex_lu
+                .factor(matrix, differential, c64::new(alpha / h, beta / h))
+                .is_ok();
+        self.factored_for = if complex_ok { Some(h) } else { None };
+        complex_ok
+    }
+
+    /// Starting values: zero at the first step, otherwise the extrapolated collocation
+    /// polynomial of the previous step (`z`), and `w = T^-1 z`.
+    fn newton_start(&mut self, h: f64) {
+        if self.first_step {
+            for k in 0..3 {
+                self.z[k].fill(0.0);
+                self.w[k].fill(0.0);
+            }
+            return;
+        }
+        let ratio = h / self.previous_step;
+        let [_, a1, a2, a3] = &self.dense.cont;
+        for i in 0..self.setup.size {
+            let at = |c: f64| c * (a1[i] + (c - C2M1) * (a2[i] + (c - C1M1) * a3[i]));
+            let (z1, z2, z3) = (at(C1 * ratio), at(C2 * ratio), at(ratio));
+            self.z[0][i] = z1;
+            self.z[1][i] = z2;
+            self.z[2][i] = z3;
+            self.w[0][i] = TI11 * z1 + TI12 * z2 + TI13 * z3;
+            self.w[1][i] = TI21 * z1 + TI22 * z2 + TI23 * z3;
+            self.w[2][i] = TI31 * z1 + TI32 * z2 + TI33 * z3;
+        }
+    }
+
+    /// Replaces `z_k` by `f(t + c_k h, x + z_k)`.
+    fn evaluate_stages(&mut self, system: &mut dyn System, h: f64) -> Result<(), EvalError> {
+        for (k, c) in [C1, C2, 1.0].into_iter().enumerate() {
+            for i in 0..self.setup.size {
+                self.stage_state[i] = self.x[i] + self.z[k][i];
+            }
+            rhs_checked(
+                system,
+                self.t + c * h,
+                &self.stage_state,
+                &mut self.z[k],
+                &mut self.stats,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// One simplified Newton correction: on entry `z` holds the stage values of `f`, on exit
+    /// the transformed increments `Δw`.
+    fn solve_correction(&mut self, h: f64) {
+        let (gamma, alpha, beta) = eigenvalues();
+        let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
+        for i in 0..self.setup.size {
+            let (a1, a2, a3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
+            let mut r1 = TI11 * a1 + TI12 * a2 + TI13 * a3;
+            let mut r2 = TI21 * a1 + TI22 * a2 + TI23 * a3;
+            let mut r3 = TI31 * a1 + TI32 * a2 + TI33 * a3;
+            if self.setup.differential[i] {
+                let (s2, s3) = (-self.w[1][i], -self.w[2][i]);
+                r1 -= self.w[0][i] * fac1;
+                r2 += s2 * alphn - s3 * betan;
+                r3 += s3 * alphn + s2 * betan;
+            }
+            self.z[0][i] = r1;
+            self.complex_rhs[i] = c64::new(r2, r3);
+        }
+        self.real_lu.solve(&mut self.z[0]);
+        self.complex_lu.solve(&mut self.complex_rhs);
+        for i in 0..self.setup.size {
+            self.z[1][i] = self.complex_rhs[i].re;
+            self.z[2][i] = self.complex_rhs[i].im;
+        }
+    }
+
+    /// Scaled RMS of the three corrections.
+    fn correction_norm(&self) -> f64 {
+        let size = self.setup.size;
+        if size == 0 {
+            return 0.0;
+        }
+        let sum: f64 = (0..size)
+            .map(|i| {
+                let s = self.scale[i];
+                (self.z[0][i] / s).powi(2) + (self.z[1][i] / s).powi(2) + (self.z[2][i] / s).powi(2)
+            })
+            .sum();
+        (sum / (3 * size) as f64).sqrt()
+    }
+
+    /// Simplified Newton iteration for the stage increments of step `h`.
+    fn newton(&mut self, system: &mut dyn System, h: f64) -> NewtonOutcome {
+        self.newton_start(h);
+        self.contraction_factor = self.contraction_factor.max(f64::EPSILON).powf(0.8);
+        self.theta = JACOBIAN_REUSE_THETA;
+        let mut iterations = 0usize;
+        let mut previous_norm = 0.0f64;
+        let mut previous_quotient = 0.0f64;
+        loop {
+            if iterations >= MAX_NEWTON_ITERATIONS {
+                return NewtonOutcome::Failed {
+                    factor: 0.5,
+                    eval_error: None,
+                };
+            }
+            if let Err(error) = self.evaluate_stages(system, h) {
+                return NewtonOutcome::Failed {
+                    factor: 0.5,
+                    eval_error: Some(error),
+                };
+            }
+            self.solve_correction(h);
+            self.stats.newton_iterations += 1;
+            iterations += 1;
+            let norm = self.correction_norm();
+            if !norm.is_finite() {
+                return NewtonOutcome::Failed {
+                    factor: 0.5,
+                    eval_error: None,
+                };
+            }
+            if iterations > 1 && iterations < MAX_NEWTON_ITERATIONS {
+                let quotient = norm / previous_norm;
+                self.theta = if iterations == 2 {
+                    quotient
+                } else {
+                    (quotient * previous_quotient).sqrt()
+                };
+                previous_quotient = quotient;
+                if self.theta >= 0.99 {
+                    return NewtonOutcome::Failed {
+                        factor: 0.5,
+                        eval_error: None,
+                    };
+                }
+                self.contraction_factor = self.theta / (1.0 - self.theta);
+                let remaining = (MAX_NEWTON_ITERATIONS - 1 - iterations) as i32;
+                let predicted = self.contraction_factor * norm * self.theta.powi(remaining)
+                    / self.newton_tolerance;
+                if predicted >= 1.0 {
+                    let q = predicted.clamp(1e-4, 20.0);
+                    let factor = 0.8 * q.powf(-1.0 / (4.0 + f64::from(remaining)));
+                    return NewtonOutcome::Failed {
+                        factor,
+                        eval_error: None,
+                    };
+                }
+            }
+            previous_norm = norm.max(f64::EPSILON);
+            for i in 0..self.setup.size {
+                let w1 = self.w[0][i] + self.z[0][i];
+                let w2 = self.w[1][i] + self.z[1][i];
+                let w3 = self.w[2][i] + self.z[2][i];
+                self.w[0][i] = w1;
+                self.w[1][i] = w2;
+                self.w[2][i] = w3;
+                self.z[0][i] = T11 * w1 + T12 * w2 + T13 * w3;
+                self.z[1][i] = T21 * w1 + T22 * w2 + T23 * w3;
+                self.z[2][i] = T31 * w1 + w2;
+            }
+            if self.contraction_factor * norm <= self.newton_tolerance {
+                return NewtonOutcome::Converged { iterations };
+            }
+        }
+    }
+
+    /// Hairer's `ESTRAD`: filtered embedded error estimate (uses `w` as scratch).
+    fn error_estimate(&mut self, system: &mut dyn System, h: f64) -> f64 {
+        let (e1, e2, e3) = (DD1 / h, DD2 / h, DD3 / h);
+        let size = self.setup.size;
+        for i in 0..size {
+            let combination = e1 * self.z[0][i] + e2 * self.z[1][i] + e3 * self.z[2][i];
+            let mass_term = if self.setup.differential[i] {
+                combination
+            } else {
+                0.0
+            };
+            self.w[1][i] = mass_term;
+            self.error_vector[i] = mass_term + self.f_current[i];
+        }
+        self.real_lu.solve(&mut self.error_vector);
+        let error = weighted_rms(&self.error_vector, &self.scale).max(1e-10);
+        if error < 1.0 || !(self.first_step || self.last_rejected) {
+            return error;
+        }
+        for i in 0..size {
+            self.stage_state[i] = self.x[i] + self.error_vector[i];
+        }
+        let t = self.t;
+        let mut refreshed = std::mem::take(&mut self.w[0]);
+        let result = rhs_checked(
+            system,
+            t,
+            &self.stage_state,
+            &mut refreshed,
+            &mut self.stats,
+        );
+        self.w[0] = refreshed;
+        if result.is_err() {
+            return error;
+        }
+        for i in 0..size {
+            self.error_vector[i] = self.w[0][i] + self.w[1][i];
+        }
+        self.real_lu.solve(&mut self.error_vector);
+        weighted_rms(&self.error_vector, &self.scale).max(1e-10)
+    }
+
+    /// `f` at the end of the step into `w[0]` (the step is only accepted if this succeeds).
+    fn evaluate_at_new_point(
+        &mut self,
+        system: &mut dyn System,
+        t_end: f64,
+    ) -> Result<(), EvalError> {
+        for i in 0..self.setup.size {
+            self.stage_state[i] = self.x[i] + self.z[2][i];
+        }
+        rhs_checked(
+            system,
+            t_end,
+            &self.stage_state,
+            &mut self.w[0],
+            &mut self.stats,
+        )
+    }
+
+    /// Moves to the end of the accepted step `h` and stores the collocation polynomial;
+    /// `w[0]` holds `f` at the new point.
+    fn accept(&mut self, h: f64, t_end: f64) {
+        let [cont0, cont1, cont2, cont3] = &mut self.dense.cont;
+        for i in 0..self.setup.size {
+            let (z1, z2, z3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
+            self.x[i] += z3;
+            cont0[i] = self.x[i];
+            cont1[i] = (z2 - z3) / C2M1;
+            let ak = (z1 - z2) / C1MC2;
+            let acont3 = (ak - z1 / C1) / C2;
+            cont2[i] = (ak - cont1[i]) / C1M1;
+            cont3[i] = cont2[i] - acont3;
+        }
+        self.dense.start = self.t;
+        self.dense.end = t_end;
+        self.t = t_end;
+        self.previous_step = h;
+        self.first_step = false;
+        self.stats.steps += 1;
+        self.update_scale();
+        self.f_current.copy_from_slice(&self.w[0]);
+        self.jacobian_fresh = false;
+    }
+
+    /// Step-size proposal from the error and the Newton iteration count.
+    fn proposal(&mut self, h: f64, error: f64, iterations: usize) -> f64 {
+        let newton_weight = (1 + 2 * MAX_NEWTON_ITERATIONS) as f64;
+        let fac =
+            SAFETY.min(SAFETY * newton_weight / (iterations + 2 * MAX_NEWTON_ITERATIONS) as f64);
+        let mut quot = (error.powf(0.25) / fac).clamp(FACTOR_MIN, FACTOR_MAX);
+        if error < 1.0 {
+            if let Some((h_accepted, error_accepted)) = self.gustafsson {
+                let predictive =
+                    (h_accepted / h) * (error * error / error_accepted).powf(0.25) / SAFETY;
+                quot = quot.max(predictive.clamp(FACTOR_MIN, FACTOR_MAX));
+            }
+            self.gustafsson = Some((h, error.max(1e-2)));
+        }
+        h / quot
+    }
+
+    fn fail_or_shrink(
+        &mut self,
+        failures: &mut usize,
+        h: f64,
+        eval_error: Option<EvalError>,
+    ) -> Result<(), SolveError> {
+        *failures += 1;
+        self.stats.rejected_steps += 1;
+        self.last_rejected = true;
+        if *failures < MAX_CONSECUTIVE_FAILURES {
+            return Ok(());
+        }
+        Err(match eval_error {
+            Some(error) => eval_failure(self.t, error),
+            None => SolveError::NewtonFailed {
+                time: self.t,
+                step: h,
+                worst: worst_components(&self.z[0], &self.scale),
+            },
+        })
+    }
+}
+
+fn transform_tolerances(tolerances: &mut Tolerances) {
+    for (relative, absolute) in tolerances.relative.iter_mut().zip(&mut tolerances.absolute) {
+        if *relative > 0.0 {
+            let ratio = *absolute / *relative;
+            *relative = 0.1 * relative.powf(2.0 / 3.0);
+            *absolute = *relative * ratio;
+        }
+    }
+}
+
+pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
+    match choice {
+        LinearSolverChoice::Dense => false,
+        LinearSolverChoice::Sparse => system.sparsity().is_some(),
+        LinearSolverChoice::Auto => {
+            system.sparsity().is_some() && system.len() >= SPARSE_AUTO_THRESHOLD
+        }
+    }
+}
+
+impl Integrator for Radau5 {
+    fn method(&self) -> Method {
+        Method::Radau5
+    }
+
+    fn current_time(&self) -> f64 {
+        self.t
+    }
+
+    fn state(&self) -> &[f64] {
+        &self.x
+    }
+
+    fn dense_output(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+
+    fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        if x.len() != self.setup.size {
+            return Err(SolveError::invalid("reset state has the wrong length"));
+        }
+        self.restart(system, t, x)
+    }
+
+    fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
+        if t_limit <= self.t {
+            return Ok(());
+        }
+        let max_step = self.setup.options.max_step;
+        let mut h = self.first_step_size(system, t_limit)?.min(max_step);
+        let (mut failures, mut singular) = (0usize, 0usize);
+        loop {
+            if h < minimum_step(self.t) {
+                return Err(SolveError::StepSizeTooSmall {
+                    time: self.t,
+                    step: h,
+                    worst: worst_components(&self.error_vector, &self.scale),
+                });
+            }
+            let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
+            self.ensure_jacobian(system)?;
+            if !self.factor(h_try) {
+                singular += 1;
+                if singular >= MAX_SINGULAR {
+                    return Err(SolveError::SingularMatrix {
+                        time: self.t,
+                        step: h_try,
+                    });
+                }
+                self.fail_or_shrink(&mut failures, h_try, None)?;
+                h = 0.5 * h_try;
+                continue;
+            }
+            let iterations = match self.newton(system, h_try) {
+                NewtonOutcome::Converged { iterations } => iterations,
+                NewtonOutcome::Failed { factor, eval_error } => {
+                    self.fail_or_shrink(&mut failures, h_try, eval_error)?;
+                    h = factor * h_try;
+                    self.jacobian_valid = self.jacobian_fresh;
+                    continue;
+                }
+            };
+            let error = self.error_estimate(system, h_try);
+            if !error.is_finite() {
+                self.fail_or_shrink(&mut failures, h_try, None)?;
+                h = 0.5 * h_try;
+                continue;
+            }
+            let h_new = self.proposal(h_try, error, iterations);
+            if error >= 1.0 {
+                self.stats.rejected_steps += 1;
+                h = if self.first_step { 0.1 * h_try } else { h_new };
+                self.last_rejected = true;
+                self.jacobian_valid = self.jacobian_fresh;
+                continue;
+            }
+            let t_end = if hits_limit { t_limit } else { self.t + h_try };
+            if let Err(error) = self.evaluate_at_new_point(system, t_end) {
+                self.fail_or_shrink(&mut failures, h_try, Some(error))?;
+                h = 0.5 * h_try;
+                continue;
+            }
+            self.accept(h_try, t_end);
+            let mut h_next = h_new.min(max_step);
+            if self.last_rejected {
+                h_next = h_next.min(h_try);
+            }
+            self.last_rejected = false;
+            if hits_limit && h > h_try {
+                h_next = h_next.max(h.min(max_step));
+            }
+            let quotient = h_next / h_try;
+            if self.theta <= JACOBIAN_REUSE_THETA {
+                if (QUOT_LOW..=QUOT_HIGH).contains(&quotient) {
+                    h_next = h_try;
+                }
+            } else {
+                self.jacobian_valid = false;
+            }
+            self.step_size = Some(h_next);
+            return Ok(());
+        }
+    }
+}

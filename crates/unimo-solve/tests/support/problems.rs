@@ -1,0 +1,392 @@
+//! Test problems shared by the tests, the benchmark and the work-precision example: ROBER
+//! (as a DAE), HIRES, VDPOL from the Bari/CWI test set, plus small problems with known
+//! solutions.
+#![allow(dead_code, clippy::excessive_precision)]
+
+use unimo_solve::{
+    EvalError, JacobianMatrix, Method, Options, SolveError, Solver, Stats, StopReason, System,
+};
+
+/// A reference problem: system, initial point, end time, reference solution at the end.
+pub struct Reference {
+    pub name: &'static str,
+    pub t_end: f64,
+    pub x0: Vec<f64>,
+    pub solution: Vec<f64>,
+}
+
+/// `-log10(max_i |x_i - ref_i| / |ref_i|)`.
+pub fn significant_digits(x: &[f64], reference: &[f64]) -> f64 {
+    let worst = x
+        .iter()
+        .zip(reference)
+        .map(|(v, r)| ((v - r) / r).abs())
+        .fold(0.0, f64::max);
+    -worst.max(1e-300).log10()
+}
+
+/// Integrates from 0 to `t_end` and returns the final state and the counters.
+pub fn solve_to(
+    method: Method,
+    system: &mut dyn System,
+    x0: &[f64],
+    t_end: f64,
+    options: Options,
+) -> Result<(Vec<f64>, Stats), SolveError> {
+    let mut solver = Solver::new(method, system, 0.0, x0, options)?;
+    match solver.step_until(system, t_end)? {
+        StopReason::ReachedStop => {}
+        other => panic!("unexpected stop {other:?}"),
+    }
+    assert_eq!(solver.current_time(), t_end);
+    Ok((solver.state().to_vec(), solver.stats()))
+}
+
+/// The three stiff reference problems of the work-precision comparison.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Benchmark {
+    Rober,
+    Hires,
+    VanDerPol,
+}
+
+impl Benchmark {
+    pub const ALL: [Benchmark; 3] = [Benchmark::Rober, Benchmark::Hires, Benchmark::VanDerPol];
+
+    pub fn reference(self) -> Reference {
+        match self {
+            Benchmark::Rober => Rober::reference(),
+            Benchmark::Hires => Hires::reference(),
+            Benchmark::VanDerPol => VanDerPol::reference(),
+        }
+    }
+
+    pub fn system(self) -> Box<dyn System> {
+        match self {
+            Benchmark::Rober => Box::new(Rober {
+                analytic_jacobian: true,
+            }),
+            Benchmark::Hires => Box::new(Hires),
+            Benchmark::VanDerPol => Box::new(VanDerPol { epsilon: 1e-6 }),
+        }
+    }
+
+    /// Absolute tolerance paired with `rtol` (ROBER 1e-6 rtol, HIRES 1e-4 rtol, VDPOL rtol).
+    pub fn absolute_tolerance(self, rtol: f64) -> f64 {
+        match self {
+            Benchmark::Rober => rtol * 1e-6,
+            Benchmark::Hires => rtol * 1e-4,
+            Benchmark::VanDerPol => rtol,
+        }
+    }
+
+    /// Solves once; returns scd and counters.
+    pub fn run(self, method: Method, rtol: f64) -> Result<(f64, Stats), SolveError> {
+        let reference = self.reference();
+        let mut system = self.system();
+        let options = Options::with_tolerances(rtol, self.absolute_tolerance(rtol));
+        let (state, stats) = solve_to(
+            method,
+            system.as_mut(),
+            &reference.x0,
+            reference.t_end,
+            options,
+        )?;
+        Ok((significant_digits(&state, &reference.solution), stats))
+    }
+}
+
+/// Counters as a snapshot string.
+pub fn counters(stats: &Stats) -> String {
+    stats.to_text()
+}
+
+/// Robertson's chemical kinetics with the conservation law as algebraic row.
+pub struct Rober {
+    pub analytic_jacobian: bool,
+}
+
+impl Rober {
+    pub fn reference() -> Reference {
+        Reference {
+            name: "ROBER",
+            t_end: 1e11,
+            x0: vec![1.0, 0.0, 0.0],
+            solution: vec![
+                2.083340149701255e-8,
+                8.333360770334713e-14,
+                0.9999999791665050,
+            ],
+        }
+    }
+}
+
+impl System for Rober {
+    fn len(&self) -> usize {
+        3
+    }
+    fn differential(&self) -> &[bool] {
+        &[true, true, false]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        out[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+        out[1] = 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1];
+        out[2] = y[0] + y[1] + y[2] - 1.0;
+        Ok(())
+    }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        jac: &mut JacobianMatrix,
+    ) -> Result<bool, EvalError> {
+        if !self.analytic_jacobian {
+            return Ok(false);
+        }
+        jac.set(0, 0, -0.04);
+        jac.set(0, 1, 1e4 * y[2]);
+        jac.set(0, 2, 1e4 * y[1]);
+        jac.set(1, 0, 0.04);
+        jac.set(1, 1, -1e4 * y[2] - 6e7 * y[1]);
+        jac.set(1, 2, -1e4 * y[1]);
+        jac.set(2, 0, 1.0);
+        jac.set(2, 1, 1.0);
+        jac.set(2, 2, 1.0);
+        Ok(true)
+    }
+}
+
+/// HIRES: plant physiology, 8 stiff ODEs.
+pub struct Hires;
+
+impl Hires {
+    pub fn reference() -> Reference {
+        Reference {
+            name: "HIRES",
+            t_end: 321.8122,
+            x0: vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057],
+            solution: vec![
+                7.371312573325668e-4,
+                1.442485726316185e-4,
+                5.888729740967575e-5,
+                1.175651343283149e-3,
+                2.386356198831331e-3,
+                6.238968252742796e-3,
+                2.849998395185769e-3,
+                2.850001604814231e-3,
+            ],
+        }
+    }
+}
+
+impl System for Hires {
+    fn len(&self) -> usize {
+        8
+    }
+    fn differential(&self) -> &[bool] {
+        &[true; 8]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
+        f[1] = 1.71 * y[0] - 8.75 * y[1];
+        f[2] = -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
+        f[3] = 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
+        f[4] = -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
+        f[5] = -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
+        f[6] = 280.0 * y[5] * y[7] - 1.81 * y[6];
+        f[7] = -f[6];
+        Ok(())
+    }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        jac: &mut JacobianMatrix,
+    ) -> Result<bool, EvalError> {
+        let entries = [
+            (0, 0, -1.71),
+            (0, 1, 0.43),
+            (0, 2, 8.32),
+            (1, 0, 1.71),
+            (1, 1, -8.75),
+            (2, 2, -10.03),
+            (2, 3, 0.43),
+            (2, 4, 0.035),
+            (3, 1, 8.32),
+            (3, 2, 1.71),
+            (3, 3, -1.12),
+            (4, 4, -1.745),
+            (4, 5, 0.43),
+            (4, 6, 0.43),
+            (5, 3, 0.69),
+            (5, 4, 1.71),
+            (5, 5, -0.43 - 280.0 * y[7]),
+            (5, 6, 0.69),
+            (5, 7, -280.0 * y[5]),
+            (6, 5, 280.0 * y[7]),
+            (6, 6, -1.81),
+            (6, 7, 280.0 * y[5]),
+            (7, 5, -280.0 * y[7]),
+            (7, 6, 1.81),
+            (7, 7, -280.0 * y[5]),
+        ];
+        for (i, j, v) in entries {
+            jac.set(i, j, v);
+        }
+        Ok(true)
+    }
+}
+
+/// Van der Pol in Lienard scaling: `y1' = y2`, `y2' = ((1 - y1^2) y2 - y1) / eps`.
+pub struct VanDerPol {
+    pub epsilon: f64,
+}
+
+impl VanDerPol {
+    pub fn reference() -> Reference {
+        Reference {
+            name: "VDPOL",
+            t_end: 2.0,
+            x0: vec![2.0, 0.0],
+            solution: vec![1.706167732170483, -0.8928097010247975],
+        }
+    }
+}
+
+impl System for VanDerPol {
+    fn len(&self) -> usize {
+        2
+    }
+    fn differential(&self) -> &[bool] {
+        &[true, true]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = y[1];
+        f[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / self.epsilon;
+        Ok(())
+    }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        jac: &mut JacobianMatrix,
+    ) -> Result<bool, EvalError> {
+        jac.set(0, 1, 1.0);
+        jac.set(1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.epsilon);
+        jac.set(1, 1, (1.0 - y[0] * y[0]) / self.epsilon);
+        Ok(true)
+    }
+}
+
+/// Van der Pol unscaled: `y1' = y2`, `y2' = mu (1 - y1^2) y2 - y1` (finite-difference Jacobian).
+pub struct VanDerPolUnscaled {
+    pub mu: f64,
+}
+
+impl System for VanDerPolUnscaled {
+    fn len(&self) -> usize {
+        2
+    }
+    fn differential(&self) -> &[bool] {
+        &[true, true]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = y[1];
+        f[1] = self.mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+        Ok(())
+    }
+}
+
+/// `y' = lambda y`.
+pub struct Dahlquist {
+    pub lambda: f64,
+}
+
+impl System for Dahlquist {
+    fn len(&self) -> usize {
+        1
+    }
+    fn differential(&self) -> &[bool] {
+        &[true]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = self.lambda * y[0];
+        Ok(())
+    }
+}
+
+/// Kepler two-body problem `q'' = -q / |q|^3` as a first-order system (q1, q2, p1, p2).
+pub struct Kepler;
+
+impl Kepler {
+    /// Initial state of an orbit with eccentricity `e` (period 2 pi).
+    pub fn initial(eccentricity: f64) -> Vec<f64> {
+        vec![
+            1.0 - eccentricity,
+            0.0,
+            0.0,
+            ((1.0 + eccentricity) / (1.0 - eccentricity)).sqrt(),
+        ]
+    }
+}
+
+impl System for Kepler {
+    fn len(&self) -> usize {
+        4
+    }
+    fn differential(&self) -> &[bool] {
+        &[true; 4]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        let r2 = y[0] * y[0] + y[1] * y[1];
+        let r3 = r2 * r2.sqrt();
+        f[0] = y[2];
+        f[1] = y[3];
+        f[2] = -y[0] / r3;
+        f[3] = -y[1] / r3;
+        Ok(())
+    }
+}
+
+/// Harmonic oscillator `x'' = -x`: `x = cos t`, `v = -sin t` from `(1, 0)`.
+pub struct Harmonic;
+
+impl System for Harmonic {
+    fn len(&self) -> usize {
+        2
+    }
+    fn differential(&self) -> &[bool] {
+        &[true, true]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = y[1];
+        f[1] = -y[0];
+        Ok(())
+    }
+}
+
+/// Falling ball `h'' = -g` with the root function `h`.
+pub struct BouncingBall {
+    pub gravity: f64,
+}
+
+impl System for BouncingBall {
+    fn len(&self) -> usize {
+        2
+    }
+    fn differential(&self) -> &[bool] {
+        &[true, true]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        f[0] = y[1];
+        f[1] = -self.gravity;
+        Ok(())
+    }
+    fn n_roots(&self) -> usize {
+        1
+    }
+    fn roots(&mut self, _t: f64, y: &[f64], g: &mut [f64]) -> Result<(), EvalError> {
+        g[0] = y[0];
+        Ok(())
+    }
+}

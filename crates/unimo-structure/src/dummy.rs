@@ -1,0 +1,271 @@
+//! Dummy-derivative selection (Mattsson–Söderlind, structural form): which derivatives
+//! become algebraic so that the reduced system is index 1, and which variables are states.
+
+use std::cmp::Reverse;
+
+use crate::dm::dulmage_mendelsohn_where;
+use crate::error::StructError;
+use crate::graph::BipartiteGraph;
+use crate::ids::{EqId, VarId};
+use crate::matching::{maximum_matching_where, AugmentingPathSearch, Matching};
+use crate::pantelides::PantelidesResult;
+
+/// How much a variable should be a state (Modelica's `stateSelect`), ordered from
+/// "make it algebraic first" to "must stay a state".
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum StateSelectPriority {
+    Never,
+    Avoid,
+    #[default]
+    Default,
+    Prefer,
+    Always,
+}
+
+/// One step of the selection: the differentiated equations considered at this level and
+/// the derivative each is solved for (those derivatives are the level's dummies).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DummyLevel {
+    /// 1 for the highest differentiated equations, 2 for their integrals, ...
+    pub level: u32,
+    pub assignments: Vec<(EqId, VarId)>,
+}
+
+/// The selection. Invariants: there are as many dummies as differentiated equations;
+/// every dummy is a derivative; `states` are the variables whose derivative occurs
+/// (itself or through a higher derivative) and is not a dummy; `dummy_states` those
+/// whose derivative is a dummy (they become algebraic); `is_unknown` marks the
+/// unknowns of the index-1 system — every occurring variable that is not a state.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DummyDerivatives {
+    pub is_dummy: Vec<bool>,
+    pub dummies: Vec<VarId>,
+    pub states: Vec<VarId>,
+    pub dummy_states: Vec<VarId>,
+    pub is_unknown: Vec<bool>,
+    pub levels: Vec<DummyLevel>,
+    /// Variables with priority `Always` that could not stay states.
+    pub always_not_states: Vec<VarId>,
+}
+
+impl DummyDerivatives {
+    /// Whether `v` is a state of the index-1 system.
+    pub fn is_state(&self, v: VarId) -> bool {
+        self.states.binary_search(&v).is_ok()
+    }
+
+    /// A perfect matching of all equations (original and differentiated) with the
+    /// unknowns; Err with the Dulmage–Mendelsohn parts when there is none.
+    pub fn index_one_matching(&self, graph: &BipartiteGraph) -> Result<Matching, StructError> {
+        let unknown = |v: VarId| self.is_unknown.get(v.index()).copied().unwrap_or(false);
+        let matching = maximum_matching_where(graph, |_| true, unknown);
+        let perfect = matching.size() == graph.n_eqs()
+            && graph
+                .vars()
+                .all(|v| !unknown(v) || matching.eq_of(v).is_some());
+        if perfect {
+            return Ok(matching);
+        }
+        Err(dulmage_mendelsohn_where(graph, &matching, |_| true, unknown).into_error())
+    }
+}
+
+/// Selects dummy derivatives on the result of Pantelides' algorithm.
+///
+/// Level 1 takes the highest differentiated equations and, as candidates, the highest
+/// derivative variables that are derivatives of something; a matching restricted to
+/// the candidates picks one dummy per equation. Level k+1 takes the integrals of level
+/// k's equations that are themselves differentiated, and as candidates the integrals of
+/// level k's dummies. Candidates are tried in order of the priority of the variable
+/// that would lose its state (`priority(integral)`: `Never` first, `Always` last), then
+/// higher-order derivatives first, then by id; the greedy order gives the best set in
+/// that order (transversal matroid).
+pub fn select_dummy_derivatives(
+    graph: &BipartiteGraph,
+    pantelides: &PantelidesResult,
+    priority: impl Fn(VarId) -> StateSelectPriority,
+) -> Result<DummyDerivatives, StructError> {
+    let chains = &pantelides.chains;
+    let n_vars = graph.n_vars();
+    let var_levels = chains.var_levels();
+    let mut allowed: Vec<bool> = graph
+        .vars()
+        .map(|v| {
+            pantelides
+                .highest_vars
+                .get(v.index())
+                .copied()
+                .unwrap_or(false)
+                && chains.var_integral(v).is_some()
+        })
+        .collect();
+    let mut eqs: Vec<EqId> = graph
+        .eqs()
+        .filter(|&e| chains.eq_derivative(e).is_none() && chains.eq_integral(e).is_some())
+        .collect();
+    let mut selector = LevelSelector::new(n_vars);
+    let mut result = DummyDerivatives {
+        is_dummy: vec![false; n_vars],
+        ..DummyDerivatives::default()
+    };
+    let mut level = 1u32;
+    while !eqs.is_empty() {
+        let mut candidates = selector.candidates(graph, &eqs, &allowed);
+        candidates.sort_by_key(|&d| {
+            let state = chains.var_integral(d).expect("candidates are derivatives");
+            (priority(state), Reverse(var_levels[state.index()]), d)
+        });
+        let assignments = selector
+            .select(graph, &eqs, &candidates)
+            .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
+        allowed.fill(false);
+        for &(_, d) in &assignments {
+            result.is_dummy[d.index()] = true;
+            let state = chains.var_integral(d).expect("candidates are derivatives");
+            if priority(state) == StateSelectPriority::Always {
+                result.always_not_states.push(state);
+            }
+            if chains.var_integral(state).is_some() {
+                allowed[state.index()] = true;
+            }
+        }
+        result.levels.push(DummyLevel { level, assignments });
+        eqs = eqs
+            .iter()
+            .filter_map(|&e| chains.eq_integral(e))
+            .filter(|&e| chains.eq_integral(e).is_some())
+            .collect();
+        level += 1;
+    }
+    classify_variables(graph, pantelides, &mut result);
+    Ok(result)
+}
+
+/// Fills states, dummy states and unknowns from the dummies.
+fn classify_variables(
+    graph: &BipartiteGraph,
+    pantelides: &PantelidesResult,
+    result: &mut DummyDerivatives,
+) {
+    let chains = &pantelides.chains;
+    let degrees = graph.var_degrees();
+    let mut present = vec![false; graph.n_vars()];
+    for top in graph.vars() {
+        if chains.var_derivative(top).is_some() {
+            continue;
+        }
+        let (mut v, mut occurs) = (top, false);
+        loop {
+            occurs |= degrees[v.index()] > 0;
+            present[v.index()] = occurs;
+            match chains.var_integral(v) {
+                Some(below) => v = below,
+                None => break,
+            }
+        }
+    }
+    result.is_unknown = vec![false; graph.n_vars()];
+    for v in graph.vars() {
+        let derivative = chains.var_derivative(v).filter(|d| present[d.index()]);
+        match derivative {
+            Some(d) if result.is_dummy[d.index()] => result.dummy_states.push(v),
+            Some(_) => result.states.push(v),
+            None => {}
+        }
+        let is_state = derivative.is_some_and(|d| !result.is_dummy[d.index()]);
+        result.is_unknown[v.index()] = degrees[v.index()] > 0 && !is_state;
+        if result.is_dummy[v.index()] {
+            result.dummies.push(v);
+        }
+    }
+    result.always_not_states.sort_unstable();
+}
+
+/// Scratch space for one level: a local graph candidates × equations and a greedy
+/// sequence of pruned augmenting-path searches from the candidates in order.
+struct LevelSelector {
+    local_of: Vec<u32>,
+}
+
+const NOT_LOCAL: u32 = u32::MAX;
+
+impl LevelSelector {
+    fn new(n_vars: usize) -> LevelSelector {
+        LevelSelector {
+            local_of: vec![NOT_LOCAL; n_vars],
+        }
+    }
+
+    /// The allowed variables occurring in `eqs`, without duplicates.
+    fn candidates(&mut self, graph: &BipartiteGraph, eqs: &[EqId], allowed: &[bool]) -> Vec<VarId> {
+        let mut candidates = Vec::new();
+        for &e in eqs {
+            for &v in graph.eq_vars(e) {
+                if allowed[v.index()] && self.local_of[v.index()] == NOT_LOCAL {
+                    self.local_of[v.index()] = 0;
+                    candidates.push(v);
+                }
+            }
+        }
+        for v in &candidates {
+            self.local_of[v.index()] = NOT_LOCAL;
+        }
+        candidates
+    }
+
+    /// Assigns each equation a distinct candidate, preferring earlier candidates; Err
+    /// with the equations left over when that is impossible.
+    fn select(
+        &mut self,
+        graph: &BipartiteGraph,
+        eqs: &[EqId],
+        candidates: &[VarId],
+    ) -> Result<Vec<(EqId, VarId)>, Vec<EqId>> {
+        for (i, v) in candidates.iter().enumerate() {
+            self.local_of[v.index()] = i as u32;
+        }
+        let mut adjacency = vec![Vec::new(); candidates.len()];
+        for (j, &e) in eqs.iter().enumerate() {
+            for v in graph.eq_vars(e) {
+                let local = self.local_of[v.index()];
+                if local != NOT_LOCAL {
+                    adjacency[local as usize].push(VarId::new(j));
+                }
+            }
+        }
+        for v in candidates {
+            self.local_of[v.index()] = NOT_LOCAL;
+        }
+        let local =
+            BipartiteGraph::from_adjacency(eqs.len(), adjacency).expect("local ids are in range");
+        let mut matching = Matching::for_graph(&local);
+        let mut search = AugmentingPathSearch::new();
+        let mut matched = 0;
+        for candidate in local.eqs() {
+            if matched == eqs.len() {
+                break;
+            }
+            matched += usize::from(search.augment_from_eq_pruned(
+                &local,
+                &mut matching,
+                candidate,
+                |_| true,
+            ));
+        }
+        if matched < eqs.len() {
+            let left: Vec<EqId> = local
+                .vars()
+                .filter(|j| matching.eq_of(*j).is_none())
+                .map(|j| eqs[j.index()])
+                .collect();
+            return Err(left);
+        }
+        Ok(local
+            .vars()
+            .map(|j| {
+                let candidate = matching.eq_of(j).expect("all matched");
+                (eqs[j.index()], candidates[candidate.index()])
+            })
+            .collect())
+    }
+}

@@ -1,0 +1,239 @@
+//! Simulation end to end: reference problems against published solutions (scd),
+//! exact event times of the bouncing ball, stiff and extreme cases. Floats are compared
+//! with tolerance-aware bounds; solver counters are snapshot-tested.
+
+mod common;
+
+use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_solve::Method;
+
+fn load(file: &str) -> unimo_cli::LoadedModel {
+    unimo_cli::load_model(&[common::root().join(file)], None)
+        .unwrap_or_else(|e| panic!("{file}:\n{e}"))
+}
+
+fn run(
+    m: &unimo_cli::LoadedModel,
+    method: Method,
+    rtol: f64,
+    atol: f64,
+    stop: f64,
+    points: usize,
+) -> SimResult {
+    let o = SimOptions {
+        start: 0.0,
+        stop,
+        rtol,
+        atol,
+        method,
+        interval: stop / points as f64,
+        every_step: false,
+    };
+    let r = simulate(&m.compiled, &o);
+    assert!(
+        r.error.is_none(),
+        "{:?}",
+        r.error.as_ref().map(|e| e.message())
+    );
+    r
+}
+
+fn value(r: &SimResult, name: &str) -> f64 {
+    let k = r
+        .names
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("no {name}"));
+    r.rows.last().unwrap()[k]
+}
+
+/// Significant correct digits: -log10 of the largest relative error.
+fn scd(r: &SimResult, reference: &[(&str, f64)]) -> f64 {
+    reference
+        .iter()
+        .map(|&(n, want)| ((value(r, n) - want) / want).abs())
+        .fold(0.0f64, f64::max)
+        .log10()
+        .abs()
+}
+
+fn counters(r: &SimResult) -> String {
+    let s = &r.stats.solver;
+    format!(
+        "steps {} rejected {} rhs {} jacobians {} lu {} events {}",
+        s.steps,
+        s.rejected_steps,
+        s.rhs_evals,
+        s.jacobian_evals,
+        s.lu_factorizations,
+        r.stats.events
+    )
+}
+
+const ROBER: [(&str, f64); 3] = [
+    ("y1", 2.083340149701255e-8),
+    ("y2", 8.333360770334713e-14),
+    ("y3", 0.999_999_979_166_505),
+];
+
+#[test]
+fn robertson_dae_reaches_the_required_digits() {
+    let m = load("models/Robertson.mo");
+    for method in [Method::Bdf, Method::Radau5] {
+        let r = run(&m, method, 1e-8, 1e-14, 1e11, 1);
+        let d = scd(&r, &ROBER);
+        assert!(d >= 5.8, "{method:?} rtol 1e-8: scd {d:.2}");
+        let r = run(&m, method, 1e-10, 1e-16, 1e11, 1);
+        let d = scd(&r, &ROBER);
+        assert!(d >= 7.0, "{method:?} rtol 1e-10: scd {d:.2}");
+    }
+}
+
+#[test]
+fn hires_and_van_der_pol_match_the_test_set() {
+    let hires = load("models/Hires.mo");
+    let reference = [
+        7.371312573325668e-4,
+        1.442485726316185e-4,
+        5.888729740967575e-5,
+        1.175651343283149e-3,
+        2.386356198831331e-3,
+        6.238968252742796e-3,
+        2.849998395185769e-3,
+        2.850001604814231e-3,
+    ];
+    let names: Vec<String> = (1..=8).map(|k| format!("y[{k}]")).collect();
+    let hires_ref: Vec<(&str, f64)> = names.iter().map(|n| n.as_str()).zip(reference).collect();
+    let vdpol = load("models/VanDerPol.mo");
+    let vdpol_ref = [("y1", 1.706167732170483), ("y2", -0.8928097010247975)];
+    for method in [Method::Bdf, Method::Radau5] {
+        let r = run(&hires, method, 1e-8, 1e-10, 321.8122, 1);
+        let d = scd(&r, &hires_ref);
+        assert!(d >= 5.5, "HIRES {method:?}: scd {d:.2}");
+        let r = run(&vdpol, method, 1e-8, 1e-10, 2.0, 1);
+        let d = scd(&r, &vdpol_ref);
+        assert!(d >= 6.0, "VDPOL {method:?}: scd {d:.2}");
+    }
+}
+
+/// Impact n of a ball dropped from h: t_n = (v1/g)(1 + 2e(1 - e^(n-1))/(1 - e)).
+fn impact_time(n: i32, h: f64, g: f64, e: f64) -> f64 {
+    let v1 = (2.0 * g * h).sqrt();
+    v1 / g * (1.0 + 2.0 * e * (1.0 - e.powi(n - 1)) / (1.0 - e))
+}
+
+#[test]
+fn bouncing_ball_impacts_are_exact() {
+    let m = load("models/BouncingBall.mo");
+    let (h, g, e): (f64, f64, f64) = (10.0, 9.81, 0.8);
+    let zeno = (2.0 * h / g).sqrt() * (1.0 + e) / (1.0 - e);
+    assert!((zeno - 12.850588106343585).abs() < 1e-12);
+    let stop = 12.5;
+    let expected: Vec<f64> = (1..)
+        .map(|n| impact_time(n, h, g, e))
+        .take_while(|&t| t < stop)
+        .collect();
+    for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
+        for rtol in [1e-6, 1e-10] {
+            let r = run(&m, method, rtol, rtol / 100.0, stop, 10);
+            let times: Vec<f64> = r.events.iter().map(|ev| ev.time).collect();
+            assert_eq!(
+                times.len(),
+                expected.len(),
+                "{method:?} {rtol:e}: {times:?}"
+            );
+            let worst = times
+                .iter()
+                .zip(&expected)
+                .map(|(t, want)| ((t - want) / want).abs())
+                .fold(0.0f64, f64::max);
+            eprintln!("bouncing ball {method:?} rtol {rtol:e}: {} impacts, worst relative error {worst:e}", times.len());
+            assert!(
+                worst <= 1e-12,
+                "{method:?} rtol {rtol:e}: worst relative impact error {worst:e}"
+            );
+            assert_eq!(value(&r, "bounces"), expected.len() as f64);
+        }
+    }
+}
+
+#[test]
+fn guarded_ball_rests_past_the_zeno_time() {
+    let m = load("models/BouncingBallResting.mo");
+    let r = run(&m, Method::Auto, 1e-8, 1e-10, 20.0, 20);
+    assert_eq!(value(&r, "resting"), 1.0);
+    assert_eq!(value(&r, "h"), 0.0);
+    assert_eq!(value(&r, "v"), 0.0);
+    // It came to rest at the Zeno time (within the guard's speed).
+    let rest = r.events.last().unwrap().time;
+    assert!((rest - 12.850588106343585).abs() < 1e-6, "rested at {rest}");
+}
+
+#[test]
+fn stiff_extremes_finish_in_few_steps() {
+    let mut report = String::new();
+    let dahlquist = load("models/Dahlquist.mo");
+    let vdp = load("models/VanDerPolStiff.mo");
+    for method in [Method::Bdf, Method::Radau5] {
+        let r = run(&dahlquist, method, 1e-6, 1e-8, 1.0, 1);
+        assert!(value(&r, "y").abs() < 1e-8);
+        assert!(r.stats.solver.steps < 500, "{}", counters(&r));
+        report += &format!("Dahlquist {method:?}: {}\n", counters(&r));
+        let r = run(&vdp, method, 1e-6, 1e-6, 2e6, 1);
+        // Two relaxation jumps (period 1.614 mu): back on the upper branch.
+        assert!((value(&r, "x") - 1.7055).abs() < 1e-3);
+        assert!(r.stats.solver.steps < 3000, "{}", counters(&r));
+        report += &format!("VanDerPol mu=1e6 {method:?}: {}\n", counters(&r));
+    }
+    insta::assert_snapshot!(report);
+}
+
+#[test]
+fn stiff_penalty_ball_never_gains_energy() {
+    let m = load("models/PenaltyBall.mo");
+    for method in [Method::Bdf, Method::Radau5] {
+        let mut o = SimOptions {
+            start: 0.0,
+            stop: 3.0,
+            rtol: 1e-6,
+            atol: 1e-8,
+            method,
+            interval: 0.01,
+            every_step: true,
+        };
+        o.every_step = true;
+        let r = simulate(&m.compiled, &o);
+        assert!(r.error.is_none());
+        let k = r.names.iter().position(|n| n == "E").unwrap();
+        let e: Vec<f64> = r.rows.iter().map(|row| row[k]).collect();
+        let e0 = e[0];
+        let max = e.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            max <= e0 * (1.0 + 1e-12),
+            "{method:?}: energy rose to {max} from {e0}"
+        );
+        assert!(
+            *e.last().unwrap() < 0.9 * e0,
+            "{method:?}: the damper took no energy"
+        );
+    }
+}
+
+#[test]
+fn pendulum_keeps_its_constraint() {
+    let m = load("models/Pendulum.mo");
+    let o = SimOptions {
+        start: 0.0,
+        stop: 10.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Auto,
+        interval: 0.01,
+        every_step: false,
+    };
+    let r = simulate(&m.compiled, &o);
+    assert!(r.error.is_none());
+    let k = r.names.iter().position(|n| n == "drift").unwrap();
+    let drift = r.rows.iter().map(|row| row[k].abs()).fold(0.0f64, f64::max);
+    assert!(drift < 1e-12, "constraint drift {drift:e}");
+}
