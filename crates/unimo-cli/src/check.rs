@@ -56,7 +56,14 @@ fn count_classes(def: &StoredDefinition) -> usize {
     def.classes.iter().map(rec).sum()
 }
 
-pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, balance: bool, color: bool) -> i32 {
+pub fn check(
+    paths: &[PathBuf],
+    libs: &[PathBuf],
+    stats: bool,
+    balance: bool,
+    analysis: bool,
+    color: bool,
+) -> i32 {
     let started = Instant::now();
     let files = match collect(paths) {
         Ok(f) => f,
@@ -110,6 +117,7 @@ pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, balance: bool, co
         user_classes.extend(tree.add_user_file(id, ast));
     }
     let mut flattened = 0;
+    let mut model_stats = Vec::new();
     for c in &user_classes {
         diags.extend(unimo_flat::resolve::check_names(&mut tree, *c));
     }
@@ -123,6 +131,19 @@ pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, balance: bool, co
             if !fd.iter().any(|d| d.is_error()) {
                 let span = tree.get(c).def.name.span;
                 fd.extend(unimo_flat::balance::check(&flat, span));
+            }
+            if analysis && !fd.iter().any(|d| d.is_error()) {
+                let t0 = Instant::now();
+                match unimo_dae::analyze_model(&flat) {
+                    Ok((dae, analysis)) => {
+                        if stats {
+                            let mut plan = analysis.plan.clone();
+                            unimo_dae::prune::prune(&dae, &mut plan, &[]);
+                            model_stats.push((flat.name.clone(), plan.stats, t0.elapsed()));
+                        }
+                    }
+                    Err(d) => fd.extend(d),
+                }
             }
             diags.extend(fd);
             flattened += 1;
@@ -144,6 +165,25 @@ pub fn check(paths: &[PathBuf], libs: &[PathBuf], stats: bool, balance: bool, co
             s.library_bytes,
             s.classes,
             elapsed.as_secs_f64() * 1e3
+        );
+    }
+    for (name, p, time) in &model_stats {
+        eprintln!(
+            "stats: model={name} flat_scalars={} aliases_removed={} constants_removed={} equations={} differentiated={} states={} dummy_derivatives={} algebraic={} blocks={} torn_blocks={} largest_block={} zero_crossings={} pruned={} analysis_ms={:.2}",
+            p.flat_scalars,
+            p.aliases_removed,
+            p.constants_removed,
+            p.equations,
+            p.differentiated_equations,
+            p.states,
+            p.dummy_derivatives,
+            p.algebraic,
+            p.blocks,
+            p.torn_blocks,
+            p.largest_block,
+            p.zero_crossings,
+            p.pruned_equations,
+            time.as_secs_f64() * 1e3
         );
     }
     let plural = |n: usize, w: &str| format!("{n} {w}{}", if n == 1 { "" } else { "s" });

@@ -57,8 +57,10 @@ enum Command {
     /// Check Modelica files: syntax, names, and the balance of every model.
     ///
     /// PATHs may be files or folders; folders are searched recursively for `*.mo`.
-    /// Every top-level model that no other class of its file uses is flattened and its
-    /// equations and unknowns counted. Exits 0 when every file is clean, 1 when any has
+    /// Every top-level model that no other class of its file uses is flattened, its
+    /// equations and unknowns counted, and it is analysed as for simulation (lowering,
+    /// alias elimination, index reduction, BLT, tearing); `--stats` prints the counts
+    /// after each step per model. Exits 0 when every file is clean, 1 when any has
     /// an error.
     Check {
         /// Files or folders to check.
@@ -74,6 +76,10 @@ enum Command {
         /// Skip flattening and the balance check: syntax and names only.
         #[arg(long)]
         no_balance: bool,
+        /// Skip the back end (lowering, alias elimination, index reduction, BLT):
+        /// syntax, names, flattening and balance only.
+        #[arg(long)]
+        no_analysis: bool,
     },
     /// Instantiate a model and print it as flat Modelica.
     ///
@@ -273,7 +279,8 @@ fn run_on_this_thread() -> i32 {
             stats,
             libs,
             no_balance,
-        } => check::check(&paths, &libs, stats, !no_balance, color),
+            no_analysis,
+        } => check::check(&paths, &libs, stats, !no_balance, !no_analysis, color),
         Command::Flatten {
             files,
             model,

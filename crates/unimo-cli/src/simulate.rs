@@ -103,7 +103,31 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                     return EXIT_MODEL_ERROR;
                 }
             };
-            let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+            // Select the outputs first: with --vars, what they do not need is left out.
+            let output_ids: Vec<unimo_dae::expr::ScalarId> = dae
+                .ids()
+                .filter(|&s| {
+                    !matches!(
+                        dae.scalar(s).kind,
+                        unimo_dae::dae::ScalarKind::Parameter
+                            | unimo_dae::dae::ScalarKind::Constant
+                    )
+                })
+                .collect();
+            let all_names: Vec<String> = output_ids.iter().map(|&s| dae.name(s)).collect();
+            let cols = match select(&all_names, &a.vars) {
+                Ok(c) => c,
+                Err(msg) => {
+                    eprintln!("error: {msg}");
+                    return EXIT_USAGE;
+                }
+            };
+            let mut plan = analysis.plan.clone();
+            if !a.vars.is_empty() {
+                let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
+                unimo_dae::prune::prune(&dae, &mut plan, &wanted);
+            }
+            let compiled = unimo_runtime::model::compile(&dae, &plan);
             let compile_ms = started.elapsed().as_secs_f64() * 1e3;
             let ex = &dae.experiment;
             let start = a.start.or(ex.start_time).unwrap_or(0.0);
@@ -123,14 +147,6 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 eprintln!("error: the interval and tolerances must be positive");
                 return EXIT_USAGE;
             }
-            let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
-            let cols = match select(&names, &a.vars) {
-                Ok(c) => c,
-                Err(msg) => {
-                    eprintln!("error: {msg}");
-                    return EXIT_USAGE;
-                }
-            };
             let options = SimOptions {
                 start,
                 stop,
@@ -160,7 +176,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             if a.stats {
                 let s = &result.stats;
                 eprintln!(
-                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
+                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
                 format!("{:?}", a.method).to_lowercase(),
                 compiled.states.len(),
                 s.solver.steps,
@@ -172,6 +188,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 s.events,
                 s.event_iterations,
                 s.rhs_evaluations,
+                plan.stats.pruned_equations,
                 compile_ms,
                 simulate_ms
             );

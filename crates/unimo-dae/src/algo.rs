@@ -8,7 +8,7 @@ use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, ScalarId};
 use crate::lower::{broadcast, unsupported, Local, Lowerer, MAX_INLINE_DEPTH_PUB};
 use crate::tensor::Tensor;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use unimo_flat::functions::FlatFunction;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
@@ -64,7 +64,7 @@ impl Lowerer<'_> {
                 let mut keys: Vec<ScalarId> = ta.keys().chain(oa.keys()).copied().collect();
                 keys.sort();
                 keys.dedup();
-                let mut m = HashMap::new();
+                let mut m = HashMap::default();
                 for s in keys {
                     let dflt = self.unassigned_value(s);
                     let x = ta.get(&s).copied().unwrap_or(dflt);
@@ -128,7 +128,7 @@ impl Lowerer<'_> {
             StatementKind::While { condition, body } => {
                 for _ in 0..MAX_WHILE_ITERATIONS {
                     let c = self.scalar(condition)?;
-                    match self.dae.arena.as_const(c) {
+                    match self.const_value(c) {
                         Some(0.0) => return Ok(Flow::Next),
                         Some(_) => {}
                         None => return Err(DaeError::new(
@@ -169,7 +169,7 @@ impl Lowerer<'_> {
             return self.exec_block(otherwise);
         };
         let c = self.scalar(cond)?;
-        match self.dae.arena.as_const(c) {
+        match self.const_value(c) {
             Some(x) if x != 0.0 => return self.exec_block(body),
             Some(_) => return self.exec_if(rest, otherwise, span),
             None => {}
@@ -292,7 +292,7 @@ impl Lowerer<'_> {
                     let t = t?;
                     let mut out = Vec::new();
                     for &x in &t.data {
-                        let k = self.dae.arena.as_const(x).ok_or_else(|| {
+                        let k = self.const_value(x).ok_or_else(|| {
                             DaeError::new(
                                 "E3002",
                                 "an assigned element's index must be known at compile time",
@@ -431,7 +431,7 @@ impl Lowerer<'_> {
         };
         for (cond, body) in branches {
             let conditions = self.expr(cond)?.data;
-            let saved_assigned = self.assigned.replace(HashMap::new());
+            let saved_assigned = self.assigned.replace(HashMap::default());
             let saved_actions = self.when_actions.replace(Vec::new());
             let r = self.exec_block(body);
             let assigned =
@@ -588,7 +588,7 @@ impl Lowerer<'_> {
     /// A model algorithm section: each assigned variable gets the equation
     /// `v = <its final symbolic value>`; `when` statements become `when` clauses.
     pub(crate) fn algorithm(&mut self, body: &[Statement], span: Span) -> DaeResult<()> {
-        self.assigned = Some(HashMap::new());
+        self.assigned = Some(HashMap::default());
         let r = self.exec_block(body);
         let assigned = self.assigned.take().unwrap_or_default();
         r?;

@@ -9,7 +9,7 @@
 use crate::dae::{Dae, ScalarKind, WhenAction};
 use crate::diff::solve_linear;
 use crate::expr::{ExprId, Node, ScalarId};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// What alias elimination did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -38,7 +38,7 @@ fn rank(dae: &Dae, s: ScalarId) -> (bool, bool, usize, std::cmp::Reverse<u32>) {
 
 pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     let mut stats = AliasStats::default();
-    let mut reinit_targets = std::collections::HashSet::new();
+    let mut reinit_targets = rustc_hash::FxHashSet::default();
     for w in &dae.whens {
         for b in &w.branches {
             for (a, _) in &b.actions {
@@ -48,10 +48,10 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
             }
         }
     }
-    let mut map: HashMap<ScalarId, ExprId> = HashMap::new();
+    let mut map: HashMap<ScalarId, ExprId> = HashMap::default();
     // Representative -> the scalars currently mapped onto it (so that map values never
     // mention an eliminated scalar).
-    let mut members: HashMap<ScalarId, Vec<ScalarId>> = HashMap::new();
+    let mut members: HashMap<ScalarId, Vec<ScalarId>> = HashMap::default();
     let mut keep = vec![true; dae.equations.len()];
     // Passes until nothing changes: an elimination can turn an earlier equation into
     // an alias.
@@ -65,7 +65,7 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
             let residual = dae.arena.sub(l, r);
             let residual =
                 dae.arena
-                    .substitute(residual, &|s| map.get(&s).copied(), &mut HashMap::new());
+                    .substitute(residual, &|s| map.get(&s).copied(), &mut HashMap::default());
             if dae.arena.vars(residual).len() > 2 {
                 continue;
             }
@@ -147,7 +147,7 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
             let nv = dae.arena.substitute(
                 v,
                 &|x| if x != s { map.get(&x).copied() } else { None },
-                &mut HashMap::new(),
+                &mut HashMap::default(),
             );
             if nv != v {
                 map.insert(s, nv);
@@ -161,7 +161,7 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     for (&s, &v) in &map {
         dae.scalars[s.index()].alias = Some(v);
     }
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let lookup = |s: ScalarId| map.get(&s).copied();
     let mut k = 0;
     dae.equations.retain(|_| {
@@ -216,7 +216,7 @@ fn eliminate(
         let new = dae.arena.substitute(
             old,
             &|s| if s == elim { Some(value) } else { None },
-            &mut HashMap::new(),
+            &mut HashMap::default(),
         );
         map.insert(m, new);
     }
@@ -230,7 +230,7 @@ fn eliminate(
 /// Equations with `time`, `pre`, `initial()` or relations are not aliases.
 fn has_time_or_events(dae: &Dae, e: ExprId) -> bool {
     let mut stack = vec![e];
-    let mut seen = std::collections::HashSet::new();
+    let mut seen = rustc_hash::FxHashSet::default();
     while let Some(x) = stack.pop() {
         if !seen.insert(x) {
             continue;

@@ -8,7 +8,7 @@ use crate::diff::{partial, solve_linear};
 use crate::error::DaeError;
 use crate::expr::{ExprId, Node, ScalarId};
 use crate::plan::{Block, Plan, PlanStats, PlanStep};
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use unimo_structure as st;
 
 /// The DAE as the structural algorithms see it.
@@ -36,7 +36,7 @@ fn in_graph(dae: &Dae, s: ScalarId, when_assigned: &HashSet<ScalarId>) -> bool {
 
 impl<'d> DaeSystem<'d> {
     pub fn new(dae: &'d mut Dae) -> DaeSystem<'d> {
-        let mut when_assigned = HashSet::new();
+        let mut when_assigned = HashSet::default();
         for w in &dae.whens {
             for b in &w.branches {
                 for (a, _) in &b.actions {
@@ -163,7 +163,7 @@ impl st::IndexReductionSystem for DaeSystem<'_> {
 
 fn contains_non_differentiable(dae: &Dae, e: ExprId) -> bool {
     let mut stack = vec![e];
-    let mut seen = HashSet::new();
+    let mut seen = HashSet::default();
     while let Some(x) = stack.pop() {
         if !seen.insert(x) {
             continue;
@@ -211,7 +211,7 @@ pub fn time_derivative(dae: &mut Dae, e: ExprId) -> ExprId {
         var: &mut var,
         time: 1.0,
     };
-    crate::diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::new())
+    crate::diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::default())
 }
 
 fn priority(s: StateSelect) -> st::StateSelectPriority {
@@ -252,8 +252,9 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         .map_err(|e| struct_error(&sys, e))?;
 
     // Solvability of the edges inside blocks of size > 1 (for tearing).
-    let mut solvable: HashSet<(u32, u32)> = HashSet::new();
-    let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::new();
+    let mut parameter_values: HashMap<ScalarId, f64> = HashMap::default();
+    let mut solvable: HashSet<(u32, u32)> = HashSet::default();
+    let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::default();
     for b in &blocks {
         if b.size() <= 1 {
             continue;
@@ -272,7 +273,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
                             ScalarKind::Continuous | ScalarKind::Derivative
                         )
                     });
-                    if known_coef && sys.dae.arena.as_const(coef) != Some(0.0) {
+                    if known_coef && !zero_at_parameters(sys.dae, &mut parameter_values, coef) {
                         solvable.insert((e.0, v.0));
                         solutions.insert((e.0, v.0), sol);
                     }
@@ -356,6 +357,65 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     Ok(Analysis { plan, dump })
 }
 
+fn is_parameter(dae: &Dae, s: ScalarId) -> bool {
+    matches!(
+        dae.scalar(s).kind,
+        ScalarKind::Parameter | ScalarKind::Constant
+    )
+}
+
+/// Parameter values for [`ExprArena::eval`](crate::expr::ExprArena::eval) (NaN when unknown).
+struct ParameterValues<'a>(&'a HashMap<ScalarId, f64>);
+
+impl crate::expr::EvalEnv for ParameterValues<'_> {
+    fn value(&self, s: ScalarId) -> f64 {
+        self.0.get(&s).copied().unwrap_or(f64::NAN)
+    }
+}
+
+/// Whether a tearing pivot `coef` is zero: a zero constant, or an expression in
+/// parameters and constants only that is zero at their values (e.g. an off-diagonal
+/// entry `I[1,3]` of a diagonal inertia matrix, which the incidence still counts).
+/// Coefficients with discrete variables cannot be evaluated here and count as nonzero.
+fn zero_at_parameters(dae: &Dae, values: &mut HashMap<ScalarId, f64>, coef: ExprId) -> bool {
+    if let Some(c) = dae.arena.as_const(coef) {
+        return c == 0.0;
+    }
+    let vars = dae.arena.vars(coef);
+    if !vars.iter().all(|&s| is_parameter(dae, s)) {
+        return false;
+    }
+    for s in vars {
+        parameter_value(dae, values, s, 0);
+    }
+    dae.arena.eval(coef, &ParameterValues(values)) == 0.0
+}
+
+/// The value of a parameter or constant from its binding (else its start value); NaN
+/// when it has neither, depends on non-parameters or on itself.
+fn parameter_value(dae: &Dae, values: &mut HashMap<ScalarId, f64>, s: ScalarId, depth: u32) -> f64 {
+    if let Some(&v) = values.get(&s) {
+        return v;
+    }
+    let sc = dae.scalar(s);
+    let value = match sc.binding.or(sc.start) {
+        Some(b) if depth < 64 && is_parameter(dae, s) => {
+            let deps = dae.arena.vars(b);
+            if deps.iter().all(|&d| is_parameter(dae, d)) {
+                for d in deps {
+                    parameter_value(dae, values, d, depth + 1);
+                }
+                dae.arena.eval(b, &ParameterValues(values))
+            } else {
+                f64::NAN
+            }
+        }
+        _ => f64::NAN,
+    };
+    values.insert(s, value);
+    value
+}
+
 /// A block: inner assignments substituted into the residuals for the symbolic Jacobian.
 fn newton_block(
     dae: &mut Dae,
@@ -364,14 +424,14 @@ fn newton_block(
     inner: &[(ScalarId, ExprId)],
     residuals: &[ExprId],
 ) -> Block {
-    let mut full: HashMap<ScalarId, ExprId> = HashMap::new();
+    let mut full: HashMap<ScalarId, ExprId> = HashMap::default();
     for &(v, e) in inner {
         let e = dae
             .arena
-            .substitute(e, &|s| full.get(&s).copied(), &mut HashMap::new());
+            .substitute(e, &|s| full.get(&s).copied(), &mut HashMap::default());
         full.insert(v, e);
     }
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let substituted: Vec<ExprId> = residuals
         .iter()
         .map(|&r| {
@@ -404,7 +464,7 @@ fn newton_block(
 
 fn has_if(dae: &Dae, e: ExprId) -> bool {
     let mut stack = vec![e];
-    let mut seen = HashSet::new();
+    let mut seen = HashSet::default();
     while let Some(x) = stack.pop() {
         if !seen.insert(x) {
             continue;

@@ -3,7 +3,7 @@
 //! node, and `solve` for equations linear in one variable.
 
 use crate::expr::{ExprArena, ExprId, Fn1, Fn2, Node, ScalarId};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// What a derivative needs to know about the leaves.
 pub struct Seed<'a> {
@@ -225,7 +225,7 @@ pub fn partial(arena: &mut ExprArena, e: ExprId, v: ScalarId) -> ExprId {
         var: &mut var,
         time: 0.0,
     };
-    derivative(arena, e, &mut seed, &mut HashMap::new())
+    derivative(arena, e, &mut seed, &mut HashMap::default())
 }
 
 /// When `residual` (meaning `residual = 0`) is linear in `v` with a coefficient that
@@ -248,7 +248,7 @@ pub fn solve_linear(
     let rest = arena.substitute(
         residual,
         &|s| if s == v { Some(zero) } else { None },
-        &mut HashMap::new(),
+        &mut HashMap::default(),
     );
     let neg = arena.neg(rest);
     let solution = arena.div(neg, coefficient);
@@ -259,7 +259,7 @@ pub fn solve_linear(
 /// linear in `v` even where its derivative looks constant).
 fn condition_mentions(arena: &ExprArena, e: ExprId, v: ScalarId) -> bool {
     let mut stack = vec![e];
-    let mut seen = std::collections::HashSet::new();
+    let mut seen = rustc_hash::FxHashSet::default();
     while let Some(x) = stack.pop() {
         if !seen.insert(x) {
             continue;

@@ -178,7 +178,7 @@ impl Lowerer<'_> {
         let mut bodies = Vec::new();
         for (c, body) in branches {
             let c = self.scalar(c)?;
-            match self.dae.arena.as_const(c) {
+            match self.const_value(c) {
                 Some(x) if x != 0.0 && conds.is_empty() => return self.body_rows(body),
                 Some(0.0) => continue,
                 _ => {}
@@ -471,7 +471,7 @@ impl Lowerer<'_> {
             let Some(b) = &md.binding else {
                 continue;
             };
-            let value = self.scalar(b).ok().and_then(|x| self.dae.arena.as_const(x));
+            let value = self.scalar(b).ok().and_then(|x| self.const_value(x));
             let e = &mut self.dae.experiment;
             match name.to_dotted().as_str() {
                 "StartTime" => e.start_time = value,

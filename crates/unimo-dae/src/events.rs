@@ -4,7 +4,7 @@
 
 use crate::dae::Dae;
 use crate::expr::{ExprId, Node};
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 /// The relations that generate state events, in first-occurrence order, and the
 /// `sample` nodes (time events).
@@ -16,7 +16,7 @@ pub struct Crossings {
 
 pub fn zero_crossings(dae: &Dae) -> Crossings {
     let mut out = Crossings::default();
-    let mut seen = HashSet::new();
+    let mut seen = HashSet::default();
     let mut roots: Vec<ExprId> = Vec::new();
     for e in &dae.equations {
         roots.push(e.lhs);
@@ -60,7 +60,7 @@ fn collect(dae: &Dae, e: ExprId, seen: &mut HashSet<ExprId>, out: &mut Crossings
 
 fn depends_on_time(dae: &Dae, e: ExprId) -> bool {
     let mut stack = vec![e];
-    let mut seen = HashSet::new();
+    let mut seen = HashSet::default();
     while let Some(x) = stack.pop() {
         if !seen.insert(x) {
             continue;

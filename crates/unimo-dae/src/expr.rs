@@ -2,7 +2,7 @@
 //! constructors (constant folding, neutral elements, canonical operand order), so equal
 //! subexpressions are one node (common subexpressions come for free).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::fmt;
 
 /// Index of an expression node in an [`ExprArena`].
@@ -530,9 +530,9 @@ impl ExprArena {
     /// first occurrence.
     pub fn vars(&self, id: ExprId) -> Vec<ScalarId> {
         let mut out = Vec::new();
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = rustc_hash::FxHashSet::default();
         let mut stack = vec![id];
-        let mut visited = std::collections::HashSet::new();
+        let mut visited = rustc_hash::FxHashSet::default();
         while let Some(e) = stack.pop() {
             if !visited.insert(e) {
                 continue;

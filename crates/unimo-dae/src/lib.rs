@@ -17,6 +17,7 @@ pub mod events;
 pub mod expr;
 pub mod lower;
 pub mod plan;
+pub mod prune;
 pub mod tensor;
 
 pub use dae::Dae;

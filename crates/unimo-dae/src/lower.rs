@@ -8,7 +8,7 @@ use crate::diff;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
 use crate::tensor::{self, Tensor};
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use unimo_flat::flat::{FlatType, Variability};
 use unimo_flat::functions::FlatFunction;
 use unimo_flat::FlatModel;
@@ -39,7 +39,18 @@ pub struct Lowerer<'m> {
     pub(crate) end_stack: Vec<usize>,
     /// Actions collected while lowering the body of a `when`.
     pub(crate) when_actions: Option<Vec<(WhenAction, Span)>>,
+    /// Values of parameters evaluated at compile time (NaN: not evaluable).
+    pub(crate) parameter_values: HashMap<ScalarId, f64>,
     pub(crate) errors: Vec<DaeError>,
+}
+
+/// Parameter values for [`ExprArena::eval`].
+struct ParameterEnv<'a>(&'a HashMap<ScalarId, f64>);
+
+impl crate::expr::EvalEnv for ParameterEnv<'_> {
+    fn value(&self, s: ScalarId) -> f64 {
+        self.0.get(&s).copied().unwrap_or(f64::NAN)
+    }
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
@@ -55,7 +66,7 @@ impl<'m> Lowerer<'m> {
                 enumerations: model.enumerations.clone(),
                 ..Dae::default()
             },
-            vars: HashMap::new(),
+            vars: HashMap::default(),
             functions: model
                 .functions
                 .iter()
@@ -66,8 +77,83 @@ impl<'m> Lowerer<'m> {
             inline_depth: 0,
             end_stack: Vec::new(),
             when_actions: None,
+            parameter_values: HashMap::default(),
             errors: Vec::new(),
         }
+    }
+
+    /// The value of `e` when it is known at compile time: a constant, or an expression
+    /// of parameters and constants whose bindings can be evaluated (structural
+    /// parameters: sizes, ranges, indices, conditions of `if`-equations).
+    pub(crate) fn const_value(&mut self, e: ExprId) -> Option<f64> {
+        if let Some(c) = self.dae.arena.as_const(e) {
+            return Some(c);
+        }
+        if !self.parameters_only(e) {
+            return None;
+        }
+        for s in self.dae.arena.vars(e) {
+            self.parameter_value(s, 0)?;
+        }
+        let values = &self.parameter_values;
+        let env = ParameterEnv(values);
+        let v = self.dae.arena.eval(e, &env);
+        v.is_finite().then_some(v)
+    }
+
+    /// Whether every leaf of `e` is a constant or a parameter (no time, `pre`, ...).
+    fn parameters_only(&self, e: ExprId) -> bool {
+        let mut stack = vec![e];
+        let mut seen = HashSet::default();
+        while let Some(x) = stack.pop() {
+            if !seen.insert(x) {
+                continue;
+            }
+            match self.dae.arena.node(x) {
+                Node::Const(_) => {}
+                Node::Var(s) => {
+                    if !matches!(
+                        self.dae.scalar(s).kind,
+                        ScalarKind::Parameter | ScalarKind::Constant
+                    ) {
+                        return false;
+                    }
+                }
+                Node::Time | Node::Pre(_) | Node::Initial | Node::Sample(..) => return false,
+                _ => stack.extend(self.dae.arena.children(x)),
+            }
+        }
+        true
+    }
+
+    fn parameter_value(&mut self, s: ScalarId, depth: u32) -> Option<f64> {
+        if let Some(v) = self.parameter_values.get(&s) {
+            return v.is_finite().then_some(*v);
+        }
+        let sc = self.dae.scalar(s);
+        let binding = if sc.fixed == Some(false) {
+            None
+        } else {
+            sc.binding.or(sc.start)
+        };
+        let value = match binding {
+            Some(b) if depth < 64 && self.parameters_only(b) => {
+                let mut ok = true;
+                for d in self.dae.arena.vars(b) {
+                    ok &= self.parameter_value(d, depth + 1).is_some();
+                }
+                if ok {
+                    self.dae
+                        .arena
+                        .eval(b, &ParameterEnv(&self.parameter_values))
+                } else {
+                    f64::NAN
+                }
+            }
+            _ => f64::NAN,
+        };
+        self.parameter_values.insert(s, value);
+        value.is_finite().then_some(value)
     }
 
     pub(crate) fn a(&mut self) -> &mut ExprArena {
@@ -180,7 +266,7 @@ impl<'m> Lowerer<'m> {
                 };
                 for k in 0..n {
                     let e = t.data[k];
-                    let c = self.dae.arena.as_const(e);
+                    let c = self.const_value(e);
                     let s = &mut self.dae.scalars[first.index() + k];
                     match which {
                         "start" => s.start = Some(e),
@@ -231,6 +317,34 @@ impl<'m> Lowerer<'m> {
                 return self.subscript(v, &r.parts[0].subscripts, r.span);
             }
         }
+        // Subscripts of an inner part (`p[i].x` in a loop) must be known here: they
+        // select the component, hence the variable.
+        let folded;
+        let r = if r.parts[..r.parts.len().saturating_sub(1)]
+            .iter()
+            .any(|p| !p.subscripts.is_empty())
+        {
+            let mut c = r.clone();
+            let n = c.parts.len();
+            for part in &mut c.parts[..n - 1] {
+                for sub in &mut part.subscripts {
+                    if let Subscript::Expr(e) = sub {
+                        if matches!(e.kind, ExprKind::Integer(_)) {
+                            continue;
+                        }
+                        let k = self.constant_int(e)?;
+                        *e = Expr {
+                            kind: ExprKind::Integer(k),
+                            span: e.span,
+                        };
+                    }
+                }
+            }
+            folded = c;
+            &folded
+        } else {
+            r
+        };
         let key = unimo_flat::eval::var_key(r);
         let builtin_enum = r.parts.len() == 2
             && matches!(
@@ -248,6 +362,22 @@ impl<'m> Lowerer<'m> {
             )
             .help("records and string variables are not lowered yet"));
         };
+        let subs = r
+            .parts
+            .last()
+            .map(|p| p.subscripts.clone())
+            .unwrap_or_default();
+        // One element picked by constant indices: no need to build the whole array.
+        if !subs.is_empty() && subs.len() == dims.len() {
+            if let Some(k) = self.constant_position(&dims, &subs)? {
+                let s = ScalarId(first.0 + k as u32);
+                let e = match self.assigned.as_ref().and_then(|m| m.get(&s)) {
+                    Some(&e) => e,
+                    None => self.dae.arena.var(s),
+                };
+                return Ok(Tensor::scalar(e));
+            }
+        }
         let n: usize = dims.iter().product();
         let data = (0..n)
             .map(|k| {
@@ -265,6 +395,40 @@ impl<'m> Lowerer<'m> {
             .map(|p| p.subscripts.clone())
             .unwrap_or_default();
         self.subscript(t, &subs, r.span)
+    }
+
+    /// The row-major position selected by scalar constant subscripts, if they are.
+    fn constant_position(
+        &mut self,
+        dims: &[usize],
+        subs: &[Subscript],
+    ) -> DaeResult<Option<usize>> {
+        let mut pos = 0usize;
+        for (d, s) in dims.iter().zip(subs) {
+            let Subscript::Expr(e) = s else {
+                return Ok(None);
+            };
+            self.end_stack.push(*d);
+            let t = self.expr(e);
+            self.end_stack.pop();
+            let t = t?;
+            if !t.is_scalar() {
+                return Ok(None);
+            }
+            let Some(k) = self.const_value(t.data[0]) else {
+                return Ok(None);
+            };
+            let k = k as i64;
+            if k < 1 || k as usize > *d {
+                return Err(DaeError::new(
+                    "E3013",
+                    format!("index {k} is out of bounds 1..{d}"),
+                    e.span,
+                ));
+            }
+            pos = pos * d + (k as usize - 1);
+        }
+        Ok(Some(pos))
     }
 
     fn global_ref(&mut self, r: &ComponentRef) -> DaeResult<Tensor> {
@@ -354,7 +518,7 @@ impl<'m> Lowerer<'m> {
 
     /// Row `i` (1-based) of `rows`; a non-constant index picks with an `if` chain.
     fn pick(&mut self, rows: &[Tensor], i: ExprId, n: usize, span: Span) -> DaeResult<Tensor> {
-        if let Some(k) = self.dae.arena.as_const(i) {
+        if let Some(k) = self.const_value(i) {
             let k = k as i64;
             if k < 1 || k as usize > n {
                 return Err(DaeError::new(
@@ -393,7 +557,7 @@ impl<'m> Lowerer<'m> {
     /// A compile-time integer.
     pub(crate) fn constant_int(&mut self, e: &Expr) -> DaeResult<i64> {
         let x = self.scalar(e)?;
-        match self.dae.arena.as_const(x) {
+        match self.const_value(x) {
             Some(v) if v == v.trunc() => Ok(v as i64),
             _ => Err(
                 DaeError::new("E3002", "a constant integer is needed here", e.span)
@@ -492,7 +656,7 @@ impl<'m> Lowerer<'m> {
     ) -> DaeResult<Vec<f64>> {
         let c = |me: &mut Self, e: &Expr| -> DaeResult<f64> {
             let x = me.scalar(e)?;
-            me.dae.arena.as_const(x).ok_or_else(|| {
+            me.const_value(x).ok_or_else(|| {
                 DaeError::new(
                     "E3002",
                     "a range bound must be known at compile time",
@@ -645,7 +809,7 @@ impl<'m> Lowerer<'m> {
             var: &mut var,
             time: 1.0,
         };
-        diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::new())
+        diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::default())
     }
 
     // ------------------------------------------------------------ calls

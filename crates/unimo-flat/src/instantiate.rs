@@ -232,8 +232,20 @@ impl<'t, 'p> Instantiator<'t, 'p> {
 
     /// Follows short class definitions to a long class or a predefined type,
     /// accumulating their modifiers (innermost last).
-    fn resolve_type(&mut self, mut found: Found, m: &Mod) -> Option<(Kind, Mod)> {
+    fn resolve_type(&mut self, found: Found, m: &Mod) -> Option<(Kind, Mod)> {
+        self.resolve_type_dims(found, m).map(|(k, m, _)| (k, m))
+    }
+
+    /// Like [`resolve_type`], also returning the array dimensions the short class
+    /// definitions add (`type Position3 = Real[3]`), outermost first, with their scope.
+    #[allow(clippy::type_complexity)]
+    fn resolve_type_dims(
+        &mut self,
+        mut found: Found,
+        m: &Mod,
+    ) -> Option<(Kind, Mod, Vec<(Subscript, Scope)>)> {
         let mut m = m.clone();
+        let mut type_dims: Vec<(Subscript, Scope)> = Vec::new();
         for _ in 0..MAX_DEPTH {
             let c = match found {
                 Found::Builtin(b) => {
@@ -248,7 +260,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                             literals: Vec::new(),
                         },
                     };
-                    return Some((Kind::Builtin(t), m));
+                    return Some((Kind::Builtin(t), m, type_dims));
                 }
                 Found::Component(_) => return None,
                 Found::Class(c) => c,
@@ -256,9 +268,17 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             let def = self.tree.get(c).def.clone();
             match &def.body {
                 ClassBody::Short {
-                    base, modification, ..
+                    base,
+                    modification,
+                    dims,
+                    ..
                 } => {
                     let parent = self.tree.get(c).parent;
+                    let dim_scope = Scope {
+                        class: parent.unwrap_or(c),
+                        prefix: Vec::new(),
+                    };
+                    type_dims.extend(dims.iter().map(|d| (d.clone(), dim_scope.clone())));
                     if let Some(cm) = modification {
                         let scope = Scope {
                             class: parent.unwrap_or(c),
@@ -282,9 +302,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                             literals: lits,
                         }),
                         m,
+                        type_dims,
                     ));
                 }
-                ClassBody::Long { .. } => return Some((Kind::Class(c), m)),
+                ClassBody::Long { .. } => return Some((Kind::Class(c), m, type_dims)),
             }
         }
         None
@@ -576,7 +597,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             }
         };
         let Some(found) = found else { return }; // unknown type: reported by the name check
-        let Some((kind, merged)) = self.resolve_type(found, &merged) else {
+        let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, &merged) else {
             return;
         };
         let variability = match cc.prefix.variability {
@@ -617,6 +638,21 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                             "unknown size",
                         ),
                     }
+                }
+            }
+        }
+        for (sub, dim_scope) in &short_dims {
+            if let Subscript::Expr(e) = sub {
+                let flat = self.expr(e, dim_scope, &mut Vec::new(), &mut Vec::new());
+                match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
+                    Ok(Some(n)) if n >= 0 => dims.push(n as usize),
+                    Ok(_) => self.error(
+                        "E2003",
+                        "an array dimension must be a non-negative Integer".into(),
+                        e.span,
+                        "here",
+                    ),
+                    Err(err) => self.eval_error(err, "array dimension"),
                 }
             }
         }
@@ -670,7 +706,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                                 .map(|i| Subscript::Expr(int_expr(*i, d.span)))
                                 .collect();
                         }
-                        self.class_body(c, &p, &merged, variability, top);
+                        // A modifier without `each` gives element t its part of the
+                        // array value (spec 7.2.5).
+                        let element = self.element_mod(&merged, &t);
+                        self.class_body(c, &p, &element, variability, top);
                     }
                 }
                 self.inherited_causality = saved;
@@ -1268,6 +1307,93 @@ impl<'t, 'p> Instantiator<'t, 'p> {
 }
 
 impl Instantiator<'_, '_> {
+    /// The modification of element `index` of a component array: the bindings of
+    /// modifiers without `each` are subscripted (a literal array gives its element, a
+    /// reference gets the subscripts, a constant is evaluated and picked).
+    fn element_mod(&mut self, m: &Mod, index: &[i64]) -> Mod {
+        let mut out = m.clone();
+        out.children = m
+            .children
+            .iter()
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect();
+        out
+    }
+
+    fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
+        if m.each {
+            return m.clone();
+        }
+        let mut out = m.clone();
+        if let Some(b) = &m.binding {
+            if let Some(e) = self.pick_element(&b.expr, &b.scope, index) {
+                out.binding = Some(crate::modif::Bound {
+                    expr: e,
+                    scope: b.scope.clone(),
+                });
+            }
+        }
+        out.children = m
+            .children
+            .iter()
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect();
+        out
+    }
+
+    fn pick_element(&mut self, e: &Expr, scope: &Scope, index: &[i64]) -> Option<Expr> {
+        let Some((&first, rest)) = index.split_first() else {
+            return Some(e.clone());
+        };
+        match &e.kind {
+            ExprKind::Array(items) => {
+                let item = items.get(usize::try_from(first - 1).ok()?)?;
+                self.pick_element(item, scope, rest)
+            }
+            ExprKind::Ref(r) => {
+                // Subscripted only when it names an array: a parameter array is
+                // evaluated, a variable is looked up; a scalar is left as it is.
+                let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+                if let Ok(v) = eval::eval(&flat, self, &mut Vec::new()) {
+                    return self.pick_value(v, index, e.span);
+                }
+                let key = match &flat.kind {
+                    ExprKind::Ref(fr) => eval::var_key(fr),
+                    _ => return None,
+                };
+                let id = *self.var_index.get(&key)?;
+                if self.model.vars[id.0 as usize].dims.len() < index.len() {
+                    return None;
+                }
+                let mut r = r.clone();
+                let last = r.parts.last_mut()?;
+                last.subscripts
+                    .extend(index.iter().map(|&i| Subscript::Expr(int_expr(i, e.span))));
+                Some(Expr {
+                    kind: ExprKind::Ref(r),
+                    span: e.span,
+                })
+            }
+            _ => {
+                // A constant array: evaluate it and pick the element.
+                let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+                let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
+                self.pick_value(v, index, e.span)
+            }
+        }
+    }
+
+    /// Element `index` of an array value; `None` for a scalar (left to broadcast).
+    fn pick_value(&self, mut v: Value, index: &[i64], span: Span) -> Option<Expr> {
+        for &i in index {
+            v = match v {
+                Value::Array(items) => items.into_iter().nth(usize::try_from(i - 1).ok()?)?,
+                _ => return None,
+            };
+        }
+        Some(v.to_expr(span))
+    }
+
     /// An expression of a function body, with names resolved in the function's scope.
     pub(crate) fn expr_in_function(&mut self, e: &Expr, scope: &Scope) -> Expr {
         self.expr(e, scope, &mut Vec::new(), &mut Vec::new())

@@ -31,6 +31,30 @@ pub fn eval_steps(
     Ok(())
 }
 
+/// Runs every step of the plan like [`eval_steps`] but goes on past a block that fails
+/// (its variables keep their last iterate) and returns the first failure. For the
+/// iterates of initialization, where a block that the initial equations do not need may
+/// be singular at the start values (e.g. a multiplier that starts at 0).
+pub fn eval_steps_lenient(
+    m: &CompiledModel,
+    r: &mut [f64],
+    ev: &mut EventState,
+    work: &mut Workspace,
+) -> Option<BlockFailure> {
+    let mut first = None;
+    for s in &m.steps {
+        match s {
+            CompiledStep::Explicit(t) => t.run(r, ev),
+            CompiledStep::Block(b) => {
+                if let Err(f) = newton(b, r, ev, work) {
+                    first.get_or_insert(f);
+                }
+            }
+        }
+    }
+    first
+}
+
 /// Scratch memory for Newton (allocated once per simulation).
 #[derive(Default, Debug)]
 pub struct Workspace {
@@ -157,4 +181,47 @@ pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> b
         b[k] = s / a[k * n + k];
     }
     true
+}
+
+/// Evaluates a compiled model's right-hand side outside a simulation (benchmarks,
+/// tests): parameters and start values are set once, then `rhs` runs the plan.
+pub struct RhsEvaluator<'m> {
+    model: &'m CompiledModel,
+    registers: Vec<f64>,
+    events: EventState,
+    work: Workspace,
+}
+
+impl<'m> RhsEvaluator<'m> {
+    pub fn new(model: &'m CompiledModel) -> RhsEvaluator<'m> {
+        let mut registers = vec![0.0; model.n_registers];
+        let mut events = model.new_event_state();
+        model.parameters.run(&mut registers, &mut events);
+        model.starts.run(&mut registers, &mut events);
+        RhsEvaluator {
+            model,
+            registers,
+            events,
+            work: Workspace::default(),
+        }
+    }
+
+    /// The state derivatives at `(t, x)`.
+    pub fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), BlockFailure> {
+        let m = self.model;
+        self.registers[m.layout.time as usize] = t;
+        for (k, &r) in m.states.iter().enumerate() {
+            self.registers[r as usize] = x[k];
+        }
+        eval_steps(m, &mut self.registers, &mut self.events, &mut self.work)?;
+        for (k, &r) in m.derivatives.iter().enumerate() {
+            out[k] = self.registers[r as usize];
+        }
+        Ok(())
+    }
+
+    /// The names of the states, in the order `rhs` takes them.
+    pub fn state_names(&self) -> &[String] {
+        &self.model.state_names
+    }
 }

@@ -4,7 +4,7 @@
 //! and actions, assertions and alias outputs.
 
 use crate::tape::{Compiler, EventState, Layout, Reg, Tape};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::dae::{Dae, ScalarKind, WhenAction};
 use unimo_dae::events::zero_crossings;
 use unimo_dae::expr::{ExprId, Node, ScalarId};
@@ -156,7 +156,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     let mut c = Compiler::new(&dae.arena, layout, &relation_index, &sample_index);
 
     let mut parameters = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     for p in parameter_order(dae) {
         if let Some(b) = dae.scalar(p).binding {
             c.assign(p, b, &mut parameters, &mut memo);
@@ -165,7 +165,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         }
     }
     let mut starts = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     for s in dae.ids() {
         let sc = dae.scalar(s);
         if matches!(sc.kind, ScalarKind::Parameter | ScalarKind::Constant) || sc.alias.is_some() {
@@ -181,13 +181,13 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         match step {
             PlanStep::Assign { var, value, .. } => {
                 let mut t = Tape::default();
-                let mut memo = HashMap::new();
+                let mut memo = HashMap::default();
                 c.assign(*var, *value, &mut t, &mut memo);
                 steps.push(CompiledStep::Explicit(t));
             }
             PlanStep::Block(b) => {
                 let mut rt = Tape::default();
-                let mut memo = HashMap::new();
+                let mut memo = HashMap::default();
                 for &(v, e) in &b.inner {
                     c.assign(v, e, &mut rt, &mut memo);
                 }
@@ -197,7 +197,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
                     .map(|&r| c.expr(r, &mut rt, &mut memo))
                     .collect();
                 let mut jt = Tape::default();
-                let mut memo = HashMap::new();
+                let mut memo = HashMap::default();
                 let jacobian = b
                     .jacobian
                     .iter()
@@ -217,7 +217,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     }
 
     let mut roots_tape = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let mut roots = Vec::new();
     let mut root_ops = Vec::new();
     for &r in &zc.relations {
@@ -230,7 +230,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         root_ops.push(op);
     }
     let mut samples = Vec::new();
-    let mut sample_memo = HashMap::new();
+    let mut sample_memo = HashMap::default();
     let mut sample_tape = Tape::default();
     for &s in &zc.samples {
         let Node::Sample(a, b) = dae.arena.node(s) else {
@@ -244,7 +244,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     parameters.ops.extend(sample_tape.ops);
 
     let mut when_tape = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let mut whens = Vec::new();
     let mut conditions = Vec::new();
     for w in &dae.whens {
@@ -282,7 +282,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     conditions.dedup();
 
     let mut assert_tape = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let assertions = dae
         .assertions
         .iter()
@@ -296,7 +296,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .collect();
 
     let mut alias_tape = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     for s in dae.ids() {
         if let Some(v) = dae.scalar(s).alias {
             c.assign(s, v, &mut alias_tape, &mut memo);
@@ -306,7 +306,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     // Initial equations, plus `v = start` for every unknown that is not a state and
     // has `fixed = true` (states with fixed start are simply not free).
     let mut initial_tape = Tape::default();
-    let mut memo = HashMap::new();
+    let mut memo = HashMap::default();
     let mut pairs: Vec<(ExprId, ExprId)> = dae
         .initial_equations
         .iter()

@@ -3,7 +3,7 @@
 //! output, event iteration with `pre` values, `reinit` at the end of the event step,
 //! sample time events, restart after each event).
 
-use crate::eval::{eval_steps, BlockFailure, Workspace};
+use crate::eval::{eval_steps, eval_steps_lenient, BlockFailure, Workspace};
 use crate::model::{Action, CompiledModel};
 use crate::tape::EventState;
 use unimo_dae::expr::RelOp;
@@ -191,11 +191,24 @@ impl System for Ode<'_> {
         self.load(t, x)?;
         self.m.roots_tape.run(&mut self.regs, &mut self.ev);
         for (k, &(a, b)) in self.m.roots.iter().enumerate() {
-            out[k] = self.regs[a as usize] - self.regs[b as usize];
+            let (a, b) = (self.regs[a as usize], self.regs[b as usize]);
+            let g = a - b;
+            // Operands computed by a Newton block are exact only to its tolerance: a
+            // difference inside that noise counts as exactly zero, which the root tracker
+            // never reports while it stays there (e.g. a contact force that is 0 in flight
+            // and comes out of its block as +-1e-50).
+            out[k] = if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) {
+                0.0
+            } else {
+                g
+            };
         }
         Ok(())
     }
 }
+
+/// Relative size below which a root function counts as zero (blocks converge to 1e-13).
+const ROOT_NOISE: f64 = 1e-14;
 
 /// The relation's value just after its zero crossing went in `dir`.
 fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {
@@ -335,8 +348,25 @@ impl<'a> Simulator<'a> {
                 culprits: names(&free),
             });
         }
+        // The plan is evaluated leniently at the iterates: a block that the initial
+        // equations do not need may fail at the start values; that is an error only when
+        // the residuals are not finite. The event iteration afterwards is strict.
         let residual = |me: &mut Self| -> Result<Vec<f64>, SimError> {
-            me.eval_plan()?;
+            let t = me.ode.regs[me.m().layout.time as usize];
+            let failure =
+                eval_steps_lenient(me.m(), &mut me.ode.regs, &mut me.ode.ev, &mut me.ode.work);
+            if let Some(failure) = failure {
+                let m = me.m();
+                m.initial_tape.run(&mut me.ode.regs, &mut me.ode.ev);
+                let f: Vec<f64> = m
+                    .initial_residuals
+                    .iter()
+                    .map(|&r| me.ode.regs[r as usize])
+                    .collect();
+                if f.iter().any(|x| !x.is_finite()) {
+                    return Err(SimError::Block { time: t, failure });
+                }
+            }
             let m = me.m();
             m.initial_tape.run(&mut me.ode.regs, &mut me.ode.ev);
             Ok(m.initial_residuals
@@ -420,8 +450,40 @@ impl<'a> Simulator<'a> {
             for s in 0..layout.n_scalars {
                 self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
             }
-            self.eval_plan()?;
-            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            // The assignments of the `when` branches that fire belong to this step like
+            // any equation: the system is evaluated again with them until they agree, so
+            // what depends on a `when`-assigned variable sees its new value before other
+            // `when` conditions are decided (e.g. a mask closed at a lift-off must block
+            // the impact test at the same instant).
+            for _ in 0..MAX_EVENT_ITERATIONS {
+                self.eval_plan()?;
+                m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+                let mut any = false;
+                for w in &m.whens {
+                    for (conds, actions) in &w.branches {
+                        let fires = conds.iter().any(|&c| {
+                            self.ode.regs[c as usize] != 0.0 && self.cond_prev[c as usize] == 0.0
+                        });
+                        if fires {
+                            for a in actions {
+                                if let Action::Assign { target, value } = a {
+                                    let v = self.ode.regs[*value as usize];
+                                    if self.ode.regs[*target as usize] != v {
+                                        self.ode.regs[*target as usize] = v;
+                                        any = true;
+                                    }
+                                }
+                            }
+                        }
+                        if conds.iter().any(|&c| self.ode.regs[c as usize] != 0.0) {
+                            break;
+                        }
+                    }
+                }
+                if !any {
+                    break;
+                }
+            }
             let mut assigned: Vec<(u32, f64)> = Vec::new();
             for w in &m.whens {
                 for (conds, actions) in &w.branches {
@@ -463,7 +525,8 @@ impl<'a> Simulator<'a> {
             }
             let mut changed = Vec::new();
             for (target, v) in assigned {
-                if self.ode.regs[target as usize] != v {
+                let pre = self.ode.regs[(layout.pre_base + target) as usize];
+                if self.ode.regs[target as usize] != v || pre != v {
                     changed.push(target);
                 }
                 self.ode.regs[target as usize] = v;
@@ -479,7 +542,16 @@ impl<'a> Simulator<'a> {
             for f in self.ode.ev.forced.iter_mut() {
                 *f = None;
             }
-            if changed.is_empty() {
+            // reinit at the end of this event iteration step (MLS 8.3.6), then another
+            // step: what the new state values change (a condition that becomes true, e.g.
+            // an `elsewhen`; discrete variables defined by equations) happens at this
+            // event, instead of being recorded as the new `pre` without firing.
+            let reinits = std::mem::take(&mut self.reinit_buffer);
+            let reinitialized = !reinits.is_empty();
+            for (target, v) in reinits {
+                self.ode.regs[target as usize] = v;
+            }
+            if changed.is_empty() && !reinitialized {
                 break;
             }
             if iterations >= MAX_EVENT_ITERATIONS {
@@ -493,19 +565,6 @@ impl<'a> Simulator<'a> {
                     })
                     .collect();
                 return Err(SimError::EventIteration { time: t, culprits });
-            }
-        }
-        // reinit at the end of the event step.
-        let reinits = std::mem::take(&mut self.reinit_buffer);
-        let any_reinit = !reinits.is_empty();
-        for &(target, v) in &reinits {
-            self.ode.regs[target as usize] = v;
-        }
-        if any_reinit {
-            self.eval_plan()?;
-            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-            for &c in &m.conditions {
-                self.cond_prev[c as usize] = self.ode.regs[c as usize];
             }
         }
         for s in 0..layout.n_scalars {
@@ -759,7 +818,13 @@ impl<'a> Simulator<'a> {
         let n = x.len();
         let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
             let mut out = vec![0.0; m.roots.len()];
-            me.ode.roots(t, x, &mut out).ok()?;
+            // Raw differences, not the ones with Newton noise flushed to zero that the
+            // solver sees: a function that moves slowly off its root has a slope.
+            me.ode.load(t, x).ok()?;
+            m.roots_tape.run(&mut me.ode.regs, &mut me.ode.ev);
+            for (k, &(a, b)) in m.roots.iter().enumerate() {
+                out[k] = me.ode.regs[a as usize] - me.ode.regs[b as usize];
+            }
             Some(out)
         };
         let Some(g0) = g(self, t, &x) else { return };

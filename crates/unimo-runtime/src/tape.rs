@@ -7,7 +7,7 @@
 //! while the solver steps across a crossing), in event mode they are computed and
 //! stored.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
 
 /// A register index.
@@ -164,7 +164,7 @@ impl<'a> Compiler<'a> {
             next_temp: layout.temp_base,
             relation_index,
             sample_index,
-            shared: HashMap::new(),
+            shared: HashMap::default(),
         }
     }
 

@@ -78,7 +78,9 @@ impl DummyDerivatives {
 /// k's equations that are themselves differentiated, and as candidates the integrals of
 /// level k's dummies. Candidates are tried in order of the priority of the variable
 /// that would lose its state (`priority(integral)`: `Never` first, `Always` last), then
-/// higher-order derivatives first, then by id; the greedy order gives the best set in
+/// higher-order derivatives first, then derivatives that occur only in differentiated
+/// equations before those the input already has, then by id; the greedy order gives the
+/// best set in
 /// that order (transversal matroid).
 pub fn select_dummy_derivatives(
     graph: &BipartiteGraph,
@@ -103,6 +105,36 @@ pub fn select_dummy_derivatives(
         .eqs()
         .filter(|&e| chains.eq_derivative(e).is_none() && chains.eq_integral(e).is_some())
         .collect();
+    // Derivatives that occur in an equation of the input (not only in equations made by
+    // index reduction): the model's own states. At equal priority the derivatives that
+    // index reduction introduced become dummies first, so the model's states stay states
+    // (the usual "natural states" rule). Without it the order by id prefers the input's
+    // derivatives as dummies: a body's position then becomes algebraic and is solved
+    // from the velocity of a contact point, v_P = v + omega x (r_P - r), whose Jacobian
+    // in r is singular.
+    let mut in_input = vec![false; n_vars];
+    for e in graph.eqs() {
+        if chains.eq_integral(e).is_none() {
+            for &v in graph.eq_vars(e) {
+                in_input[v.index()] = true;
+            }
+        }
+    }
+    // Derivatives that occur in an equation of the input (not only in equations made by
+    // index reduction): the model's own states. At equal priority the derivatives that
+    // index reduction introduced become dummies first, so the model's states stay states
+    // (the usual "natural states" rule). Without it the order by id prefers the input's
+    // derivatives as dummies: a body's position then becomes algebraic and is solved
+    // from the velocity of a contact point, v_P = v + omega x (r_P - r), whose Jacobian
+    // in r is singular.
+    let mut in_input = vec![false; n_vars];
+    for e in graph.eqs() {
+        if chains.eq_integral(e).is_none() {
+            for &v in graph.eq_vars(e) {
+                in_input[v.index()] = true;
+            }
+        }
+    }
     let mut selector = LevelSelector::new(n_vars);
     let mut result = DummyDerivatives {
         is_dummy: vec![false; n_vars],
@@ -113,7 +145,12 @@ pub fn select_dummy_derivatives(
         let mut candidates = selector.candidates(graph, &eqs, &allowed);
         candidates.sort_by_key(|&d| {
             let state = chains.var_integral(d).expect("candidates are derivatives");
-            (priority(state), Reverse(var_levels[state.index()]), d)
+            (
+                priority(state),
+                Reverse(var_levels[state.index()]),
+                in_input[d.index()],
+                d,
+            )
         });
         let assignments = selector
             .select(graph, &eqs, &candidates)

@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""Turns out/results.tsv (written by run.sh) into the markdown report on stdout.
+
+Usage: make_table.py OUT_DIR RUNS SCIPY_RUNS
+"""
+import sys
+from pathlib import Path
+
+out = Path(sys.argv[1])
+runs, scipy_runs = sys.argv[2], sys.argv[3]
+PROBLEMS = ["ROBER", "HIRES", "VDPOL"]
+TOOLS = ["unimo", "IDA", "diffsol", "SciPy"]
+
+rows = []
+for line in (out / "results.tsv").read_text().splitlines():
+    f = line.split("\t")
+    if len(f) < 9:
+        continue
+    problem, tool, method, rtol, atol, scd, steps, ms = f[:8]
+    status = "\t".join(f[8:])
+    rows.append(dict(problem=problem, tool=tool, method=method, rtol=float(rtol),
+                     atol=float(atol), scd=scd, steps=steps, ms=float(ms), status=status))
+
+method_order = {}
+for r in rows:
+    method_order.setdefault((r["tool"], r["method"]), len(method_order))
+rows.sort(key=lambda r: (PROBLEMS.index(r["problem"]), TOOLS.index(r["tool"]),
+                         method_order[(r["tool"], r["method"])], -r["rtol"]))
+
+
+def cell(s):
+    return s.replace("|", "\\|")
+
+
+def ms(x):
+    return f"{x:.3f}" if x < 10 else f"{x:.1f}" if x < 1000 else f"{x:.0f}"
+
+
+print("# unimo vs. IDA vs. diffsol vs. SciPy: error against run time\n")
+print("Written by `bench/compare/run.sh` (see README.md there). scd = -log10(max_i |y_i - ref_i| / |ref_i|)"
+      " at the end time; time = median wall time of "
+      f"{runs} runs (SciPy: {scipy_runs} runs), all measured in one session, one tool after the other.\n")
+print((out / "versions.md").read_text())
+print("Load average (1, 5, 15 min) read before each tool; the machine has 2 cores and was shared"
+      " with other work, so times can be noisy:\n")
+for line in (out / "load.txt").read_text().splitlines():
+    print(f"- {line}")
+print()
+print("What each timing covers: unimo = its `simulate` call (initialisation, integration and the"
+      " 2-row result, no model compilation); IDA = create, init, solve to t_end, free;"
+      " diffsol = build the problem, create the solver (consistent initialisation), step to t_end;"
+      " SciPy = one `solve_ivp` call (Python-level right-hand side and Jacobian).\n")
+
+print("## Summary: scd / median ms\n")
+for p in PROBLEMS:
+    prow = [r for r in rows if r["problem"] == p]
+    if not prow:
+        continue
+    rtols = sorted({r["rtol"] for r in prow}, reverse=True)
+    atol = {r["rtol"]: r["atol"] for r in prow}
+    print(f"### {p}\n")
+    print("| tool | method | " + " | ".join(f"rtol {t:.0e}, atol {atol[t]:.0e}" for t in rtols) + " |")
+    print("|---|---|" + "---|" * len(rtols))
+    keys = []
+    for r in prow:
+        if (r["tool"], r["method"]) not in keys:
+            keys.append((r["tool"], r["method"]))
+    for tool, method in keys:
+        cells = []
+        for t in rtols:
+            m = [r for r in prow if r["tool"] == tool and r["method"] == method and r["rtol"] == t]
+            if not m:
+                cells.append("")
+            elif m[0]["status"] != "ok":
+                cells.append("FAILED")
+            else:
+                cells.append(f"{float(m[0]['scd']):.2f} / {ms(m[0]['ms'])}")
+        print(f"| {tool} | {method} | " + " | ".join(cells) + " |")
+    print()
+
+print("## All results\n")
+print("| problem | tool | method | rtol | atol | scd | steps | median ms | note |")
+print("|---|---|---|---|---|---|---|---|---|")
+for r in rows:
+    failed = r["status"] != "ok"
+    scd = "FAILED" if failed else f"{float(r['scd']):.2f}"
+    note = cell(r["status"]) if failed else ""
+    if failed and r["steps"] not in ("-", ""):
+        note += f" (steps before the failure: {r['steps']}; time is that of the failing runs)"
+    print(f"| {r['problem']} | {r['tool']} | {r['method']} | {r['rtol']:.0e} | {r['atol']:.0e} | "
+          f"{scd} | {r['steps']} | {ms(r['ms'])} | {note} |")

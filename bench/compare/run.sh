@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# Runs the whole comparison, one tool after the other, and writes results.md.
+#   bash bench/compare/run.sh              (from anywhere; RUNS=5 SCIPY_RUNS=5 by default)
+# Environment: RUNS (runs per configuration for unimo, IDA and diffsol), SCIPY_RUNS,
+# CARGO_TARGET_DIR for the diffsol project (default /work/tgt-compare).
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+REPO="$(cd "$HERE/../.." && pwd)"
+RUNS="${RUNS:-5}"
+SCIPY_RUNS="${SCIPY_RUNS:-5}"
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-/work/tgt-compare}"
+OUT="$HERE/out"
+mkdir -p "$OUT"
+: > "$OUT/results.tsv"
+: > "$OUT/load.txt"
+: > "$OUT/solutions.txt"
+
+# Load average, the machine's CPU use over a 1 s sample, and the busiest process in it
+# (other work on the shared machine shows up here).
+load() {
+  local sample
+  sample="$(top -b -n 2 -d 1 -o %CPU | awk '/^top -/ { n++ }
+      n == 2 && /^%Cpu/ { for (i = 1; i <= NF; i++) if ($i ~ /^id,?$/) idle = $(i - 1) }
+      n == 2 && $1 ~ /^[0-9]+$/ && !p { p = $12 " at " $9 "%" }
+      END { printf "CPU %.0f%% busy (average over the 2 cores), busiest process %s", 100 - idle, p }')"
+  echo "$1: load average $(cut -d' ' -f1-3 /proc/loadavg); 1 s sample: $sample" | tee -a "$OUT/load.txt"
+}
+
+# ---- prerequisites and builds (not timed) ------------------------------------------
+dpkg -s libsundials-dev >/dev/null 2>&1 || { echo "libsundials-dev missing: run setup.sh" >&2; exit 1; }
+python3 -c 'import scipy' 2>/dev/null || { echo "scipy missing: run setup.sh" >&2; exit 1; }
+if [ ! -x "$REPO/target/release/unimo" ]; then (cd "$REPO" && cargo build --release); fi
+# A private copy, so that a concurrent rebuild of target/ cannot swap the binary mid-run.
+cp "$REPO/target/release/unimo" "$OUT/unimo"
+UNIMO="$OUT/unimo"
+make -C "$HERE/ida" >/dev/null
+(cd "$HERE/diffsol" && cargo build --release --quiet)
+DIFFSOL="$CARGO_TARGET_DIR/release/compare-diffsol"
+
+# ---- versions ------------------------------------------------------------------------
+{
+  echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(uname -sr)"
+  DIRTY=""
+  if (cd "$REPO" && GIT_OPTIONAL_LOCKS=0 git status --porcelain --untracked-files=no 2>/dev/null | grep -q .); then
+    DIRTY=" (the work tree had uncommitted changes, which the binary may include)"
+  fi
+  echo "- unimo: $("$UNIMO" --version), HEAD $(cd "$REPO" && git rev-parse --short HEAD 2>/dev/null || echo '?')$DIRTY, binary built $(date -u -r "$REPO/target/release/unimo" '+%Y-%m-%d %H:%M UTC'), sha256 $(sha256sum "$UNIMO" | cut -c1-12)"
+  echo "- IDA: $("$HERE/ida/ida_compare" version), Debian libsundials-dev $(dpkg-query -W -f='${Version}' libsundials-dev), $(cc --version | head -1)"
+  echo "- diffsol: $(grep -A1 '^name = "diffsol"$' "$HERE/diffsol/Cargo.lock" | sed -n 's/version = "\(.*\)"/\1/p') ($(rustc --version))"
+  echo "- SciPy: $(python3 -c 'import scipy, numpy, sys; print(f"scipy {scipy.__version__}, numpy {numpy.__version__}, Python {sys.version.split()[0]}")')"
+} > "$OUT/versions.md"
+cat "$OUT/versions.md"
+
+# ---- 1. unimo ------------------------------------------------------------------------
+load "before unimo"
+for spec in "Robertson ROBER rober 1e-6" "Hires HIRES hires 1e-2" "VanDerPol VDPOL vdpol 1e-2"; do
+  set -- $spec
+  "$UNIMO" bench "$REPO/models/$1.mo" --reference "$HERE/refs/$3.csv" \
+    --atol-factor "$4" --runs "$RUNS" --points 1 --color never > "$OUT/unimo-$3.txt" || true
+  cat "$OUT/unimo-$3.txt"
+  # model method rtol atol median_ms steps scd_end scd_grid [FAILED: msg]
+  awk -v P="$2" 'NR > 1 {
+      status = "ok"; scd = $7
+      if (NF > 8) { status = $9; for (i = 10; i <= NF; i++) status = status " " $i; scd = "-" }
+      printf "%s\tunimo\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n", P, $2, $3, $4, scd, $6, $5, status
+    }' "$OUT/unimo-$3.txt" >> "$OUT/results.tsv"
+done
+
+# ---- 2. IDA (analytic Jacobian, then difference-quotient Jacobian) -------------------
+load "before IDA"
+"$HERE/ida/ida_compare" "$RUNS" all analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+"$HERE/ida/ida_compare" "$RUNS" all dq 2>/dev/null | tee -a "$OUT/results.tsv"
+
+# ---- 3. diffsol ------------------------------------------------------------------------
+load "before diffsol"
+"$DIFFSOL" "$RUNS" 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+
+# ---- 4. SciPy --------------------------------------------------------------------------
+load "before SciPy"
+python3 "$HERE/scipy_compare.py" "$SCIPY_RUNS" 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+load "after SciPy"
+
+python3 "$HERE/make_table.py" "$OUT" "$RUNS" "$SCIPY_RUNS" > "$HERE/results.md"
+echo "wrote $HERE/results.md"

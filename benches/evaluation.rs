@@ -1,0 +1,89 @@
+//! Compiled evaluation against hand-written Rust: right-hand-side evaluations of ROBER,
+//! HIRES and a 1,000-state chain, through the runtime's register tape and as plain Rust
+//! functions, measured in one run (`cargo bench --bench evaluation`).
+
+use std::path::PathBuf;
+use unimo_runtime::eval::RhsEvaluator;
+
+fn main() {
+    divan::main();
+}
+
+fn model(file: &str) -> unimo_cli::LoadedModel {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(file);
+    unimo_cli::load_model(&[path], None).expect("model compiles")
+}
+
+fn chain_file(n: usize) -> PathBuf {
+    let path = std::env::temp_dir().join(format!("unimo-bench-chain-{n}.mo"));
+    let text = format!(
+        "model Chain\n  parameter Integer n = {n};\n  Real x[n](each start = 1, each fixed = true);\nequation\n  der(x[1]) = -x[1];\n  for i in 2:n loop\n    der(x[i]) = x[i-1] - 2*x[i] + 0.5*sin(x[i]);\n  end for;\nend Chain;\n"
+    );
+    std::fs::write(&path, text).expect("temp file");
+    path
+}
+
+/// A hand-written right-hand side.
+type Rhs = fn(f64, &[f64], &mut [f64]);
+
+fn rober_hand(_t: f64, y: &[f64], f: &mut [f64]) {
+    // y3 = 1 - y1 - y2 (the algebraic equation, solved)
+    let y3 = 1.0 - y[0] - y[1];
+    f[0] = -0.04 * y[0] + 1e4 * y[1] * y3;
+    f[1] = 0.04 * y[0] - 1e4 * y[1] * y3 - 3e7 * y[1] * y[1];
+}
+
+fn hires_hand(_t: f64, y: &[f64], f: &mut [f64]) {
+    f[0] = -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
+    f[1] = 1.71 * y[0] - 8.75 * y[1];
+    f[2] = -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
+    f[3] = 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
+    f[4] = -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
+    f[5] = -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
+    f[6] = 280.0 * y[5] * y[7] - 1.81 * y[6];
+    f[7] = -f[6];
+}
+
+fn chain_hand(_t: f64, x: &[f64], f: &mut [f64]) {
+    f[0] = -x[0];
+    for i in 1..x.len() {
+        f[i] = x[i - 1] - 2.0 * x[i] + 0.5 * x[i].sin();
+    }
+}
+
+fn state(n: usize) -> Vec<f64> {
+    (0..n).map(|k| 0.3 + 0.01 * k as f64).collect()
+}
+
+#[divan::bench(args = ["rober", "hires", "chain1000"])]
+fn compiled(bencher: divan::Bencher, which: &str) {
+    let m = match which {
+        "rober" => model("models/Robertson.mo"),
+        "hires" => model("models/Hires.mo"),
+        _ => unimo_cli::load_model(&[chain_file(1000)], None).expect("chain"),
+    };
+    let mut ev = RhsEvaluator::new(&m.compiled);
+    let n = m.compiled.states.len();
+    let x = state(n);
+    let mut out = vec![0.0; n];
+    bencher.bench_local(|| {
+        ev.rhs(1.0, divan::black_box(&x), &mut out)
+            .expect("evaluates");
+        divan::black_box(&out);
+    });
+}
+
+#[divan::bench(args = ["rober", "hires", "chain1000"])]
+fn hand_written(bencher: divan::Bencher, which: &str) {
+    let (f, n): (Rhs, usize) = match which {
+        "rober" => (rober_hand, 2),
+        "hires" => (hires_hand, 8),
+        _ => (chain_hand, 1000),
+    };
+    let x = state(n);
+    let mut out = vec![0.0; n];
+    bencher.bench_local(|| {
+        f(1.0, divan::black_box(&x), &mut out);
+        divan::black_box(&out);
+    });
+}

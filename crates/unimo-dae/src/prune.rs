@@ -1,0 +1,94 @@
+//! Leaving out what a scene does not need: plan steps whose results reach no state
+//! derivative, zero crossing, `when` clause, assertion or requested output are
+//! removed, so the compiled model only computes what is used.
+
+use crate::dae::{Dae, WhenAction};
+use crate::events::zero_crossings;
+use crate::expr::ScalarId;
+use crate::plan::{Plan, PlanStep};
+use rustc_hash::FxHashSet as HashSet;
+
+/// Removes unneeded steps; `wanted` are the outputs the user asked for (their alias
+/// representatives are kept too). Returns the number of equations left out.
+pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
+    let mut needed: HashSet<ScalarId> = plan.derivatives.iter().copied().collect();
+    let add = |needed: &mut HashSet<ScalarId>, e| {
+        needed.extend(dae.arena.vars(e));
+    };
+    for &s in wanted {
+        needed.insert(s);
+        if let Some(a) = dae.scalar(s).alias {
+            add(&mut needed, a);
+        }
+    }
+    let zc = zero_crossings(dae);
+    for &r in zc.relations.iter().chain(&zc.samples) {
+        add(&mut needed, r);
+    }
+    for w in &dae.whens {
+        for b in &w.branches {
+            for &c in &b.conditions {
+                add(&mut needed, c);
+            }
+            for (a, _) in &b.actions {
+                match a {
+                    WhenAction::Assign { target, value } => {
+                        needed.insert(*target);
+                        add(&mut needed, *value);
+                    }
+                    WhenAction::Reinit { value, .. } => add(&mut needed, *value),
+                    WhenAction::Assert { condition, .. } => add(&mut needed, *condition),
+                    WhenAction::Terminate { .. } => {}
+                }
+            }
+        }
+    }
+    for a in &dae.assertions {
+        add(&mut needed, a.condition);
+    }
+    // Discrete variables defined by equations take part in event iteration.
+    for s in dae.ids() {
+        if dae.scalar(s).kind == crate::dae::ScalarKind::Discrete {
+            needed.insert(s);
+        }
+    }
+    let mut keep = vec![false; plan.steps.len()];
+    for (k, step) in plan.steps.iter().enumerate().rev() {
+        match step {
+            PlanStep::Assign { var, value, .. } => {
+                if needed.contains(var) {
+                    keep[k] = true;
+                    add(&mut needed, *value);
+                }
+            }
+            PlanStep::Block(b) => {
+                let used = b.iteration_vars.iter().any(|v| needed.contains(v))
+                    || b.inner.iter().any(|(v, _)| needed.contains(v));
+                if used {
+                    keep[k] = true;
+                    for &r in &b.residuals {
+                        add(&mut needed, r);
+                    }
+                    for &(_, e) in &b.inner {
+                        add(&mut needed, e);
+                    }
+                }
+            }
+        }
+    }
+    let mut pruned = 0;
+    let mut k = 0;
+    plan.steps.retain(|step| {
+        let kept = keep[k];
+        k += 1;
+        if !kept {
+            pruned += match step {
+                PlanStep::Assign { .. } => 1,
+                PlanStep::Block(b) => b.equations.len(),
+            };
+        }
+        kept
+    });
+    plan.stats.pruned_equations = pruned;
+    pruned
+}
