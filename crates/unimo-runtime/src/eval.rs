@@ -194,7 +194,7 @@ pub struct RhsEvaluator<'m> {
 
 impl<'m> RhsEvaluator<'m> {
     pub fn new(model: &'m CompiledModel) -> RhsEvaluator<'m> {
-        let mut registers = vec![0.0; model.n_registers];
+        let mut registers = model.new_registers();
         let mut events = model.new_event_state();
         model.parameters.run(&mut registers, &mut events);
         model.starts.run(&mut registers, &mut events);

@@ -50,6 +50,8 @@ pub struct CompiledWhen {
 #[derive(Clone, Debug)]
 pub struct CompiledModel {
     pub layout: Layout,
+    /// Registers holding constants, written once before anything runs.
+    pub constants: Vec<(Reg, f64)>,
     pub n_registers: usize,
     pub parameters: Tape,
     pub starts: Tape,
@@ -86,6 +88,15 @@ pub struct CompiledModel {
 }
 
 impl CompiledModel {
+    /// A register file with the constants in place.
+    pub fn new_registers(&self) -> Vec<f64> {
+        let mut r = vec![0.0; self.n_registers];
+        for &(reg, v) in &self.constants {
+            r[reg as usize] = v;
+        }
+        r
+    }
+
     pub fn new_event_state(&self) -> EventState {
         EventState {
             event_mode: false,
@@ -176,14 +187,19 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         }
     }
 
-    let mut steps = Vec::new();
+    let mut steps: Vec<CompiledStep> = Vec::new();
     for step in &plan.steps {
         match step {
             PlanStep::Assign { var, value, .. } => {
-                let mut t = Tape::default();
+                // Consecutive assignments share one tape (one dispatch loop).
+                if !matches!(steps.last(), Some(CompiledStep::Explicit(_))) {
+                    steps.push(CompiledStep::Explicit(Tape::default()));
+                }
+                let Some(CompiledStep::Explicit(t)) = steps.last_mut() else {
+                    unreachable!("pushed above")
+                };
                 let mut memo = HashMap::default();
-                c.assign(*var, *value, &mut t, &mut memo);
-                steps.push(CompiledStep::Explicit(t));
+                c.assign(*var, *value, t, &mut memo);
             }
             PlanStep::Block(b) => {
                 let mut rt = Tape::default();
@@ -375,7 +391,9 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .map(|&s| dae.scalar(s).fixed == Some(true))
         .collect();
     let n_registers = c.n_registers();
+    let constants = std::mem::take(&mut c.constants);
     let mut m = CompiledModel {
+        constants,
         layout,
         n_registers,
         parameters,

@@ -234,7 +234,7 @@ impl<'a> Simulator<'a> {
     pub fn new(m: &'a CompiledModel) -> Simulator<'a> {
         let ode = Ode {
             m,
-            regs: vec![0.0; m.n_registers],
+            regs: m.new_registers(),
             ev: m.new_event_state(),
             work: Workspace::default(),
             differential: vec![true; m.states.len()],

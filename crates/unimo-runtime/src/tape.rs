@@ -149,6 +149,9 @@ pub struct Compiler<'a> {
     pub sample_index: &'a HashMap<ExprId, u32>,
     /// Nodes already computed by earlier, still-valid tapes.
     pub shared: HashMap<ExprId, Reg>,
+    /// Constant registers, written once before any tape runs.
+    pub constants: Vec<(Reg, f64)>,
+    constant_regs: HashMap<u64, Reg>,
 }
 
 impl<'a> Compiler<'a> {
@@ -165,6 +168,8 @@ impl<'a> Compiler<'a> {
             relation_index,
             sample_index,
             shared: HashMap::default(),
+            constants: Vec::new(),
+            constant_regs: HashMap::default(),
         }
     }
 
@@ -221,6 +226,20 @@ impl<'a> Compiler<'a> {
                 }
                 Node::Initial => {
                     memo.insert(x, self.layout.initial);
+                    continue;
+                }
+                Node::Const(bits) => {
+                    // Constants live in registers of their own, set once.
+                    let reg = match self.constant_regs.get(&bits) {
+                        Some(&r) => r,
+                        None => {
+                            let r = self.temp();
+                            self.constant_regs.insert(bits, r);
+                            self.constants.push((r, f64::from_bits(bits)));
+                            r
+                        }
+                    };
+                    memo.insert(x, reg);
                     continue;
                 }
                 _ => {}
