@@ -46,6 +46,9 @@ pub struct CompiledWhen {
     pub branches: Vec<(Vec<Reg>, Vec<Action>)>,
 }
 
+/// The compiled symbolic Jacobian: its tape and its nonzeros (row, column, register).
+pub type SymbolicJacobian = (Tape, Vec<(usize, usize, Reg)>);
+
 /// Everything the simulator runs.
 #[derive(Clone, Debug)]
 pub struct CompiledModel {
@@ -77,6 +80,10 @@ pub struct CompiledModel {
     pub state_names: Vec<String>,
     /// Scalars written to results: name and register.
     pub outputs: Vec<(String, Reg)>,
+    /// The symbolic Jacobian d der(x) / dx when the plan is fully explicit (no Newton
+    /// blocks): its tape (run after the plan) and its nonzero entries (row, column,
+    /// register). `None`: the solvers use finite differences.
+    pub jacobian: Option<SymbolicJacobian>,
     /// Nominal values of the states (for tolerances).
     pub nominals: Vec<f64>,
     /// Start attributes: which states have `fixed = true`.
@@ -390,6 +397,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .iter()
         .map(|&s| dae.scalar(s).fixed == Some(true))
         .collect();
+    let jacobian = symbolic_jacobian(dae, plan, &mut c);
     let n_registers = c.n_registers();
     let constants = std::mem::take(&mut c.constants);
     let mut m = CompiledModel {
@@ -409,6 +417,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         assert_tape,
         assertions,
         alias_tape,
+        jacobian,
         states: plan.states.iter().map(|&s| layout.var(s)).collect(),
         derivatives: plan.derivatives.iter().map(|&s| layout.var(s)).collect(),
         discretes,
@@ -429,4 +438,57 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         })
         .sum();
     m
+}
+
+/// d der(x_i) / d x_j symbolically, when every step of the plan is an explicit
+/// assignment: the assignments are substituted into the derivatives (shared through the
+/// hash-consed arena) and differentiated with respect to each state they mention.
+fn symbolic_jacobian(
+    dae: &Dae,
+    plan: &Plan,
+    c: &mut Compiler<'_>,
+) -> Option<SymbolicJacobian> {
+    const MAX_NONZEROS: usize = 200_000;
+    if plan.states.is_empty() || plan.steps.iter().any(|s| matches!(s, PlanStep::Block(_))) {
+        return None;
+    }
+    // The arena is shared with the compiler; differentiate on a copy.
+    let mut arena = dae.arena.clone();
+    let mut full: HashMap<ScalarId, ExprId> = HashMap::default();
+    for step in &plan.steps {
+        if let PlanStep::Assign { var, value, .. } = step {
+            let v = arena.substitute(*value, &|s| full.get(&s).copied(), &mut HashMap::default());
+            full.insert(*var, v);
+        }
+    }
+    let column: HashMap<ScalarId, usize> = plan
+        .states
+        .iter()
+        .enumerate()
+        .map(|(j, &s)| (s, j))
+        .collect();
+    let mut entries = Vec::new();
+    for (i, d) in plan.derivatives.iter().enumerate() {
+        let e = full.get(d).copied().unwrap_or_else(|| arena.var(*d));
+        for s in arena.vars(e) {
+            let Some(&j) = column.get(&s) else { continue };
+            let p = unimo_dae::diff::partial(&mut arena, e, s);
+            if arena.as_const(p) != Some(0.0) {
+                entries.push((i, j, p));
+            }
+            if entries.len() > MAX_NONZEROS {
+                return None;
+            }
+        }
+    }
+    let mut compiler = Compiler::new(&arena, c.layout, c.relation_index, c.sample_index);
+    compiler.continue_from(c);
+    let mut tape = Tape::default();
+    let mut memo = HashMap::default();
+    let regs = entries
+        .into_iter()
+        .map(|(i, j, p)| (i, j, compiler.expr(p, &mut tape, &mut memo)))
+        .collect();
+    c.continue_from(&compiler);
+    Some((tape, regs))
 }

@@ -142,6 +142,8 @@ struct Ode<'a> {
     differential: Vec<bool>,
     evaluations: u64,
     last_failure: Option<BlockFailure>,
+    /// Nonzeros of the symbolic Jacobian (large systems then use the sparse LU).
+    pattern: Option<unimo_solve::SparsityPattern>,
 }
 
 impl Ode<'_> {
@@ -181,6 +183,34 @@ impl System for Ode<'_> {
             out[k] = v;
         }
         Ok(())
+    }
+
+    fn jacobian(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        jacobian: &mut unimo_solve::JacobianMatrix,
+    ) -> Result<bool, EvalError> {
+        let Some((tape, entries)) = &self.m.jacobian else {
+            return Ok(false);
+        };
+        self.load(t, x)?;
+        tape.run(&mut self.regs, &mut self.ev);
+        for &(i, j, r) in entries {
+            let v = self.regs[r as usize];
+            if !v.is_finite() {
+                return Err(EvalError::domain(format!(
+                    "d der({}) / d {} is {v}",
+                    self.m.state_names[i], self.m.state_names[j]
+                )));
+            }
+            jacobian.set(i, j, v);
+        }
+        Ok(true)
+    }
+
+    fn sparsity(&self) -> Option<&unimo_solve::SparsityPattern> {
+        self.pattern.as_ref()
     }
 
     fn n_roots(&self) -> usize {
@@ -240,6 +270,13 @@ impl<'a> Simulator<'a> {
             differential: vec![true; m.states.len()],
             evaluations: 0,
             last_failure: None,
+            pattern: m.jacobian.as_ref().and_then(|(_, entries)| {
+                unimo_solve::SparsityPattern::from_entries(
+                    m.states.len(),
+                    entries.iter().map(|&(i, j, _)| (i, j)),
+                )
+                .ok()
+            }),
         };
         Simulator {
             ode,

@@ -178,6 +178,14 @@ impl<'a> Compiler<'a> {
         self.next_temp as usize
     }
 
+    /// Takes over the register counter and constant pool of `other` (two compilers over
+    /// different arenas filling one register file).
+    pub fn continue_from(&mut self, other: &Compiler<'_>) {
+        self.next_temp = other.next_temp;
+        self.constants = other.constants.clone();
+        self.constant_regs = other.constant_regs.clone();
+    }
+
     /// A fresh temporary register.
     pub fn temp_public(&mut self) -> Reg {
         self.temp()
