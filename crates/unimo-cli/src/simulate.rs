@@ -157,7 +157,36 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 every_step: a.every_step,
             };
             let sim_started = Instant::now();
-            let result = unimo_runtime::sim::simulate(&compiled, &options);
+            // A progress bar on stderr for runs longer than a moment, when it is a
+            // terminal (never in pipes, files or CI logs).
+            let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+                let bar = indicatif::ProgressBar::new(1000);
+                bar.set_style(
+                    indicatif::ProgressStyle::with_template(
+                        "{spinner} simulating [{bar:40}] t = {msg} ({elapsed})",
+                    )
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+                );
+                bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+                Some(bar)
+            } else {
+                None
+            };
+            let shown_after = std::time::Duration::from_millis(500);
+            let mut report = |t: f64| {
+                if let Some(bar) = &bar {
+                    if bar.is_hidden() && sim_started.elapsed() > shown_after {
+                        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+                    }
+                    bar.set_position((((t - start) / (stop - start)) * 1000.0) as u64);
+                    bar.set_message(format!("{t:.6e}"));
+                }
+            };
+            let result = unimo_runtime::sim::Simulator::new(&compiled)
+                .run_with_progress(&options, &mut report);
+            if let Some(bar) = &bar {
+                bar.finish_and_clear();
+            }
             let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
             let written = match &a.output {
                 Some(path) => std::fs::File::create(path)

@@ -443,11 +443,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
 /// d der(x_i) / d x_j symbolically, when every step of the plan is an explicit
 /// assignment: the assignments are substituted into the derivatives (shared through the
 /// hash-consed arena) and differentiated with respect to each state they mention.
-fn symbolic_jacobian(
-    dae: &Dae,
-    plan: &Plan,
-    c: &mut Compiler<'_>,
-) -> Option<SymbolicJacobian> {
+fn symbolic_jacobian(dae: &Dae, plan: &Plan, c: &mut Compiler<'_>) -> Option<SymbolicJacobian> {
     const MAX_NONZEROS: usize = 200_000;
     if plan.states.is_empty() || plan.steps.iter().any(|s| matches!(s, PlanStep::Block(_))) {
         return None;

@@ -642,7 +642,13 @@ impl<'a> Simulator<'a> {
     }
 
     /// Runs the simulation. The result holds everything computed, also on failure.
-    pub fn run(mut self, o: &SimOptions) -> SimResult {
+    pub fn run(self, o: &SimOptions) -> SimResult {
+        self.run_with_progress(o, &mut |_| {})
+    }
+
+    /// Like [`run`](Simulator::run), calling `progress(t)` now and then with the
+    /// simulated time reached (for a progress bar; the runtime never prints).
+    pub fn run_with_progress(mut self, o: &SimOptions, progress: &mut dyn FnMut(f64)) -> SimResult {
         let m = self.m();
         self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
         if let Err(e) = self.initialize(o.start) {
@@ -689,6 +695,9 @@ impl<'a> Simulator<'a> {
             };
             let now = solver.current_time();
             steps_taken += 1;
+            if steps_taken.is_multiple_of(256) {
+                progress(now);
+            }
             if steps_taken > MAX_STEPS {
                 self.result.error = Some(SimError::Solver {
                     time: now,
