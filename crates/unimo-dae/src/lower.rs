@@ -4,7 +4,6 @@
 //! meaning.
 
 use crate::dae::*;
-use crate::diff;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
 use crate::tensor::{self, Tensor};
@@ -777,39 +776,7 @@ impl<'m> Lowerer<'m> {
     /// is its derivative scalar (made on demand); parameters and discrete variables
     /// have none.
     pub(crate) fn time_derivative(&mut self, e: ExprId) -> ExprId {
-        let dae = &mut self.dae;
-        let scalars = &mut dae.scalars;
-        let mut var = |a: &mut ExprArena, s: ScalarId| -> Option<ExprId> {
-            if !matches!(
-                scalars[s.index()].kind,
-                ScalarKind::Continuous | ScalarKind::Derivative
-            ) {
-                return None;
-            }
-            let d = match scalars[s.index()].derivative {
-                Some(d) => d,
-                None => {
-                    let base = &scalars[s.index()];
-                    let mut d = Scalar::new(
-                        format!("der({})", base.name),
-                        ScalarKind::Derivative,
-                        ScalarType::Real,
-                        base.origin,
-                    );
-                    d.derivative_of = Some(s);
-                    let id = ScalarId(scalars.len() as u32);
-                    scalars.push(d);
-                    scalars[s.index()].derivative = Some(id);
-                    id
-                }
-            };
-            Some(a.var(d))
-        };
-        let mut seed = diff::Seed {
-            var: &mut var,
-            time: 1.0,
-        };
-        diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::default())
+        crate::analysis::time_derivative(&mut self.dae, e)
     }
 
     // ------------------------------------------------------------ calls

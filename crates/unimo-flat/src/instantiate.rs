@@ -611,16 +611,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         for s in d.dims.iter().chain(&cc.type_dims) {
             match s {
                 Subscript::Expr(e) => {
-                    let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
-                    match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
-                        Ok(Some(n)) if n >= 0 => dims.push(n as usize),
-                        Ok(_) => self.error(
-                            "E2003",
-                            "an array dimension must be a non-negative Integer".into(),
-                            e.span,
-                            "here",
-                        ),
-                        Err(err) => self.eval_error(err, "array dimension"),
+                    if let Some(n) = self.dimension(e, scope) {
+                        dims.push(n);
                     }
                 }
                 Subscript::Colon(span) => {
@@ -643,16 +635,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         }
         for (sub, dim_scope) in &short_dims {
             if let Subscript::Expr(e) = sub {
-                let flat = self.expr(e, dim_scope, &mut Vec::new(), &mut Vec::new());
-                match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
-                    Ok(Some(n)) if n >= 0 => dims.push(n as usize),
-                    Ok(_) => self.error(
-                        "E2003",
-                        "an array dimension must be a non-negative Integer".into(),
-                        e.span,
-                        "here",
-                    ),
-                    Err(err) => self.eval_error(err, "array dimension"),
+                if let Some(n) = self.dimension(e, dim_scope) {
+                    dims.push(n);
                 }
             }
         }
@@ -1307,6 +1291,28 @@ impl<'t, 'p> Instantiator<'t, 'p> {
 }
 
 impl Instantiator<'_, '_> {
+    /// An array dimension evaluated at compile time (`E2003` when it is not a
+    /// non-negative Integer).
+    fn dimension(&mut self, e: &Expr, scope: &Scope) -> Option<usize> {
+        let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+        match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
+            Ok(Some(n)) if n >= 0 => Some(n as usize),
+            Ok(_) => {
+                self.error(
+                    "E2003",
+                    "an array dimension must be a non-negative Integer".into(),
+                    e.span,
+                    "here",
+                );
+                None
+            }
+            Err(err) => {
+                self.eval_error(err, "array dimension");
+                None
+            }
+        }
+    }
+
     /// The modification of element `index` of a component array: the bindings of
     /// modifiers without `each` are subscripted (a literal array gives its element, a
     /// reference gets the subscripts, a constant is evaluated and picked).

@@ -886,8 +886,6 @@ impl<'a> Simulator<'a> {
         };
         let mut changed = false;
         for &(k, _) in components {
-            let (a, b) = m.roots[k];
-            let _ = (a, b);
             let slope = (g1[k] - g0[k]) / delta;
             let near_zero = g0[k].abs()
                 <= 1e-10 * (1.0 + g0[k].abs())
