@@ -237,3 +237,17 @@ fn pendulum_keeps_its_constraint() {
     let drift = r.rows.iter().map(|row| row[k].abs()).fold(0.0f64, f64::max);
     assert!(drift < 1e-12, "constraint drift {drift:e}");
 }
+
+/// `sample(0.05, 0.1)` fires exactly at 0.05 + 0.1 k, once per instant.
+#[test]
+fn sample_instants_are_hit_exactly() {
+    let m = load("models/SampleCounter.mo");
+    let r = run(&m, Method::Auto, 1e-6, 1e-8, 1.0, 10);
+    assert_eq!(value(&r, "count"), 10.0);
+    let times: Vec<f64> = r.events.iter().map(|e| e.time).collect();
+    assert_eq!(times.len(), 10, "{times:?}");
+    for (k, t) in times.iter().enumerate() {
+        let want = 0.05 + 0.1 * k as f64;
+        assert!((t - want).abs() <= 4.0 * f64::EPSILON, "{t} vs {want}");
+    }
+}

@@ -492,10 +492,13 @@ impl<'a> Simulator<'a> {
             // what depends on a `when`-assigned variable sees its new value before other
             // `when` conditions are decided (e.g. a mask closed at a lift-off must block
             // the impact test at the same instant).
+            let mut settled = false;
+            let mut unsettled: Vec<u32> = Vec::new();
             for _ in 0..MAX_EVENT_ITERATIONS {
                 self.eval_plan()?;
                 m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
                 let mut any = false;
+                unsettled.clear();
                 for w in &m.whens {
                     for (conds, actions) in &w.branches {
                         let fires = conds.iter().any(|&c| {
@@ -508,6 +511,7 @@ impl<'a> Simulator<'a> {
                                     if self.ode.regs[*target as usize] != v {
                                         self.ode.regs[*target as usize] = v;
                                         any = true;
+                                        unsettled.push(*target);
                                     }
                                 }
                             }
@@ -518,8 +522,21 @@ impl<'a> Simulator<'a> {
                     }
                 }
                 if !any {
+                    settled = true;
                     break;
                 }
+            }
+            if !settled {
+                let culprits = unsettled
+                    .iter()
+                    .filter_map(|&r| {
+                        m.outputs
+                            .iter()
+                            .find(|(_, x)| *x == r)
+                            .map(|(n, _)| n.clone())
+                    })
+                    .collect();
+                return Err(SimError::EventIteration { time: t, culprits });
             }
             let mut assigned: Vec<(u32, f64)> = Vec::new();
             for w in &m.whens {
@@ -921,8 +938,11 @@ impl<'a> Simulator<'a> {
         for (k, next) in self.sample_next.iter_mut().enumerate() {
             if *next <= t * (1.0 + 1e-15) + 1e-300 {
                 due.push(k);
+                // Instant n is start + n * interval (no accumulated rounding).
+                let start = self.ode.regs[m.samples[k].0 as usize];
                 let interval = self.ode.regs[m.samples[k].1 as usize];
-                *next += interval;
+                let n = ((t - start) / interval).round() + 1.0;
+                *next = start + n * interval;
             }
         }
         self.record(t);
@@ -932,6 +952,12 @@ impl<'a> Simulator<'a> {
         let r = self.after_event(t, format!("sample {due:?}"), None, solver);
         for s in self.ode.ev.samples.iter_mut() {
             *s = 0.0;
+        }
+        // The sample conditions are false again right after the instant: record that,
+        // so the next instant is an edge.
+        m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        for &c in &m.conditions {
+            self.cond_prev[c as usize] = self.ode.regs[c as usize];
         }
         r
     }
