@@ -122,19 +122,28 @@ fn impact_time(n: i32, h: f64, g: f64, e: f64) -> f64 {
     v1 / g * (1.0 + 2.0 * e * (1.0 - e.powi(n - 1)) / (1.0 - e))
 }
 
+/// Impact times against the closed form: within 1e-12 relative for every method and
+/// tolerance up to t = 12.5 (16 impacts), and up to t = 12.85 (45 impacts, t* - 5.9e-4)
+/// except BDF at rtol 1e-6, whose order-1 restart after each impact leaves an error of
+/// about atol/200 in h that the slow late bounces turn into 2.8e-12 (measured; see
+/// docs/results/runtime.md).
 #[test]
 fn bouncing_ball_impacts_are_exact() {
     let m = load("models/BouncingBall.mo");
     let (h, g, e): (f64, f64, f64) = (10.0, 9.81, 0.8);
     let zeno = (2.0 * h / g).sqrt() * (1.0 + e) / (1.0 - e);
     assert!((zeno - 12.850588106343585).abs() < 1e-12);
-    let stop = 12.5;
-    let expected: Vec<f64> = (1..)
-        .map(|n| impact_time(n, h, g, e))
-        .take_while(|&t| t < stop)
-        .collect();
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         for rtol in [1e-6, 1e-10] {
+            let stop = if method == Method::Bdf && rtol == 1e-6 {
+                12.5
+            } else {
+                12.85
+            };
+            let expected: Vec<f64> = (1..)
+                .map(|n| impact_time(n, h, g, e))
+                .take_while(|&t| t < stop)
+                .collect();
             let r = run(&m, method, rtol, rtol / 100.0, stop, 10);
             let times: Vec<f64> = r.events.iter().map(|ev| ev.time).collect();
             assert_eq!(
@@ -147,7 +156,10 @@ fn bouncing_ball_impacts_are_exact() {
                 .zip(&expected)
                 .map(|(t, want)| ((t - want) / want).abs())
                 .fold(0.0f64, f64::max);
-            eprintln!("bouncing ball {method:?} rtol {rtol:e}: {} impacts, worst relative error {worst:e}", times.len());
+            eprintln!(
+                "bouncing ball {method:?} rtol {rtol:e}: {} impacts to t = {stop}, worst relative error {worst:e}",
+                times.len()
+            );
             assert!(
                 worst <= 1e-12,
                 "{method:?} rtol {rtol:e}: worst relative impact error {worst:e}"
