@@ -836,15 +836,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     }
                     return;
                 }
-                let mut fb = Vec::new();
-                for (c, body) in branches {
-                    let cond = self.expr(c, scope, iters, &mut Vec::new());
-                    let mut b = Vec::new();
-                    for e in body {
-                        self.equation(e, scope, iters, &mut b);
-                    }
-                    fb.push((cond, b));
-                }
+                let fb = self.equation_branches(branches, scope, iters);
                 let mut fo = Vec::new();
                 for e in otherwise {
                     self.equation(e, scope, iters, &mut fo);
@@ -854,24 +846,34 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     otherwise: fo,
                 }
             }
-            EquationKind::When { branches } => {
-                let mut fb = Vec::new();
-                for (c, body) in branches {
-                    let cond = self.expr(c, scope, iters, &mut Vec::new());
-                    let mut b = Vec::new();
-                    for e in body {
-                        self.equation(e, scope, iters, &mut b);
-                    }
-                    fb.push((cond, b));
-                }
-                EquationKind::When { branches: fb }
-            }
+            EquationKind::When { branches } => EquationKind::When {
+                branches: self.equation_branches(branches, scope, iters),
+            },
         };
         out.push(Equation {
             kind,
             comment: Comment::default(),
             span: eq.span,
         });
+    }
+
+    /// The branches of an `if` or `when` equation, conditions and bodies flattened.
+    fn equation_branches(
+        &mut self,
+        branches: &[(Expr, Vec<Equation>)],
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+    ) -> Vec<(Expr, Vec<Equation>)> {
+        let mut out = Vec::new();
+        for (c, body) in branches {
+            let cond = self.expr(c, scope, iters, &mut Vec::new());
+            let mut b = Vec::new();
+            for e in body {
+                self.equation(e, scope, iters, &mut b);
+            }
+            out.push((cond, b));
+        }
+        out
     }
 
     fn for_equation(
