@@ -53,6 +53,12 @@ equation
     reinit(deltat, 1);
     reinit(FlySlideRollBody.Active, 1);
     reinit(ConstraintSurfaces.Active, 1);
+  elsewhen ConstraintSurfaces.Launching then
+    // added (not in the paper): in Flight with the bodies accelerating apart the
+    // predicted time to the next impact no longer holds; back to the physical time scale
+    reinit(deltat, 1);
+    reinit(FlySlideRollBody.Active, 1);
+    reinit(ConstraintSurfaces.Active, 1);
   end when;
   annotation (experiment(StartTime=0, StopTime=150, Tolerance=1e-8));
 end MBSAcausalDifferential;

@@ -263,3 +263,34 @@ fn sample_instants_are_hit_exactly() {
         assert!((t - want).abs() <= 4.0 * f64::EPSILON, "{t} vs {want}");
     }
 }
+
+/// `--vars` leaves out what the outputs do not need, but never what initialization
+/// reads: x(0) = guess(0) = 3 must survive asking only for y.
+#[test]
+fn pruning_keeps_what_initialization_reads() {
+    let m = load("tests/simulate/PruneKeepsInitialization.mo");
+    let y = m
+        .dae
+        .ids()
+        .find(|&s| m.dae.name(s) == "y")
+        .expect("y is a variable");
+    let mut plan = m.analysis.plan.clone();
+    let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &[y]);
+    let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+    let o = SimOptions {
+        start: 0.0,
+        stop: 1.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.5,
+        every_step: false,
+    };
+    let r = simulate(&compiled, &o);
+    assert!(r.error.is_none());
+    let k = r.names.iter().position(|n| n == "y").unwrap();
+    let y0 = r.rows[0][k];
+    let y1 = r.rows.last().unwrap()[k];
+    assert!((y0 - 3.0).abs() < 1e-12, "y(0) = {y0}, pruned {pruned}");
+    assert!((y1 - 3.0 * (-1.0f64).exp()).abs() < 1e-6, "y(1) = {y1}");
+}

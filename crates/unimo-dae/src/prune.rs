@@ -46,6 +46,18 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
     for a in &dae.assertions {
         add(&mut needed, a.condition);
     }
+    // Initialization reads what the initial equations and start values name, even when
+    // nothing after the start does (e.g. a closed-form initial guess of an integrated
+    // quantity).
+    for e in &dae.initial_equations {
+        add(&mut needed, e.lhs);
+        add(&mut needed, e.rhs);
+    }
+    for s in dae.ids() {
+        if let Some(start) = dae.scalar(s).start {
+            add(&mut needed, start);
+        }
+    }
     // Discrete variables defined by equations take part in event iteration.
     for s in dae.ids() {
         if dae.scalar(s).kind == crate::dae::ScalarKind::Discrete {

@@ -7,6 +7,10 @@ use crate::tape::EventState;
 /// Iterations of Newton's method on a block before it fails.
 const MAX_NEWTON_ITERATIONS: usize = 50;
 
+/// Rounds of "solve with the relations frozen, then decide them again" for a block
+/// whose equations hold relations, at an event.
+const MAX_MODE_ROUNDS: usize = 16;
+
 /// A block whose Newton iteration did not converge.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BlockFailure {
@@ -58,12 +62,73 @@ pub fn eval_steps_lenient(
 /// Scratch memory for Newton (allocated once per simulation).
 #[derive(Default, Debug)]
 pub struct Workspace {
+    relations: Vec<f64>,
     matrix: Vec<f64>,
     rhs: Vec<f64>,
     perm: Vec<usize>,
 }
 
+/// Solves a block. Outside events its relations are frozen (they change only at
+/// located crossings), so Newton sees a smooth residual. At an event the relations of
+/// the block are decided as for the whole model's event iteration: Newton solves with
+/// them frozen at their current outcome, then they are evaluated at the solution; when
+/// one changed (a `Real` state indicator inside the loop switched its branch), the
+/// block is solved again with the new outcomes, until they agree with the solution.
+/// Newton never sees a residual that jumps between its iterates.
 fn newton(
+    b: &CompiledBlock,
+    r: &mut [f64],
+    ev: &mut EventState,
+    w: &mut Workspace,
+) -> Result<(), BlockFailure> {
+    if !ev.event_mode || !b.has_relations {
+        return newton_smooth(b, r, ev, w);
+    }
+    // Decide the relations at the current iterate (the previous mode), then iterate.
+    b.residual_tape.run(r, ev);
+    for _ in 0..MAX_MODE_ROUNDS {
+        w.relations.clear();
+        w.relations.extend_from_slice(&ev.relations);
+        ev.event_mode = false;
+        let solved = newton_smooth(b, r, ev, w);
+        ev.event_mode = true;
+        solved?;
+        b.residual_tape.run(r, ev);
+        if w.relations == ev.relations {
+            return Ok(());
+        }
+        // Outcomes that changed without changing the solution (a relation on a quantity
+        // that is exactly 0 in the active branch and flips with rounding): consistent.
+        let norm = b
+            .residuals
+            .iter()
+            .map(|&g| r[g as usize].abs())
+            .fold(0.0, f64::max);
+        if norm <= 1e-10 {
+            return Ok(());
+        }
+    }
+    let flipping: Vec<String> = (0..ev.relations.len())
+        .filter(|&k| w.relations[k] != ev.relations[k])
+        .map(|k| format!("z{k}"))
+        .collect();
+    let norm = b
+        .residuals
+        .iter()
+        .map(|&g| r[g as usize].abs())
+        .fold(0.0, f64::max);
+    Err(BlockFailure {
+        variables: b.names.clone(),
+        residual: norm,
+        reason: format!(
+            "the conditions inside the loop did not settle in {MAX_MODE_ROUNDS} rounds \
+             (no branch choice is consistent with its own solution; still switching: {})",
+            flipping.join(", ")
+        ),
+    })
+}
+
+fn newton_smooth(
     b: &CompiledBlock,
     r: &mut [f64],
     ev: &mut EventState,

@@ -3,7 +3,7 @@
 //! and Newton blocks with their symbolic Jacobians), zero crossings, `when` conditions
 //! and actions, assertions and alias outputs.
 
-use crate::tape::{Compiler, EventState, Layout, Reg, Tape};
+use crate::tape::{Compiler, EventState, Layout, Op, Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::dae::{Dae, ScalarKind, WhenAction};
 use unimo_dae::events::zero_crossings;
@@ -21,6 +21,8 @@ pub struct CompiledBlock {
     /// Row-major, `residuals.len() x iteration.len()`.
     pub jacobian: Vec<Reg>,
     pub linear: bool,
+    /// The residuals hold relations that are decided at events.
+    pub has_relations: bool,
     /// Names of the iteration variables (for errors).
     pub names: Vec<String>,
 }
@@ -226,7 +228,9 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
                     .iter()
                     .map(|&j| c.expr(j, &mut jt, &mut memo))
                     .collect();
+                let has_relations = rt.ops.iter().any(|o| matches!(o, Op::RelEvent(..)));
                 steps.push(CompiledStep::Block(CompiledBlock {
+                    has_relations,
                     iteration: b.iteration_vars.iter().map(|&v| layout.var(v)).collect(),
                     residual_tape: rt,
                     residuals,

@@ -492,6 +492,13 @@ impl<'a> Simulator<'a> {
             // what depends on a `when`-assigned variable sees its new value before other
             // `when` conditions are decided (e.g. a mask closed at a lift-off must block
             // the impact test at the same instant).
+            // A branch fires at most once per step (its condition became true against
+            // the previous step), as a `when`-statement executes once per evaluation of
+            // its algorithm; several clauses may assign the same variable, the later one
+            // in declaration order wins within the step, and a clause that becomes true
+            // because of another's assignment fires in this same step.
+            let n_branches: usize = m.whens.iter().map(|w| w.branches.len()).sum();
+            let mut fired = vec![false; n_branches];
             let mut settled = false;
             let mut unsettled: Vec<u32> = Vec::new();
             for _ in 0..MAX_EVENT_ITERATIONS {
@@ -499,24 +506,32 @@ impl<'a> Simulator<'a> {
                 m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
                 let mut any = false;
                 unsettled.clear();
+                let mut b = 0;
                 for w in &m.whens {
-                    for (conds, actions) in &w.branches {
-                        let fires = conds.iter().any(|&c| {
-                            self.ode.regs[c as usize] != 0.0 && self.cond_prev[c as usize] == 0.0
-                        });
+                    let first = b;
+                    b += w.branches.len();
+                    for (k, (conds, actions)) in w.branches.iter().enumerate() {
+                        let active = conds.iter().any(|&c| self.ode.regs[c as usize] != 0.0);
+                        let fires = !fired[first + k]
+                            && conds.iter().any(|&c| {
+                                self.ode.regs[c as usize] != 0.0
+                                    && self.cond_prev[c as usize] == 0.0
+                            });
                         if fires {
+                            fired[first + k] = true;
+                            any = true;
                             for a in actions {
                                 if let Action::Assign { target, value } = a {
                                     let v = self.ode.regs[*value as usize];
                                     if self.ode.regs[*target as usize] != v {
                                         self.ode.regs[*target as usize] = v;
-                                        any = true;
                                         unsettled.push(*target);
                                     }
                                 }
                             }
                         }
-                        if conds.iter().any(|&c| self.ode.regs[c as usize] != 0.0) {
+                        // elsewhen: later branches only when this one is not active.
+                        if active || fired[first + k] {
                             break;
                         }
                     }
@@ -538,21 +553,14 @@ impl<'a> Simulator<'a> {
                     .collect();
                 return Err(SimError::EventIteration { time: t, culprits });
             }
-            let mut assigned: Vec<(u32, f64)> = Vec::new();
+            let mut assigned: Vec<u32> = Vec::new();
+            let mut b = 0;
             for w in &m.whens {
-                for (conds, actions) in &w.branches {
-                    let fires = conds.iter().any(|&c| {
-                        let now = self.ode.regs[c as usize] != 0.0;
-                        let before = self.cond_prev[c as usize] != 0.0;
-                        now && !before
-                    });
-                    let active = conds.iter().any(|&c| self.ode.regs[c as usize] != 0.0);
-                    if fires {
+                for (_, actions) in &w.branches {
+                    if fired[b] {
                         for a in actions {
                             match a {
-                                Action::Assign { target, value } => {
-                                    assigned.push((*target, self.ode.regs[*value as usize]))
-                                }
+                                Action::Assign { target, .. } => assigned.push(*target),
                                 Action::Reinit { target, value } => self
                                     .reinit_buffer
                                     .push((*target, self.ode.regs[*value as usize])),
@@ -568,22 +576,18 @@ impl<'a> Simulator<'a> {
                             }
                         }
                     }
-                    // elsewhen: later branches only when this one is not active.
-                    if active {
-                        break;
-                    }
+                    b += 1;
                 }
             }
             for &c in &m.conditions {
                 self.cond_prev[c as usize] = self.ode.regs[c as usize];
             }
             let mut changed = Vec::new();
-            for (target, v) in assigned {
+            for target in assigned {
                 let pre = self.ode.regs[(layout.pre_base + target) as usize];
-                if self.ode.regs[target as usize] != v || pre != v {
+                if self.ode.regs[target as usize] != pre && !changed.contains(&target) {
                     changed.push(target);
                 }
-                self.ode.regs[target as usize] = v;
             }
             // Discrete variables defined by equations (not `when`) changed too?
             for &d in &m.discretes {

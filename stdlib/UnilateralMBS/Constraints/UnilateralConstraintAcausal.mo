@@ -59,7 +59,11 @@ algorithm
     ImpactMask := false;
   end when;
 equation
-  NormalImpactIndicator = if mu < 0 and State == 0 and ImpactMask then true else false;
+  // changed (not in the paper): an impact also needs the bodies to approach (relvn > 0
+  // with relv = vrA - vrB and normA pointing from A to B). Without it, a penetration
+  // mu < 0 of the drift's size while the bodies separate fires an "impact" that
+  // reverses a separating velocity into an approaching one: a spurious Zeno sequence.
+  NormalImpactIndicator = if mu < 0 and relvn > 0 and State == 0 and ImpactMask then true else false;
   NormalImpact = edge(NormalImpactIndicator);
   Impact = if noEvent(NormalImpact) then true else false;
   Active*arA = der(vrA);

@@ -13,6 +13,12 @@ partial model UnilateralConstraintAcausalAddOnRegular "Unilateral constraint swi
   Real StateIndicator "Real state variable inside the algebraic loop: <= 0.5 Flight, else contact";
   // fixed=true added so that the initial value problem is complete
   SI.Length Clearance(start=1, fixed=true) "Predicted height of the current jump";
+  // added (not in the paper): the time regularisation predicts the time to the next
+  // impact as 2*|relvn/relan|, which holds only while the bodies accelerate towards each
+  // other (relan > 0). In Flight with relan < 0 and a shrunken time scale the bodies
+  // drift apart and the next impact is not near: the container resets the time scale
+  // to 1 on this signal (otherwise physical time crawls at the last impact's scale).
+  Boolean Launching = State == 0 and relan < 0 and Active < 1 "Flight, accelerating apart, with a shrunken time scale";
 equation
   der(relvn) = Active*(Drelvn + (if StateIndicator > 0.5 then -ConstraintAttraction*relvn else 0));
   Forcen = OutPortA.F*normA;
