@@ -5,7 +5,7 @@ model FlySlideRoll "Example 1 of paper A: a heavy spinning ellipsoid flies, boun
   // the surfaces at rtol 1e-8, and the bounces neither decay nor land: see
   // docs/results/paper-a.md, "Choices".
   extends UnilateralMBS.Examples.EllipsoidOnPlane(
-    a=1.0, b=0.8, c=1.2, g=1, k=0.6, f=0.08, delta=1e-3, ClearanceTolerance=1e-10,
+    a=1.0, b=0.8, c=1.2, g=1, k=0.6, f=0.08, delta=1e-3, ClearanceTolerance=1e-8,
     r0={0, 5, 0}, v0={0.05, 0, 0}, omega0={0, -10, 2}, tStop=150);
   annotation (experiment(StartTime=0, StopTime=1e6, Tolerance=1e-8));
 end FlySlideRoll;

@@ -6,6 +6,7 @@
 
 mod bench;
 mod check;
+pub mod plot;
 mod provider;
 pub mod render;
 mod simulate;
@@ -120,6 +121,15 @@ enum Command {
     /// end time, and the worst scd over the output grid. `--plot` writes a
     /// work-precision diagram (SVG).
     Bench(BenchArgs),
+    /// Plot columns of a result CSV as an SVG line chart.
+    ///
+    /// Each `--vars` column is a line against `--x` (default `time`); any column may
+    /// be the horizontal axis, for phase plots (e.g. a contact point's x against its
+    /// z). Long series are thinned to `--max-points` keeping each bucket's extremes,
+    /// so event jumps and peaks stay visible.
+    ///
+    /// Example: `unimo plot result.csv --vars t --x time -o time.svg`.
+    Plot(plot::PlotArgs),
     /// Print an intermediate representation of a model.
     ///
     /// Stages in pipeline order: `ast` (syntax tree of the first file), `flat` (as
@@ -289,6 +299,7 @@ fn run_on_this_thread() -> i32 {
         } => check::flatten(&files, model.as_deref(), &libs, stats, color),
         Command::Simulate(args) => simulate::simulate(&args, color),
         Command::Bench(args) => bench::bench(&args, color),
+        Command::Plot(args) => plot::plot(&args),
         Command::Emit {
             stage,
             files,

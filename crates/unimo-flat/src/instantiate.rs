@@ -455,11 +455,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     }
                 }
                 Section::Algorithm(al) => {
-                    let stmts: Vec<Statement> = al
-                        .statements
-                        .iter()
-                        .map(|s| self.statement(s, &scope, &mut Vec::new()))
-                        .collect();
+                    let mut stmts: Vec<Statement> = Vec::new();
+                    self.model_statements(&al.statements, &scope, &mut Vec::new(), &mut stmts);
                     if al.initial {
                         self.model.initial_algorithms.push(stmts);
                     } else {
@@ -926,8 +923,67 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         }
     }
 
+    /// A statement of a model's algorithm: like [`Self::statement`], but a `for` loop
+    /// whose range is a parameter expression is unrolled (its index becomes a value),
+    /// so that a loop over a component array (`InPorts[i].F`) names the scalarized
+    /// components, which the flat model has, and not `InPorts[i]`, which it has not.
+    /// Loops with `break` or `return` stay loops.
+    fn model_statements(
+        &mut self,
+        stmts: &[Statement],
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        out: &mut Vec<Statement>,
+    ) {
+        for st in stmts {
+            match &st.kind {
+                StatementKind::For { indices, body }
+                    if indices.len() == 1 && !breaks(body) && indices[0].range.is_some() =>
+                {
+                    let range = indices[0].range.as_ref().unwrap();
+                    let flat = self.expr(range, scope, iters, &mut Vec::new());
+                    if let Ok(Value::Array(values)) = eval::eval(&flat, self, iters) {
+                        for v in values {
+                            iters.push((indices[0].name.text.to_string(), v));
+                            self.model_statements(body, scope, iters, out);
+                            iters.pop();
+                        }
+                    } else {
+                        out.push(self.statement_in(st, scope, iters, &mut Vec::new(), true));
+                    }
+                }
+                _ => out.push(self.statement_in(st, scope, iters, &mut Vec::new(), true)),
+            }
+        }
+    }
+
     fn statement(&mut self, st: &Statement, scope: &Scope, locals: &mut Vec<String>) -> Statement {
-        let iters = &mut Vec::new();
+        self.statement_in(st, scope, &mut Vec::new(), locals, false)
+    }
+
+    fn statement_in(
+        &mut self,
+        st: &Statement,
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+        unroll: bool,
+    ) -> Statement {
+        let body = |this: &mut Self,
+                    b: &[Statement],
+                    iters: &mut Vec<(String, Value)>,
+                    locals: &mut Vec<String>|
+         -> Vec<Statement> {
+            if unroll && locals.is_empty() {
+                let mut out = Vec::new();
+                this.model_statements(b, scope, iters, &mut out);
+                out
+            } else {
+                b.iter()
+                    .map(|s| this.statement_in(s, scope, iters, locals, unroll))
+                    .collect()
+            }
+        };
         let kind = match &st.kind {
             StatementKind::Assign { target, value } => StatementKind::Assign {
                 target: self.cref(target, scope, iters, locals),
@@ -945,32 +1001,45 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 branches,
                 otherwise,
             } => StatementKind::If {
-                branches: self.statement_branches(branches, scope, locals),
-                otherwise: otherwise
+                branches: branches
                     .iter()
-                    .map(|s| self.statement(s, scope, locals))
+                    .map(|(c, b)| {
+                        (
+                            self.expr(c, scope, iters, locals),
+                            body(self, b, iters, locals),
+                        )
+                    })
                     .collect(),
+                otherwise: body(self, otherwise, iters, locals),
             },
-            StatementKind::For { indices, body } => {
+            StatementKind::For { indices, body: b } => {
                 let indices = self.indices(indices, scope, iters, locals);
                 let n = indices.len();
                 locals.extend(indices.iter().map(|i| i.name.text.to_string()));
-                let body = body
+                let b = b
                     .iter()
-                    .map(|s| self.statement(s, scope, locals))
+                    .map(|s| self.statement_in(s, scope, iters, locals, unroll))
                     .collect();
                 locals.truncate(locals.len() - n);
-                StatementKind::For { indices, body }
+                StatementKind::For { indices, body: b }
             }
-            StatementKind::While { condition, body } => StatementKind::While {
+            StatementKind::While { condition, body: b } => StatementKind::While {
                 condition: self.expr(condition, scope, iters, locals),
-                body: body
+                body: b
                     .iter()
-                    .map(|s| self.statement(s, scope, locals))
+                    .map(|s| self.statement_in(s, scope, iters, locals, unroll))
                     .collect(),
             },
             StatementKind::When { branches } => StatementKind::When {
-                branches: self.statement_branches(branches, scope, locals),
+                branches: branches
+                    .iter()
+                    .map(|(c, b)| {
+                        (
+                            self.expr(c, scope, iters, locals),
+                            body(self, b, iters, locals),
+                        )
+                    })
+                    .collect(),
             },
             StatementKind::Return => StatementKind::Return,
             StatementKind::Break => StatementKind::Break,
@@ -1216,23 +1285,6 @@ impl<'t, 'p> Instantiator<'t, 'p> {
     }
 
     /// The branches of an `if`/`when` statement, conditions and bodies made absolute.
-    fn statement_branches(
-        &mut self,
-        branches: &[(Expr, Vec<Statement>)],
-        scope: &Scope,
-        locals: &mut Vec<String>,
-    ) -> Vec<(Expr, Vec<Statement>)> {
-        branches
-            .iter()
-            .map(|(c, b)| {
-                (
-                    self.expr(c, scope, &mut Vec::new(), locals),
-                    b.iter().map(|s| self.statement(s, scope, locals)).collect(),
-                )
-            })
-            .collect()
-    }
-
     /// `for` indices with their ranges made absolute (the names stay local).
     fn indices(
         &mut self,
@@ -1245,7 +1297,15 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             .iter()
             .map(|i| ForIndex {
                 name: i.name.clone(),
-                range: i.range.as_ref().map(|r| self.expr(r, scope, iters, locals)),
+                range: i.range.as_ref().map(|r| {
+                    let flat = self.expr(r, scope, iters, locals);
+                    // A range of parameters is decided here, so that the flat text
+                    // names no structural parameter (they are folded away).
+                    match eval::eval(&flat, self, iters) {
+                        Ok(v @ Value::Array(_)) => v.to_expr(r.span),
+                        _ => flat,
+                    }
+                }),
             })
             .collect()
     }
@@ -1484,4 +1544,18 @@ impl Env for Instantiator<'_, '_> {
         self.values.insert(key.to_owned(), v.clone());
         Ok(v)
     }
+}
+
+/// Whether a loop body leaves the loop early (`break`, `return`) at any depth.
+fn breaks(body: &[Statement]) -> bool {
+    body.iter().any(|s| match &s.kind {
+        StatementKind::Break | StatementKind::Return => true,
+        StatementKind::If {
+            branches,
+            otherwise,
+        } => branches.iter().any(|(_, b)| breaks(b)) || breaks(otherwise),
+        StatementKind::When { branches } => branches.iter().any(|(_, b)| breaks(b)),
+        StatementKind::For { body, .. } | StatementKind::While { body, .. } => breaks(body),
+        _ => false,
+    })
 }

@@ -111,6 +111,7 @@ impl CompiledModel {
             event_mode: false,
             relations: vec![0.0; self.roots.len()],
             forced: vec![None; self.roots.len()],
+            sticky: false,
             samples: vec![0.0; self.samples.len()],
         }
     }
@@ -315,7 +316,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .iter()
         .map(|a| {
             (
-                c.expr(a.condition, &mut assert_tape, &mut memo),
+                c.expr_no_event(a.condition, &mut assert_tape, &mut memo),
                 a.message.clone(),
                 a.warning,
             )

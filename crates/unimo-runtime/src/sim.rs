@@ -238,7 +238,7 @@ impl System for Ode<'_> {
 }
 
 /// Relative size below which a root function counts as zero (blocks converge to 1e-13).
-const ROOT_NOISE: f64 = 1e-14;
+const ROOT_NOISE: f64 = crate::tape::RELATION_NOISE;
 
 /// The relation's value just after its zero crossing went in `dir`.
 fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {
@@ -473,11 +473,12 @@ impl<'a> Simulator<'a> {
     /// Modelica's event iteration at `t`: evaluate with `pre` values, fire `when`
     /// branches whose condition became true, repeat until no discrete value changes;
     /// then apply `reinit`s.
-    fn event_iteration(&mut self, t: f64, _initial: bool) -> Result<(), SimError> {
+    fn event_iteration(&mut self, t: f64, initial: bool) -> Result<(), SimError> {
         let m = self.m();
         let layout = m.layout;
         self.ode.regs[layout.time as usize] = t;
         self.ode.ev.event_mode = true;
+        self.ode.ev.sticky = !initial;
         self.reinit_buffer.clear();
         let mut iterations = 0;
         loop {
@@ -629,6 +630,7 @@ impl<'a> Simulator<'a> {
             self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
         }
         self.ode.ev.event_mode = false;
+        self.ode.ev.sticky = false;
         Ok(())
     }
 

@@ -79,8 +79,17 @@ pub struct EventState {
     /// event mode instead of the literal comparison (which may be on the wrong side of
     /// the root by rounding).
     pub forced: Vec<Option<f64>>,
+    /// At events after initialization: a relation whose operands agree to rounding
+    /// noise keeps its outcome (from before the event, or as forced by the located
+    /// crossing), so that event iteration does not flip it on the last bits of a
+    /// Newton solution.
+    pub sticky: bool,
     pub samples: Vec<f64>,
 }
+
+/// Relative size below which the operands of a relation count as equal at an event
+/// (blocks converge to about 1e-13; the root functions use the same floor).
+pub const RELATION_NOISE: f64 = 1e-14;
 
 /// A compiled instruction list.
 #[derive(Clone, Debug, Default)]
@@ -110,9 +119,16 @@ impl Tape {
                 Op::RelEvent(op, d, a, b, k) => {
                     let k = k as usize;
                     if ev.event_mode {
+                        let (x, y) = (r[a as usize], r[b as usize]);
                         let v = match ev.forced[k] {
                             Some(v) => v,
-                            None => f64::from(op.apply(r[a as usize], r[b as usize])),
+                            None if ev.sticky
+                                && (x - y).abs()
+                                    <= RELATION_NOISE * x.abs().max(y.abs()).max(1.0) =>
+                            {
+                                ev.relations[k]
+                            }
+                            None => f64::from(op.apply(x, y)),
                         };
                         ev.relations[k] = v;
                     }
@@ -200,6 +216,17 @@ impl<'a> Compiler<'a> {
     /// Compiles `e` into `tape` with a local memo; returns the register with its value.
     pub fn expr(&mut self, e: ExprId, tape: &mut Tape, memo: &mut HashMap<ExprId, Reg>) -> Reg {
         self.expr_in(e, tape, memo, false)
+    }
+
+    /// Compiles `e` with every relation compared literally (as under `noEvent`): for
+    /// conditions checked after each step, such as assertions.
+    pub fn expr_no_event(
+        &mut self,
+        e: ExprId,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+    ) -> Reg {
+        self.expr_in(e, tape, memo, true)
     }
 
     fn expr_in(

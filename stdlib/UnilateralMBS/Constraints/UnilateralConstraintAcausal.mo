@@ -22,6 +22,9 @@ partial model UnilateralConstraintAcausal "Unilateral constraint: kinematics, im
   SI.Acceleration[3] arB "Rate of change of vrB (physical time)";
   SI.Acceleration[3] rela "Relative acceleration arA - arB";
   SI.Acceleration relan "Normal component of rela";
+  SI.Length muFlight "mu in Flight, 1 in contact";
+  SI.Velocity relvnFlight "relvn in Flight, 0 in contact";
+  SI.Acceleration relanFlight "relan in Flight, 0 in contact";
   // printed in the paper (fixed=true added so that the initial value problem is complete)
   Real Active(start=1, fixed=true) "dt/dtau: scale of the independent variable";
 
@@ -52,7 +55,7 @@ partial model UnilateralConstraintAcausal "Unilateral constraint: kinematics, im
     elseif State == 1 then Interfaces.UnilateralConstraintStateName.Sliding
     else Interfaces.UnilateralConstraintStateName.Rolling "State as an enumeration";
 algorithm
-  when relan > 0 and not ImpactMask then
+  when relanFlight > 0 and not ImpactMask then
     ImpactMask := true;
   end when;
   when State == 0 and pre(State) <> 0 then
@@ -63,7 +66,14 @@ equation
   // with relv = vrA - vrB and normA pointing from A to B). Without it, a penetration
   // mu < 0 of the drift's size while the bodies separate fires an "impact" that
   // reverses a separating velocity into an approaching one: a spurious Zeno sequence.
-  NormalImpactIndicator = if mu < 0 and relvn > 0 and State == 0 and ImpactMask then true else false;
+  // The tests of Flight read muFlight, relvnFlight and relanFlight (added, not in the
+  // paper): equal to mu, relvn and relan in Flight and constant in contact, where those
+  // hover at 0 and every rounding-level sign change would be a zero crossing (an event
+  // that changes nothing, thousands per second of rolling).
+  muFlight = if State == 0 then mu else 1;
+  relvnFlight = if State == 0 then relvn else 0;
+  relanFlight = if State == 0 then relan else 0;
+  NormalImpactIndicator = if muFlight < 0 and relvnFlight > 0 and State == 0 and ImpactMask then true else false;
   NormalImpact = edge(NormalImpactIndicator);
   Impact = if noEvent(NormalImpact) then true else false;
   Active*arA = der(vrA);

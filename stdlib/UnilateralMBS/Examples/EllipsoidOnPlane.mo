@@ -41,6 +41,7 @@ model EllipsoidOnPlane "Heavy ellipsoid on a fixed horizontal plane with one aca
   Integer Impacts(start=0, fixed=true) "Impacts so far";
   Integer Switches(start=0, fixed=true) "Changes of the constraint state so far";
   discrete SI.Time tFirstRolling(start=-1, fixed=true) "Physical time of the first transfer to Rolling (-1: not yet)";
+  discrete SI.Time tFirstContact(start=-1, fixed=true) "Physical time of the first landing or of the start in contact (-1: not yet)";
 equation
   connect(HorizontalSurface.OutPort, ConstraintSurfaces.InPortA);
   connect(ConstraintSurfaces.OutPortA, HorizontalSurface.InPort1);
@@ -76,9 +77,16 @@ equation
   when change(ConstraintSurfaces.State) then
     Switches = pre(Switches) + 1;
   end when;
+  when ConstraintSurfaces.State > 0 and pre(tFirstContact) < 0 then
+    tFirstContact = t;
+  end when;
   when ConstraintSurfaces.State == 2 and pre(tFirstRolling) < 0 then
     tFirstRolling = t;
   end when;
+  // A Zeno sequence whose bounces fall below what the integration resolves before the
+  // predicted jump height drops under ClearanceTolerance never lands: the time scale
+  // shrinks until physical time stops. Say so instead of running on.
+  assert(deltat > 1e-14, "the time regularisation collapsed (deltat <= 1e-14): the bounces are below the integration accuracy before they land; raise ClearanceTolerance or tighten the tolerance");
   when t >= tStop then
     terminate("physical time reached tStop");
   end when;
