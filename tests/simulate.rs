@@ -294,3 +294,22 @@ fn pruning_keeps_what_initialization_reads() {
     assert!((y0 - 3.0).abs() < 1e-12, "y(0) = {y0}, pruned {pruned}");
     assert!((y1 - 3.0 * (-1.0f64).exp()).abs() < 1e-6, "y(1) = {y1}");
 }
+
+/// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
+/// branch, `D = 0` in the other): the variable solved in one branch only must not be
+/// torn by dividing by its coefficient, which is 0 in the other branch.
+#[test]
+fn switched_equation_in_a_loop_is_not_divided_by_zero() {
+    let m = load("tests/simulate/SwitchedLoop.mo");
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
+    let (kx, kd, kf) = (
+        r.names.iter().position(|n| n == "x").unwrap(),
+        r.names.iter().position(|n| n == "D").unwrap(),
+        r.names.iter().position(|n| n == "F").unwrap(),
+    );
+    // before the switch F = 0 and x decays; after it D = der(x) = 0
+    assert_eq!(r.rows[0][kf], 0.0);
+    let last = r.rows.last().unwrap();
+    assert!(last[kd].abs() < 1e-12, "D = {}", last[kd]);
+    assert!(last[kx] < 1.0 && last[kx] > 0.0, "x = {}", last[kx]);
+}

@@ -33,7 +33,12 @@ pub struct PlotArgs {
     #[arg(long)]
     pub log_y: bool,
     /// Only rows whose `--range-of` column is in this range, e.g. `--range 20,60`.
-    #[arg(long, value_delimiter = ',', num_args = 2, value_name = "FROM,TO")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "FROM,TO",
+        allow_negative_numbers = true
+    )]
     pub range: Vec<f64>,
     /// The column that `--range` selects on [default: the `--x` column].
     #[arg(long, value_name = "NAME")]
@@ -43,7 +48,7 @@ pub struct PlotArgs {
     #[arg(long, value_name = "N", default_value_t = 4000)]
     pub max_points: usize,
     /// Size in pixels.
-    #[arg(long, value_delimiter = ',', num_args = 2, value_name = "W,H", default_values_t = [900, 560])]
+    #[arg(long, value_delimiter = ',', value_name = "W,H", default_values_t = [900, 560])]
     pub size: Vec<u32>,
 }
 
@@ -148,6 +153,12 @@ pub fn plot(a: &PlotArgs) -> i32 {
 }
 
 fn run(a: &PlotArgs) -> Result<usize, String> {
+    if !a.range.is_empty() && a.range.len() != 2 {
+        return Err("--range takes two numbers: FROM,TO".into());
+    }
+    if a.size.len() != 2 || a.size.contains(&0) {
+        return Err("--size takes two positive numbers: W,H".into());
+    }
     let t = read_csv(&a.csv)?;
     if t.rows.is_empty() {
         return Err(format!("{}: no rows to plot", a.csv.display()));

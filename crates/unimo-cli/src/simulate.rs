@@ -205,7 +205,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             if a.stats {
                 let s = &result.stats;
                 eprintln!(
-                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
+                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
                 format!("{:?}", a.method).to_lowercase(),
                 compiled.states.len(),
                 s.solver.steps,
@@ -218,6 +218,8 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 s.event_iterations,
                 s.rhs_evaluations,
                 plan.stats.pruned_equations,
+                compiled.plan_ops(),
+                compiled.roots.len(),
                 compile_ms,
                 simulate_ms
             );

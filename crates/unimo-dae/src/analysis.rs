@@ -273,7 +273,13 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
                             ScalarKind::Continuous | ScalarKind::Derivative
                         )
                     });
-                    if known_coef && !zero_at_parameters(sys.dae, &mut parameter_values, coef) {
+                    // A coefficient with a condition (an if-equation that solves this
+                    // variable in one branch only) may be 0 in the other branch: the
+                    // variable is then left to Newton, which sees the branch in force.
+                    if known_coef
+                        && !has_if(sys.dae, coef)
+                        && !zero_at_parameters(sys.dae, &mut parameter_values, coef)
+                    {
                         solvable.insert((e.0, v.0));
                         solutions.insert((e.0, v.0), sol);
                     }
@@ -307,8 +313,10 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
             let s = sys.scalar(v);
             let r = sys.dae.residual(eq);
             match solve_linear(&mut sys.dae.arena, r, s) {
-                Some((value, _)) => plan.steps.push(PlanStep::Assign { var: s, value, eq }),
-                None => {
+                Some((value, coef)) if !has_if(sys.dae, coef) => {
+                    plan.steps.push(PlanStep::Assign { var: s, value, eq })
+                }
+                _ => {
                     let block = newton_block(sys.dae, &[eq], &[s], &[], &[r]);
                     plan.steps.push(PlanStep::Block(block));
                 }

@@ -97,6 +97,18 @@ pub struct CompiledModel {
 }
 
 impl CompiledModel {
+    /// Instructions evaluated by one pass of the plan (explicit steps, and per block
+    /// one residual and one Jacobian evaluation): the size of the compiled model.
+    pub fn plan_ops(&self) -> usize {
+        self.steps
+            .iter()
+            .map(|s| match s {
+                CompiledStep::Explicit(t) => t.ops.len(),
+                CompiledStep::Block(b) => b.residual_tape.ops.len() + b.jacobian_tape.ops.len(),
+            })
+            .sum()
+    }
+
     /// A register file with the constants in place.
     pub fn new_registers(&self) -> Vec<f64> {
         let mut r = vec![0.0; self.n_registers];
