@@ -984,6 +984,22 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     .collect()
             }
         };
+        // `if`/`when` branches: each condition, then its body.
+        let guarded = |this: &mut Self,
+                       branches: &[(Expr, Vec<Statement>)],
+                       iters: &mut Vec<(String, Value)>,
+                       locals: &mut Vec<String>|
+         -> Vec<(Expr, Vec<Statement>)> {
+            branches
+                .iter()
+                .map(|(c, b)| {
+                    (
+                        this.expr(c, scope, iters, locals),
+                        body(this, b, iters, locals),
+                    )
+                })
+                .collect()
+        };
         let kind = match &st.kind {
             StatementKind::Assign { target, value } => StatementKind::Assign {
                 target: self.cref(target, scope, iters, locals),
@@ -1001,15 +1017,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 branches,
                 otherwise,
             } => StatementKind::If {
-                branches: branches
-                    .iter()
-                    .map(|(c, b)| {
-                        (
-                            self.expr(c, scope, iters, locals),
-                            body(self, b, iters, locals),
-                        )
-                    })
-                    .collect(),
+                branches: guarded(self, branches, iters, locals),
                 otherwise: body(self, otherwise, iters, locals),
             },
             StatementKind::For { indices, body: b } => {
@@ -1031,15 +1039,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     .collect(),
             },
             StatementKind::When { branches } => StatementKind::When {
-                branches: branches
-                    .iter()
-                    .map(|(c, b)| {
-                        (
-                            self.expr(c, scope, iters, locals),
-                            body(self, b, iters, locals),
-                        )
-                    })
-                    .collect(),
+                branches: guarded(self, branches, iters, locals),
             },
             StatementKind::Return => StatementKind::Return,
             StatementKind::Break => StatementKind::Break,

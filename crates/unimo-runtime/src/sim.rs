@@ -237,6 +237,18 @@ impl System for Ode<'_> {
     }
 }
 
+/// The names of the outputs held in `regs` (for messages).
+fn output_names(m: &CompiledModel, regs: &[u32]) -> Vec<String> {
+    regs.iter()
+        .filter_map(|&r| {
+            m.outputs
+                .iter()
+                .find(|(_, x)| *x == r)
+                .map(|(n, _)| n.clone())
+        })
+        .collect()
+}
+
 /// Relative size below which a root function counts as zero (blocks converge to 1e-13).
 const ROOT_NOISE: f64 = crate::tape::RELATION_NOISE;
 
@@ -543,15 +555,7 @@ impl<'a> Simulator<'a> {
                 }
             }
             if !settled {
-                let culprits = unsettled
-                    .iter()
-                    .filter_map(|&r| {
-                        m.outputs
-                            .iter()
-                            .find(|(_, x)| *x == r)
-                            .map(|(n, _)| n.clone())
-                    })
-                    .collect();
+                let culprits = output_names(m, &unsettled);
                 return Err(SimError::EventIteration { time: t, culprits });
             }
             let mut assigned: Vec<u32> = Vec::new();
@@ -614,15 +618,7 @@ impl<'a> Simulator<'a> {
                 break;
             }
             if iterations >= MAX_EVENT_ITERATIONS {
-                let culprits = changed
-                    .iter()
-                    .filter_map(|&r| {
-                        m.outputs
-                            .iter()
-                            .find(|(_, x)| *x == r)
-                            .map(|(n, _)| n.clone())
-                    })
-                    .collect();
+                let culprits = output_names(m, &changed);
                 return Err(SimError::EventIteration { time: t, culprits });
             }
         }
