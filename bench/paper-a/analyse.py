@@ -59,12 +59,12 @@ def main(path):
         out["largest energy gain within one Sliding interval (relative)"] = "%.2e" % worst[1]
         out["longest Rolling interval: length, relative energy change"] = "%.4g s, %.2e" % longest_roll
     if "ConstraintSurfaces.rPBDrift" in c:
-        out["max drift |rPB - closed form|"] = "%.2e" % max(r[c["ConstraintSurfaces.rPBDrift"]] for r in data)
+        out["max drift ‖rPB − closed form‖"] = "%.2e" % max(r[c["ConstraintSurfaces.rPBDrift"]] for r in data)
     if "ConstraintSurfaces.Gap" in c:
         g = [abs(r[c["ConstraintSurfaces.Gap"]]) for r, s in zip(data, st) if s > 0]
         if g:
-            out["max |gap| in contact"] = "%.2e" % max(g)
-            out["|gap| at the end"] = "%.2e" % abs(last[c["ConstraintSurfaces.Gap"]])
+            out["max abs(gap) in contact"] = "%.2e" % max(g)
+            out["abs(gap) at the end"] = "%.2e" % abs(last[c["ConstraintSurfaces.Gap"]])
     for k, v in out.items():
         print("| %s | %s |" % (k, v))
 
