@@ -1284,7 +1284,6 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         Expr { kind, span }
     }
 
-    /// The branches of an `if`/`when` statement, conditions and bodies made absolute.
     /// `for` indices with their ranges made absolute (the names stay local).
     fn indices(
         &mut self,

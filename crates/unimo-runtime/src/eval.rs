@@ -99,11 +99,7 @@ fn newton(
         }
         // Outcomes that changed without changing the solution (a relation on a quantity
         // that is exactly 0 in the active branch and flips with rounding): consistent.
-        let norm = b
-            .residuals
-            .iter()
-            .map(|&g| r[g as usize].abs())
-            .fold(0.0, f64::max);
+        let norm = residual_norm(b, r);
         if norm <= 1e-10 {
             return Ok(());
         }
@@ -112,11 +108,7 @@ fn newton(
         .filter(|&k| w.relations[k] != ev.relations[k])
         .map(|k| format!("z{k}"))
         .collect();
-    let norm = b
-        .residuals
-        .iter()
-        .map(|&g| r[g as usize].abs())
-        .fold(0.0, f64::max);
+    let norm = residual_norm(b, r);
     Err(BlockFailure {
         variables: b.names.clone(),
         residual: norm,
@@ -187,11 +179,7 @@ fn newton_smooth(
         last_norm = norm;
     }
     b.residual_tape.run(r, ev);
-    let norm = b
-        .residuals
-        .iter()
-        .map(|&g| r[g as usize].abs())
-        .fold(0.0, f64::max);
+    let norm = residual_norm(b, r);
     if norm <= 1e-10 {
         return Ok(());
     }
@@ -199,6 +187,14 @@ fn newton_smooth(
         "Newton's method did not converge in 50 iterations",
         norm,
     ))
+}
+
+/// The largest absolute residual of a block (its residual tape must have run).
+fn residual_norm(b: &CompiledBlock, r: &[f64]) -> f64 {
+    b.residuals
+        .iter()
+        .map(|&g| r[g as usize].abs())
+        .fold(0.0, f64::max)
 }
 
 /// Solves `a x = b` in place (LU with partial pivoting); false when singular.
