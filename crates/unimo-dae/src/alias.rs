@@ -197,6 +197,15 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     for a in &mut dae.assertions {
         a.condition = dae.arena.substitute(a.condition, &lookup, &mut memo);
     }
+    for site in dae
+        .collision
+        .iter_mut()
+        .chain(dae.collision_world.iter_mut())
+    {
+        for x in &mut site.args {
+            *x = dae.arena.substitute(*x, &lookup, &mut memo);
+        }
+    }
     stats
 }
 
@@ -241,6 +250,7 @@ fn has_time_or_events(dae: &Dae, e: ExprId) -> bool {
             | Node::Initial
             | Node::Rel(..)
             | Node::Sample(..)
+            | Node::External(..)
             | Node::If(..) => return true,
             _ => stack.extend(dae.arena.children(x)),
         }

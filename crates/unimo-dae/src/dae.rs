@@ -171,7 +171,34 @@ pub struct Dae {
     pub enumerations: Vec<(String, Vec<String>)>,
     /// `experiment(StartTime, StopTime, Tolerance, Interval)` when given.
     pub experiment: Experiment,
+    /// Collision bodies (`collisionBody(...)` calls), numbered by the compiler in
+    /// instantiation order: site `k` of `Node::External(k, _)`.
+    pub collision: Vec<CollisionSite>,
+    /// The collision world's settings (`collisionGaps(margin, tolerance, broadphase, sweep)`).
+    pub collision_world: Option<CollisionSite>,
 }
+
+/// One collision body: the arguments of its `collisionBody(...)` call, flattened.
+#[derive(Clone, Debug)]
+pub struct CollisionSite {
+    pub args: Vec<ExprId>,
+    pub span: Span,
+}
+
+/// Scalar arguments of `collisionBody`, in order: shape code (1 sphere, 2 box,
+/// 3 capsule, 4 cylinder, 5 cone, 6 ellipsoid, 7 half-space), dimensions (3), position
+/// (3), rotation matrix body-to-world row-major (9), velocity (3), angular velocity in
+/// world coordinates (3), dynamic flag, K, n, damping law (1 clipped, 2 Hunt-Crossley,
+/// 3 Flores), D, e, static and sliding friction coefficients, switching velocity,
+/// friction cap, impulse flag, mass, principal inertia (3), group.
+pub const COLLISION_BODY_ARGS: usize = 38;
+
+/// Arguments of `collisionGaps`: margin, contact tolerance, broadphase (0 automatic,
+/// 1 all pairs, 2 sweep and prune), sweep test on (1) or off (0).
+pub const COLLISION_WORLD_ARGS: usize = 4;
+
+/// Site index of the collision world's gaps (`collisionGaps(...)`).
+pub const COLLISION_GAPS_SITE: u32 = u32::MAX;
 
 /// Simulation settings from `annotation(experiment(...))`.
 #[derive(Clone, Debug, Default, PartialEq)]

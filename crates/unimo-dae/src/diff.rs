@@ -50,6 +50,16 @@ fn derivative_node(
             None => a.zero(),
         },
         Node::Time => a.constant(seed.time),
+        // An external output has no symbolic operands: its partial derivatives are zero
+        // (the runtime differentiates such models numerically); a time derivative is
+        // unknown, so it evaluates to NaN and shows up as an evaluation error.
+        Node::External(..) => {
+            if seed.time == 0.0 {
+                a.zero()
+            } else {
+                a.constant(f64::NAN)
+            }
+        }
         Node::Add(x, y) => {
             let dx = d(a, x, seed);
             let dy = d(a, y, seed);

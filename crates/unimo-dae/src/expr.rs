@@ -232,6 +232,10 @@ pub enum Node {
     Initial,
     /// `sample(start, interval)`: true at the sample instants.
     Sample(ExprId, ExprId),
+    /// Output `out` of external object site `site` (a collision body's force and
+    /// torque, or the collision world's gaps): computed by the runtime from states and
+    /// parameters before each pass of the plan; a leaf for the symbolic layer.
+    External(u32, u32),
 }
 
 /// The arena. Nodes are immutable; constructors simplify and share.
@@ -308,6 +312,15 @@ impl ExprArena {
 
     pub fn initial(&mut self) -> ExprId {
         self.intern(Node::Initial)
+    }
+
+    /// The id of an existing node, if it was ever built.
+    pub fn find(&self, n: Node) -> Option<ExprId> {
+        self.index.get(&n).copied()
+    }
+
+    pub fn external(&mut self, site: u32, out: u32) -> ExprId {
+        self.intern(Node::External(site, out))
     }
 
     /// The value of a constant node.
@@ -506,9 +519,12 @@ impl ExprArena {
     /// The operands of a node, in order.
     pub fn children(&self, id: ExprId) -> impl Iterator<Item = ExprId> {
         let (a, b, c): (Option<ExprId>, Option<ExprId>, Option<ExprId>) = match self.node(id) {
-            Node::Const(_) | Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
-                (None, None, None)
-            }
+            Node::Const(_)
+            | Node::Var(_)
+            | Node::Pre(_)
+            | Node::Time
+            | Node::Initial
+            | Node::External(..) => (None, None, None),
             Node::Neg(x) | Node::Fn1(_, x) | Node::Not(x) | Node::NoEvent(x) => {
                 (Some(x), None, None)
             }
@@ -566,7 +582,7 @@ impl ExprArena {
         }
         let r = match self.node(id) {
             Node::Var(s) => map(s).unwrap_or(id),
-            Node::Const(_) | Node::Pre(_) | Node::Time | Node::Initial => id,
+            Node::Const(_) | Node::Pre(_) | Node::Time | Node::Initial | Node::External(..) => id,
             node => {
                 let kids: Vec<ExprId> = self.children(id).collect();
                 let new: Vec<ExprId> = kids
@@ -587,9 +603,12 @@ impl ExprArena {
     /// A node of the same kind as `node` over new operands (simplified again).
     pub fn rebuild(&mut self, node: Node, k: &[ExprId]) -> ExprId {
         match node {
-            Node::Const(_) | Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
-                self.intern(node)
-            }
+            Node::Const(_)
+            | Node::Var(_)
+            | Node::Pre(_)
+            | Node::Time
+            | Node::Initial
+            | Node::External(..) => self.intern(node),
             Node::Add(..) => self.add(k[0], k[1]),
             Node::Mul(..) => self.mul(k[0], k[1]),
             Node::Div(..) => self.div(k[0], k[1]),
@@ -638,6 +657,8 @@ impl ExprArena {
             }
             Node::NoEvent(a) => e(a),
             Node::Sample(..) => 0.0,
+            // Not known to the symbolic layer (computed by the runtime).
+            Node::External(..) => f64::NAN,
         }
     }
 
@@ -689,6 +710,7 @@ impl ExprArena {
             Node::Pre(s) => write!(out, "pre({})", name(s))?,
             Node::Time => out.push_str("time"),
             Node::Initial => out.push_str("initial()"),
+            Node::External(site, k) => write!(out, "external({site}, {k})")?,
             Node::Add(a, b) => {
                 w(a, 6, out)?;
                 match self.node(b) {

@@ -118,7 +118,11 @@ impl<'m> Lowerer<'m> {
                         return false;
                     }
                 }
-                Node::Time | Node::Pre(_) | Node::Initial | Node::Sample(..) => return false,
+                Node::Time
+                | Node::Pre(_)
+                | Node::Initial
+                | Node::Sample(..)
+                | Node::External(..) => return false,
                 _ => stack.extend(self.dae.arena.children(x)),
             }
         }
@@ -906,6 +910,61 @@ impl<'m> Lowerer<'m> {
                 Tensor { dims: x.dims, data }
             }
             "initial" => Tensor::scalar(self.a().initial()),
+            "collisionBody" => {
+                // Every argument, flattened in order; the runtime reads them by position
+                // (see `unimo_runtime::collision`).
+                let mut flat = Vec::new();
+                for e in &args.positional {
+                    flat.extend(self.expr(e)?.data);
+                }
+                if flat.len() != crate::dae::COLLISION_BODY_ARGS {
+                    return Err(DaeError::new(
+                        "E3019",
+                        format!(
+                            "`collisionBody` takes {} scalar arguments, got {}; use \
+                             `Unimo.Collision.CollisionBody` instead of calling it directly",
+                            crate::dae::COLLISION_BODY_ARGS,
+                            flat.len()
+                        ),
+                        span,
+                    ));
+                }
+                let site = self.dae.collision.len() as u32;
+                self.dae
+                    .collision
+                    .push(crate::dae::CollisionSite { args: flat, span });
+                let data = (0..6).map(|k| self.dae.arena.external(site, k)).collect();
+                Tensor {
+                    dims: vec![6],
+                    data,
+                }
+            }
+            "collisionGaps" => {
+                let mut flat = Vec::new();
+                for e in &args.positional {
+                    flat.extend(self.expr(e)?.data);
+                }
+                if flat.len() != crate::dae::COLLISION_WORLD_ARGS
+                    || self.dae.collision_world.is_some()
+                {
+                    return Err(DaeError::new(
+                        "E3019",
+                        format!(
+                            "`collisionGaps` takes {} scalar arguments and appears once per model; \
+                             use one `Unimo.Collision.CollisionWorld`",
+                            crate::dae::COLLISION_WORLD_ARGS
+                        ),
+                        span,
+                    ));
+                }
+                self.dae.collision_world = Some(crate::dae::CollisionSite { args: flat, span });
+                let g = crate::dae::COLLISION_GAPS_SITE;
+                let data = (0..2).map(|k| self.dae.arena.external(g, k)).collect();
+                Tensor {
+                    dims: vec![2],
+                    data,
+                }
+            }
             "terminal" => Tensor::scalar(self.a().boolean(false)),
             "noEvent" => {
                 let x = self.positional(args, 0, span)?;

@@ -77,6 +77,8 @@ impl Shapes<'_> {
                     | "floor" | "ceil" => arg(0),
                     "smooth" => arg(1),
                     "cross" => vec![3],
+                    "collisionBody" => vec![6],
+                    "collisionGaps" => vec![2],
                     "transpose" => {
                         let mut d = arg(0);
                         d.reverse();

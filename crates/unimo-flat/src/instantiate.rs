@@ -413,6 +413,16 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
         }
+        // `outer` components first: parameter bindings may refer through them.
+        for e in &composition.elements {
+            if let (true, false, false, ElementKind::Component(cc)) =
+                (e.outer, e.inner, e.redeclare, &e.kind)
+            {
+                for d in &cc.components {
+                    self.outer_component(&scope, d);
+                }
+            }
+        }
         // Parameters and constants first: sizes and conditions of the others use them.
         for pass in 0..2 {
             for e in &composition.elements {
@@ -434,8 +444,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
                 for d in &cc.components {
                     if e.outer && !e.inner {
-                        self.outer_component(&scope, d);
-                        continue;
+                        continue; // aliased above
                     }
                     self.component(&scope, cc, d, m, variability, top);
                 }

@@ -38,6 +38,8 @@ pub const BUILTIN_FUNCTIONS: &[&str] = &[
     "exp",
     "fill",
     "floor",
+    "collisionBody",
+    "collisionGaps",
     "homotopy",
     "identity",
     "initial",

@@ -26,6 +26,7 @@ pub fn eval_steps(
     ev: &mut EventState,
     work: &mut Workspace,
 ) -> Result<(), BlockFailure> {
+    collide(m, r, ev)?;
     for s in &m.steps {
         match s {
             CompiledStep::Explicit(t) => t.run(r, ev),
@@ -45,7 +46,7 @@ pub fn eval_steps_lenient(
     ev: &mut EventState,
     work: &mut Workspace,
 ) -> Option<BlockFailure> {
-    let mut first = None;
+    let mut first = collide(m, r, ev).err();
     for s in &m.steps {
         match s {
             CompiledStep::Explicit(t) => t.run(r, ev),
@@ -57,6 +58,22 @@ pub fn eval_steps_lenient(
         }
     }
     first
+}
+
+/// Evaluates the collision world (before the plan, which reads its outputs).
+fn collide(m: &CompiledModel, r: &mut [f64], ev: &mut EventState) -> Result<(), BlockFailure> {
+    let Some(cm) = &m.collision else {
+        return Ok(());
+    };
+    cm.inputs.run(r, ev);
+    let mut st = ev.collision.take().unwrap_or_default();
+    let res = st.evaluate(cm, r, ev.event_mode);
+    ev.collision = Some(st);
+    res.map_err(|f| BlockFailure {
+        variables: vec![f.body],
+        residual: f64::NAN,
+        reason: f.reason,
+    })
 }
 
 /// Scratch memory for Newton (allocated once per simulation).

@@ -1,4 +1,5 @@
 //! The runtime: compiled evaluation of the causal plan, initialization, events and the simulation driver.
+pub mod collision;
 pub mod eval;
 pub mod model;
 pub mod sim;

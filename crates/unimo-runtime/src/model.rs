@@ -3,6 +3,7 @@
 //! and Newton blocks with their symbolic Jacobians), zero crossings, `when` conditions
 //! and actions, assertions and alias outputs.
 
+use crate::collision::{CollisionBodyRegs, CollisionModel};
 use crate::tape::{Compiler, EventState, Layout, Op, Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::dae::{Dae, ScalarKind, WhenAction};
@@ -94,6 +95,8 @@ pub struct CompiledModel {
     pub initial_tape: Tape,
     pub initial_residuals: Vec<Reg>,
     pub ops_total: usize,
+    /// The collision world, when the model has collision bodies.
+    pub collision: Option<CollisionModel>,
 }
 
 impl CompiledModel {
@@ -125,6 +128,7 @@ impl CompiledModel {
             forced: vec![None; self.roots.len()],
             sticky: false,
             samples: vec![0.0; self.samples.len()],
+            collision: self.collision.as_ref().map(|_| Box::default()),
         }
     }
 }
@@ -187,6 +191,19 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .map(|(k, &e)| (e, k as u32))
         .collect();
     let mut c = Compiler::new(&dae.arena, layout, &relation_index, &sample_index);
+    // Output registers of the collision world, known to every tape.
+    let external = |c: &mut Compiler<'_>, site: u32, out: u32| -> Reg {
+        let reg = c.temp_public();
+        if let Some(e) = dae.arena.find(Node::External(site, out)) {
+            c.shared.insert(e, reg);
+        }
+        reg
+    };
+    let body_outputs: Vec<[Reg; 6]> = (0..dae.collision.len() as u32)
+        .map(|k| std::array::from_fn(|o| external(&mut c, k, o as u32)))
+        .collect();
+    let gaps: [Reg; 2] =
+        std::array::from_fn(|o| external(&mut c, unimo_dae::dae::COLLISION_GAPS_SITE, o as u32));
 
     let mut parameters = Tape::default();
     let mut memo = HashMap::default();
@@ -197,6 +214,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
             c.assign(p, st, &mut parameters, &mut memo);
         }
     }
+    let collision = compile_collision(dae, plan, &mut c, body_outputs, gaps);
     let mut starts = Tape::default();
     let mut memo = HashMap::default();
     for s in dae.ids() {
@@ -414,7 +432,12 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .iter()
         .map(|&s| dae.scalar(s).fixed == Some(true))
         .collect();
-    let jacobian = symbolic_jacobian(dae, plan, &mut c);
+    // External objects have no symbolic derivatives: finite differences then.
+    let jacobian = if collision.is_some() {
+        None
+    } else {
+        symbolic_jacobian(dae, plan, &mut c)
+    };
     let n_registers = c.n_registers();
     let constants = std::mem::take(&mut c.constants);
     let mut m = CompiledModel {
@@ -445,6 +468,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_tape,
         initial_residuals: initial_regs,
         ops_total: 0,
+        collision,
     };
     m.ops_total = m
         .steps
@@ -504,4 +528,85 @@ fn symbolic_jacobian(dae: &Dae, plan: &Plan, c: &mut Compiler<'_>) -> Option<Sym
         .collect();
     c.continue_from(&compiler);
     Some((tape, regs))
+}
+
+/// The collision world: argument tape, registers, and the arguments that a world
+/// evaluated before the plan cannot read.
+fn compile_collision(
+    dae: &Dae,
+    plan: &Plan,
+    c: &mut Compiler<'_>,
+    body_outputs: Vec<[Reg; 6]>,
+    gaps: [Reg; 2],
+) -> Option<CollisionModel> {
+    if dae.collision.is_empty() && dae.collision_world.is_none() {
+        return None;
+    }
+    let layout = c.layout;
+    let states: std::collections::HashSet<ScalarId> = plan.states.iter().copied().collect();
+    let mut inputs = Tape::default();
+    let mut memo = HashMap::default();
+    let mut problems = Vec::new();
+    let check = |e: ExprId, problems: &mut Vec<String>| {
+        for s in dae.arena.vars(e) {
+            let sc = dae.scalar(s);
+            let ok = match sc.kind {
+                ScalarKind::Parameter | ScalarKind::Constant | ScalarKind::Discrete => true,
+                ScalarKind::Continuous => states.contains(&s),
+                ScalarKind::Derivative => false,
+            };
+            if !ok && !problems.contains(&dae.name(s)) {
+                problems.push(dae.name(s));
+            }
+        }
+    };
+    let mut bodies = Vec::new();
+    for (k, site) in dae.collision.iter().enumerate() {
+        let args: Vec<Reg> = site
+            .args
+            .iter()
+            .map(|&e| {
+                check(e, &mut problems);
+                c.expr(e, &mut inputs, &mut memo)
+            })
+            .collect();
+        let state_reg = |i: usize| match dae.arena.node(site.args[i]) {
+            Node::Var(s) if states.contains(&s) => Some(layout.var(s)),
+            _ => None,
+        };
+        let velocity_states = (16..22)
+            .map(state_reg)
+            .collect::<Option<Vec<Reg>>>()
+            .map(|v| std::array::from_fn(|i| v[i]));
+        // Name the body by the position variable it reads, else by its number.
+        let name = dae
+            .arena
+            .vars(site.args[4])
+            .first()
+            .map(|&s| {
+                let n = dae.name(s);
+                n.rsplit_once('.').map(|(p, _)| p.to_string()).unwrap_or(n)
+            })
+            .unwrap_or_else(|| format!("collision body {}", k + 1));
+        bodies.push(CollisionBodyRegs {
+            args,
+            outputs: body_outputs[k],
+            velocity_states,
+            name,
+        });
+    }
+    let world_args = match &dae.collision_world {
+        Some(w) => std::array::from_fn(|i| c.expr(w.args[i], &mut inputs, &mut memo)),
+        None => {
+            problems.push("(no Unimo.Collision.CollisionWorld: collision bodies need one)".into());
+            [layout.time; 4]
+        }
+    };
+    Some(CollisionModel {
+        inputs,
+        bodies,
+        world_args,
+        gaps,
+        problems,
+    })
 }

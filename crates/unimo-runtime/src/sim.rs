@@ -336,6 +336,15 @@ impl<'a> Simulator<'a> {
     /// for the states they determine, then the initial event (`initial()` true).
     fn initialize(&mut self, t0: f64) -> Result<(), SimError> {
         let m = self.m();
+        if let Some(c) = m.collision.as_ref().filter(|c| !c.problems.is_empty()) {
+            return Err(SimError::Init {
+                message: "the collision world runs before the rest of the model, so a \
+                          collision body's shape, placement and velocities must come from \
+                          states and parameters, not from variables the model computes"
+                    .into(),
+                culprits: c.problems.clone(),
+            });
+        }
         let layout = m.layout;
         self.ode.regs[layout.time as usize] = t0;
         self.ode.regs[layout.initial as usize] = 1.0;
@@ -686,6 +695,7 @@ impl<'a> Simulator<'a> {
         if m.states.is_empty() {
             return self.run_without_states(o);
         }
+        let options_max_step = options.max_step;
         let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
             Ok(s) => s,
             Err(e) => {
@@ -693,6 +703,9 @@ impl<'a> Simulator<'a> {
                 return self.result;
             }
         };
+        if let Some(c) = self.ode.ev.collision.as_ref() {
+            solver.set_max_step(options_max_step.min(c.step_cap()));
+        }
         let mut next_output = 1usize;
         let grid = |k: usize| o.start + k as f64 * o.interval;
         let mut buf = vec![0.0; m.states.len()];
@@ -714,6 +727,13 @@ impl<'a> Simulator<'a> {
             };
             let now = solver.current_time();
             steps_taken += 1;
+            if !matches!(reason, StopReason::Root { .. }) {
+                let x = solver.state().to_vec();
+                if let Err(e) = self.commit_collision(now, &x) {
+                    self.result.error = Some(e);
+                    break;
+                }
+            }
             if steps_taken.is_multiple_of(256) {
                 progress(now);
             }
@@ -779,6 +799,20 @@ impl<'a> Simulator<'a> {
                         self.result.error = Some(e);
                         break;
                     }
+                    if self.m().collision.is_some() {
+                        let x = solver.state().to_vec();
+                        if let Err(e) = self.commit_collision(solver.current_time(), &x) {
+                            self.result.error = Some(e);
+                            break;
+                        }
+                        let cap = self
+                            .ode
+                            .ev
+                            .collision
+                            .as_ref()
+                            .map_or(f64::INFINITY, |c| c.step_cap());
+                        solver.set_max_step(options_max_step.min(cap));
+                    }
                     if let Some(msg) = self.terminate.take() {
                         self.result.terminated = Some(msg);
                         break;
@@ -820,6 +854,18 @@ impl<'a> Simulator<'a> {
             self.ode.regs[r as usize] = x[k];
         }
         self.eval_plan()
+    }
+
+    /// After an accepted step or an event: the collision world's sweep starts here.
+    fn commit_collision(&mut self, t: f64, x: &[f64]) -> Result<(), SimError> {
+        if self.m().collision.is_none() {
+            return Ok(());
+        }
+        self.load_state(t, x)?;
+        if let Some(c) = self.ode.ev.collision.as_mut() {
+            c.commit();
+        }
+        Ok(())
     }
 
     fn check_assertions(&mut self, t: f64) -> Result<(), SimError> {

@@ -85,6 +85,8 @@ pub struct EventState {
     /// Newton solution.
     pub sticky: bool,
     pub samples: Vec<f64>,
+    /// The collision world's mutable side (contact set, sweep origin, broadphase).
+    pub collision: Option<Box<crate::collision::CollisionState>>,
 }
 
 /// Relative size below which the operands of a relation count as equal at an event
@@ -263,6 +265,14 @@ impl<'a> Compiler<'a> {
                     memo.insert(x, self.layout.initial);
                     continue;
                 }
+                Node::External(..) => {
+                    // Output registers of external objects are allocated up front by
+                    // `model::compile` (in `shared`); this is only a fallback.
+                    let reg = self.next_temp;
+                    self.next_temp += 1;
+                    self.shared.insert(x, reg);
+                    continue;
+                }
                 Node::Const(bits) => {
                     // Constants live in registers of their own, set once.
                     let reg = match self.constant_regs.get(&bits) {
@@ -327,7 +337,11 @@ impl<'a> Compiler<'a> {
                         0,
                         self.sample_index.get(&x).copied().unwrap_or(0),
                     )),
-                    Node::Var(_) | Node::Pre(_) | Node::Time | Node::Initial => {
+                    Node::Var(_)
+                    | Node::Pre(_)
+                    | Node::Time
+                    | Node::Initial
+                    | Node::External(..) => {
                         unreachable!("leaves are handled above")
                     }
                 }

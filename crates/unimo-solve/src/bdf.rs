@@ -697,6 +697,11 @@ impl Integrator for Bdf {
         &self.stats
     }
 
+    fn set_max_step(&mut self, h: f64) {
+        self.setup.options.max_step = h;
+        self.h = self.h.min(h);
+    }
+
     fn reset(&mut self, _system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size || !t.is_finite() {
             return Err(SolveError::invalid("reset state has the wrong length"));

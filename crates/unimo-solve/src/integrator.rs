@@ -33,6 +33,9 @@ pub trait Integrator {
 
     /// Work counters.
     fn stats(&self) -> &Stats;
+
+    /// Changes the largest step from the next step on (e.g. while a stiff contact lasts).
+    fn set_max_step(&mut self, h: f64);
 }
 
 /// What every method needs from the problem, checked once at construction.

@@ -639,6 +639,10 @@ impl Integrator for Radau5 {
         &self.stats
     }
 
+    fn set_max_step(&mut self, h: f64) {
+        self.setup.options.max_step = h;
+    }
+
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size {
             return Err(SolveError::invalid("reset state has the wrong length"));

@@ -157,6 +157,13 @@ impl Solver {
     }
 
     /// The output position: `t_stop`, the root, or the end of the last internal step.
+    /// Changes the largest step the method takes from now on (must be positive).
+    pub fn set_max_step(&mut self, h: f64) {
+        if h > 0.0 {
+            self.integrator.set_max_step(h);
+        }
+    }
+
     pub fn current_time(&self) -> f64 {
         self.time
     }

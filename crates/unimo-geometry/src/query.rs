@@ -1,0 +1,546 @@
+//! Narrowphase queries in world coordinates: contact manifolds (several points per
+//! pair), signed distance with witness points and normal, bounding boxes and time of
+//! impact under linear motion.
+
+use crate::shape::{to_v3, to_vector, Placement, Shape, ShapeKind, V3};
+use parry3d_f64::bounding_volume::Aabb as ParryAabb;
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query::{
+    self, ContactManifold, DefaultQueryDispatcher, PersistentQueryDispatcher, ShapeCastOptions,
+};
+use parry3d_f64::shape::SupportMap;
+
+/// One contact point between bodies A and B, in world coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactPoint {
+    /// Witness point on A's surface.
+    pub point_a: V3,
+    /// Witness point on B's surface.
+    pub point_b: V3,
+    /// Unit normal from A towards B.
+    pub normal: V3,
+    /// Signed distance along the normal (negative: penetration depth).
+    pub dist: f64,
+}
+
+/// A query the geometry cannot answer for this pair of shapes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unsupported(pub String);
+
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Unsupported {}
+
+fn name(s: &Shape) -> &'static str {
+    match s.kind {
+        ShapeKind::Sphere { .. } => "sphere",
+        ShapeKind::Box { .. } => "box",
+        ShapeKind::Capsule { .. } => "capsule",
+        ShapeKind::Cylinder { .. } => "cylinder",
+        ShapeKind::Cone { .. } => "cone",
+        ShapeKind::Ellipsoid { .. } => "ellipsoid",
+        ShapeKind::HalfSpace => "half-space",
+        ShapeKind::ConvexHull { .. } => "convex hull",
+        ShapeKind::TriMesh { .. } => "triangle mesh",
+    }
+}
+
+fn unsupported(a: &Shape, b: &Shape) -> Unsupported {
+    Unsupported(format!(
+        "no contact query between a {} and a {}",
+        name(a),
+        name(b)
+    ))
+}
+
+/// Reusable memory for [`contacts`].
+#[derive(Default)]
+pub struct Scratch {
+    manifolds: Vec<ContactManifold<(), ()>>,
+}
+
+/// Appends to `out` the contact points of A and B closer than `prediction` (every
+/// point of every manifold: a box on a box gets its face, a cylinder lying on a box its
+/// line). Returns how many were added.
+pub fn contacts(
+    a: &Shape,
+    pa: &Placement,
+    b: &Shape,
+    pb: &Placement,
+    prediction: f64,
+    scratch: &mut Scratch,
+    out: &mut Vec<ContactPoint>,
+) -> Result<usize, Unsupported> {
+    let before = out.len();
+    match (a.ellipsoid.as_ref(), b.ellipsoid.as_ref()) {
+        (None, None) => {
+            let (ga, gb) = (a.parry.as_ref().unwrap(), b.parry.as_ref().unwrap());
+            let (posa, posb) = (pa.pose(), pb.pose());
+            let pos12 = posa.inv_mul(&posb);
+            scratch.manifolds.clear();
+            let mut ws = None;
+            DefaultQueryDispatcher
+                .contact_manifolds(
+                    &pos12,
+                    &*ga.0,
+                    &*gb.0,
+                    prediction,
+                    &mut scratch.manifolds,
+                    &mut ws,
+                )
+                .map_err(|_| unsupported(a, b))?;
+            for m in &scratch.manifolds {
+                let (sa, sb) = match &m.subshape_poses {
+                    Some(p) => (
+                        posa * p.pos1.unwrap_or(Pose::IDENTITY),
+                        posb * p.pos2.unwrap_or(Pose::IDENTITY),
+                    ),
+                    None => (posa, posb),
+                };
+                let n = sa.rotation * m.local_n1;
+                let first = out.len();
+                for c in &m.points {
+                    if c.dist > prediction {
+                        continue;
+                    }
+                    out.push(ContactPoint {
+                        point_a: to_v3(sa * c.local_p1),
+                        point_b: to_v3(sb * c.local_p2),
+                        normal: to_v3(n),
+                        dist: c.dist,
+                    });
+                }
+                keep_hull(out, first, a.bounding_radius.min(b.bounding_radius));
+            }
+        }
+        (Some(e), None) if b.kind == ShapeKind::HalfSpace => {
+            if let Some(c) = ellipsoid_plane(e.semi_axes, pa, pb) {
+                if c.dist <= prediction {
+                    out.push(c);
+                }
+            }
+        }
+        (None, Some(e)) if a.kind == ShapeKind::HalfSpace => {
+            if let Some(c) = ellipsoid_plane(e.semi_axes, pb, pa) {
+                if c.dist <= prediction {
+                    out.push(flip(c));
+                }
+            }
+        }
+        _ => {
+            let sa: &dyn SupportMap = match (&a.ellipsoid, &a.parry) {
+                (Some(e), _) => e,
+                (None, Some(p)) => p.as_support_map().ok_or_else(|| unsupported(a, b))?,
+                _ => return Err(unsupported(a, b)),
+            };
+            let sb: &dyn SupportMap = match (&b.ellipsoid, &b.parry) {
+                (Some(e), _) => e,
+                (None, Some(p)) => p.as_support_map().ok_or_else(|| unsupported(a, b))?,
+                _ => return Err(unsupported(a, b)),
+            };
+            let (posa, posb) = (pa.pose(), pb.pose());
+            let pos12 = posa.inv_mul(&posb);
+            if let Some(c) =
+                query::details::contact_support_map_support_map(&pos12, sa, sb, prediction)
+            {
+                out.push(ContactPoint {
+                    point_a: to_v3(posa * c.point1),
+                    point_b: to_v3(posa * c.point2),
+                    normal: to_v3(posa.rotation * c.normal1),
+                    dist: c.dist,
+                });
+            }
+        }
+    }
+    Ok(out.len() - before)
+}
+
+/// Reduces the points `out[first..]` of one manifold to the corners of their convex
+/// hull in the contact plane (duplicates and interior or collinear points dropped).
+/// parry adds the deepest point to the clipped features, which sits in the middle of a
+/// flat contact or doubles a corner once the contact tilts by a hair: the force
+/// distribution would jump with the sign of the tilt and make a resting body rock.
+fn keep_hull(out: &mut Vec<ContactPoint>, first: usize, size: f64) {
+    if out.len() - first <= 1 {
+        return;
+    }
+    let n = out[first].normal;
+    let (t1, t2) = crate::laws::tangent_basis(n);
+    let eps = 1e-9 * size.max(f64::MIN_POSITIVE);
+    let uv = |c: &ContactPoint| {
+        let p = c.point_a;
+        (
+            p[0] * t1[0] + p[1] * t1[1] + p[2] * t1[2],
+            p[0] * t2[0] + p[1] * t2[1] + p[2] * t2[2],
+        )
+    };
+    let mut pts: Vec<(f64, f64, ContactPoint)> = out[first..]
+        .iter()
+        .map(|c| {
+            let (u, v) = uv(c);
+            (u, v, *c)
+        })
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    // Near-duplicates: keep the deeper one.
+    let mut uniq: Vec<(f64, f64, ContactPoint)> = Vec::with_capacity(pts.len());
+    for p in pts {
+        match uniq
+            .iter_mut()
+            .find(|q| (q.0 - p.0).hypot(q.1 - p.1) <= eps)
+        {
+            Some(q) => {
+                if p.2.dist < q.2.dist {
+                    *q = p;
+                }
+            }
+            None => uniq.push(p),
+        }
+    }
+    uniq.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let hull = if uniq.len() <= 2 {
+        uniq
+    } else {
+        // Andrew's monotone chain; collinear points are dropped.
+        let cross = |o: &(f64, f64, ContactPoint),
+                     a: &(f64, f64, ContactPoint),
+                     b: &(f64, f64, ContactPoint)| {
+            (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+        };
+        let tol = eps * size.max(f64::MIN_POSITIVE);
+        let mut lower: Vec<(f64, f64, ContactPoint)> = Vec::new();
+        for p in &uniq {
+            while lower.len() >= 2
+                && cross(&lower[lower.len() - 2], &lower[lower.len() - 1], p) <= tol
+            {
+                lower.pop();
+            }
+            lower.push(*p);
+        }
+        let mut upper: Vec<(f64, f64, ContactPoint)> = Vec::new();
+        for p in uniq.iter().rev() {
+            while upper.len() >= 2
+                && cross(&upper[upper.len() - 2], &upper[upper.len() - 1], p) <= tol
+            {
+                upper.pop();
+            }
+            upper.push(*p);
+        }
+        lower.pop();
+        upper.pop();
+        lower.extend(upper);
+        lower
+    };
+    out.truncate(first);
+    out.extend(hull.into_iter().map(|p| p.2));
+}
+
+fn flip(c: ContactPoint) -> ContactPoint {
+    ContactPoint {
+        point_a: c.point_b,
+        point_b: c.point_a,
+        normal: [-c.normal[0], -c.normal[1], -c.normal[2]],
+        dist: c.dist,
+    }
+}
+
+/// Ellipsoid (A) against the half-space `z <= 0` of B's frame, in closed form: the
+/// point of the ellipsoid whose outer normal is `-n` is `r_A - T A² Tᵀ n /
+/// sqrt(nᵀ T A² Tᵀ n)`.
+pub fn ellipsoid_plane(
+    semi_axes: Vector,
+    pa: &Placement,
+    plane: &Placement,
+) -> Option<ContactPoint> {
+    let n = plane.rotate([0.0, 0.0, 1.0]);
+    let nb = pa.unrotate(n);
+    let a2 = [
+        semi_axes.x * semi_axes.x,
+        semi_axes.y * semi_axes.y,
+        semi_axes.z * semi_axes.z,
+    ];
+    let q = a2[0] * nb[0] * nb[0] + a2[1] * nb[1] * nb[1] + a2[2] * nb[2] * nb[2];
+    let s = q.sqrt();
+    if s == 0.0 {
+        return None;
+    }
+    let local = [-a2[0] * nb[0] / s, -a2[1] * nb[1] / s, -a2[2] * nb[2] / s];
+    let w = pa.rotate(local);
+    let p = [pa.r[0] + w[0], pa.r[1] + w[1], pa.r[2] + w[2]];
+    let dist = (p[0] - plane.r[0]) * n[0] + (p[1] - plane.r[1]) * n[1] + (p[2] - plane.r[2]) * n[2];
+    Some(ContactPoint {
+        point_a: p,
+        point_b: [p[0] - dist * n[0], p[1] - dist * n[1], p[2] - dist * n[2]],
+        normal: [-n[0], -n[1], -n[2]],
+        dist,
+    })
+}
+
+/// The deepest (or closest) point between A and B within `prediction`: signed distance,
+/// witness points and normal.
+pub fn closest(
+    a: &Shape,
+    pa: &Placement,
+    b: &Shape,
+    pb: &Placement,
+    prediction: f64,
+) -> Result<Option<ContactPoint>, Unsupported> {
+    let mut out = Vec::new();
+    contacts(a, pa, b, pb, prediction, &mut Scratch::default(), &mut out)?;
+    Ok(out.into_iter().min_by(|x, y| x.dist.total_cmp(&y.dist)))
+}
+
+/// Axis-aligned bounding box in world coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: V3,
+    pub max: V3,
+}
+
+impl Aabb {
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        (0..3).all(|k| self.min[k] <= o.max[k] && o.min[k] <= self.max[k])
+    }
+
+    pub fn merged(&self, o: &Aabb) -> Aabb {
+        let mut m = *self;
+        for k in 0..3 {
+            m.min[k] = m.min[k].min(o.min[k]);
+            m.max[k] = m.max[k].max(o.max[k]);
+        }
+        m
+    }
+
+    pub fn loosened(&self, margin: f64) -> Aabb {
+        let mut m = *self;
+        for k in 0..3 {
+            m.min[k] -= margin;
+            m.max[k] += margin;
+        }
+        m
+    }
+}
+
+/// The world bounding box of a placed shape (unbounded for the half-space).
+pub fn aabb(s: &Shape, p: &Placement) -> Aabb {
+    match (&s.ellipsoid, &s.parry) {
+        (Some(e), _) => {
+            let a = [e.semi_axes.x, e.semi_axes.y, e.semi_axes.z];
+            let mut h = [0.0; 3];
+            for (i, hi) in h.iter_mut().enumerate() {
+                *hi = (0..3)
+                    .map(|j| (p.rot[i][j] * a[j]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+            }
+            Aabb {
+                min: [p.r[0] - h[0], p.r[1] - h[1], p.r[2] - h[2]],
+                max: [p.r[0] + h[0], p.r[1] + h[1], p.r[2] + h[2]],
+            }
+        }
+        (None, Some(g)) if s.is_bounded() => {
+            let b: ParryAabb = g.compute_aabb(&p.pose());
+            Aabb {
+                min: to_v3(b.mins),
+                max: to_v3(b.maxs),
+            }
+        }
+        _ => Aabb {
+            min: [f64::NEG_INFINITY; 3],
+            max: [f64::INFINITY; 3],
+        },
+    }
+}
+
+/// First time in `[0, max_time]` at which A moving with velocity `va` and B with `vb`
+/// (translation only, from placements `pa`, `pb`) touch: `Some(0)` when they already
+/// overlap. `None` when they do not meet or the pair has no shape cast (ellipsoids).
+pub fn time_of_impact(
+    a: &Shape,
+    pa: &Placement,
+    va: V3,
+    b: &Shape,
+    pb: &Placement,
+    vb: V3,
+    max_time: f64,
+) -> Option<f64> {
+    let (ga, gb) = (a.parry.as_ref()?, b.parry.as_ref()?);
+    let hit = query::cast_shapes(
+        &pa.pose(),
+        to_vector(va),
+        &*ga.0,
+        &pb.pose(),
+        to_vector(vb),
+        &*gb.0,
+        ShapeCastOptions::with_max_time_of_impact(max_time),
+    )
+    .ok()??;
+    Some(hit.time_of_impact)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::ShapeKind as K;
+
+    fn sh(k: K) -> Shape {
+        Shape::new(k).unwrap()
+    }
+
+    #[test]
+    fn sphere_above_plane_has_the_analytic_distance() {
+        let ball = sh(K::Sphere { radius: 0.5 });
+        let ground = sh(K::HalfSpace);
+        let c = closest(
+            &ball,
+            &Placement::at([0.3, -2.0, 1.25]),
+            &ground,
+            &Placement::IDENTITY,
+            10.0,
+        )
+        .unwrap()
+        .unwrap();
+        assert!((c.dist - 0.75).abs() < 1e-14, "{c:?}");
+        assert!((c.normal[2] + 1.0).abs() < 1e-14);
+        assert!((c.point_a[2] - 0.75).abs() < 1e-14 && c.point_b[2].abs() < 1e-14);
+        let c = closest(
+            &ball,
+            &Placement::at([0.0, 0.0, 0.4]),
+            &ground,
+            &Placement::IDENTITY,
+            0.0,
+        )
+        .unwrap()
+        .unwrap();
+        assert!((c.dist + 0.1).abs() < 1e-14, "penetration: {c:?}");
+    }
+
+    #[test]
+    fn ellipsoid_support_map_agrees_with_the_closed_form_against_a_plane() {
+        let e = sh(K::Ellipsoid {
+            semi_axes: [0.3, 0.2, 0.1],
+        });
+        // A rotated ellipsoid above a plane; the GJK answer against a thin box that
+        // stands for the plane must match the closed form.
+        let (s, c) = (0.4f64.sin(), 0.4f64.cos());
+        let pa = Placement {
+            r: [0.0, 0.0, 0.35],
+            rot: [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]],
+        };
+        let exact = closest(&e, &pa, &sh(K::HalfSpace), &Placement::IDENTITY, 1.0)
+            .unwrap()
+            .unwrap();
+        let a2 = [0.09 * s * s, 0.0, 0.01 * c * c];
+        let expected = 0.35 - (a2[0] + a2[2]).sqrt();
+        assert!(
+            (exact.dist - expected).abs() < 1e-14,
+            "{exact:?} vs {expected}"
+        );
+        let slab = sh(K::Box {
+            half: [10.0, 10.0, 1.0],
+        });
+        let gjk = closest(&e, &pa, &slab, &Placement::at([0.0, 0.0, -1.0]), 1.0)
+            .unwrap()
+            .unwrap();
+        assert!((gjk.dist - exact.dist).abs() < 1e-9, "{gjk:?} vs {exact:?}");
+    }
+
+    #[test]
+    fn a_cylinder_lying_on_a_box_gets_several_contact_points() {
+        // Axis along world x: rotate the body y axis onto x.
+        let cyl = sh(K::Cylinder {
+            half_height: 0.5,
+            radius: 0.1,
+        });
+        let rot = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let pc = Placement {
+            r: [0.0, 0.0, 0.1 - 1e-4],
+            rot,
+        };
+        let table = sh(K::Box {
+            half: [1.0, 1.0, 0.05],
+        });
+        let mut out = Vec::new();
+        contacts(
+            &cyl,
+            &pc,
+            &table,
+            &Placement::at([0.0, 0.0, -0.05]),
+            0.0,
+            &mut Scratch::default(),
+            &mut out,
+        )
+        .unwrap();
+        assert!(
+            out.len() >= 2,
+            "line contact needs two points or more: {out:?}"
+        );
+        let xs: Vec<f64> = out.iter().map(|c| c.point_a[0]).collect();
+        let spread = xs.iter().cloned().fold(f64::MIN, f64::max)
+            - xs.iter().cloned().fold(f64::MAX, f64::min);
+        assert!(
+            spread > 0.9,
+            "points should span the cylinder's length: {xs:?}"
+        );
+        for c in &out {
+            assert!((c.dist + 1e-4).abs() < 1e-9, "{c:?}");
+        }
+    }
+
+    #[test]
+    fn time_of_impact_catches_a_fast_ball_before_a_thin_plate() {
+        let ball = sh(K::Sphere { radius: 0.025 });
+        let plate = sh(K::Box {
+            half: [0.5, 0.5, 0.005],
+        });
+        // 100 m/s downwards from 1 m above: touches after (1 - 0.03)/100 s.
+        let t = time_of_impact(
+            &ball,
+            &Placement::at([0.0, 0.0, 1.0]),
+            [0.0, 0.0, -100.0],
+            &plate,
+            &Placement::IDENTITY,
+            [0.0; 3],
+            1.0,
+        )
+        .unwrap();
+        assert!((t - 0.97 / 100.0).abs() < 1e-9, "{t}");
+        // Endpoints on both sides are clear of each other.
+        assert!(closest(
+            &ball,
+            &Placement::at([0.0, 0.0, 1.0]),
+            &plate,
+            &Placement::IDENTITY,
+            0.0
+        )
+        .unwrap()
+        .is_none());
+        assert!(closest(
+            &ball,
+            &Placement::at([0.0, 0.0, -1.0]),
+            &plate,
+            &Placement::IDENTITY,
+            0.0
+        )
+        .unwrap()
+        .is_none());
+    }
+
+    #[test]
+    fn bad_dimensions_are_errors() {
+        assert!(Shape::new(K::Sphere { radius: 0.0 }).is_err());
+        assert!(Shape::new(K::Box {
+            half: [1.0, f64::NAN, 1.0]
+        })
+        .is_err());
+        let e = Shape::new(K::TriMesh {
+            vertices: vec![[0.0; 3]],
+            triangles: vec![[0, 1, 2]],
+        });
+        assert!(e.is_err());
+    }
+}

@@ -1,0 +1,597 @@
+//! The collision world: an external object evaluated once before every pass of the
+//! plan. It reads each collision body's arguments (shape, placement, velocities,
+//! contact parameters) from registers computed from states and parameters, runs the
+//! broadphase and the narrowphase, and writes each body's contact force and torque and
+//! the world's two gap functions, which the plan reads like any register.
+//!
+//! Events: the world keeps the set `C` of pairs in contact, changed only in event
+//! mode. `gaps[0]` is the smallest distance over pairs outside `C` (it also turns
+//! negative when a pair's linear sweep since the last accepted step hits, so a fast
+//! body cannot pass through a thin one within a step); `gaps[1]` is `2 tol` minus the
+//! largest distance over pairs in `C` (negative once a pair has separated). Both are
+//! zero crossings of the world's `when`, so onset and separation are located events.
+//! With impulse impacts, the world applies Newton restitution impulses to the bodies'
+//! velocity states in event mode (sequential impulses until no pair approaches).
+
+use crate::tape::{Reg, Tape};
+use rustc_hash::FxHashMap as HashMap;
+use unimo_geometry::laws::{self, Damping, Friction};
+use unimo_geometry::{
+    aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Placement, Scratch, Shape,
+    ShapeKind, SweepAndPrune,
+};
+
+/// Per body: argument registers (layout of `unimo_dae::dae::COLLISION_BODY_ARGS`),
+/// output registers (force, torque) and, when the velocities are plain states, their
+/// registers (for impulses).
+#[derive(Clone, Debug)]
+pub struct CollisionBodyRegs {
+    pub args: Vec<Reg>,
+    pub outputs: [Reg; 6],
+    pub velocity_states: Option<[Reg; 6]>,
+    pub name: String,
+}
+
+/// The compiled collision world.
+#[derive(Clone, Debug)]
+pub struct CollisionModel {
+    /// Computes the argument registers from states and parameters.
+    pub inputs: Tape,
+    pub bodies: Vec<CollisionBodyRegs>,
+    /// margin, contact tolerance, broadphase, sweep.
+    pub world_args: [Reg; 4],
+    pub gaps: [Reg; 2],
+    /// Arguments that read variables computed by the plan (not states or parameters):
+    /// the world runs before the plan, so such a model is refused.
+    pub problems: Vec<String>,
+}
+
+const A_SHAPE: usize = 0;
+const A_DIMS: usize = 1;
+const A_R: usize = 4;
+const A_ROT: usize = 7;
+const A_V: usize = 16;
+const A_W: usize = 19;
+const A_DYNAMIC: usize = 22;
+const A_K: usize = 23;
+const A_N: usize = 24;
+const A_LAW: usize = 25;
+const A_D: usize = 26;
+const A_E: usize = 27;
+const A_MU_STATIC: usize = 28;
+const A_MU_SLIDING: usize = 29;
+const A_V_SWITCH: usize = 30;
+const A_F_MAX: usize = 31;
+const A_IMPULSE: usize = 32;
+const A_MASS: usize = 33;
+const A_INERTIA: usize = 34;
+const A_GROUP: usize = 37;
+
+/// Counters for reports.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CollisionStats {
+    pub evaluations: u64,
+    pub broadphase_tests: u64,
+    pub narrowphase_pairs: u64,
+    pub impulses: u64,
+    pub contact_changes: u64,
+}
+
+/// The mutable side of the world (lives in the event state).
+#[derive(Default)]
+pub struct CollisionState {
+    shapes: Vec<Shape>,
+    dynamic: Vec<bool>,
+    placements: Vec<Placement>,
+    origin: Vec<Placement>,
+    boxes: Vec<unimo_geometry::Aabb>,
+    pairs: Vec<(u32, u32)>,
+    /// Pairs in contact, with the approach speed when they touched.
+    contact: HashMap<(u32, u32), f64>,
+    /// Per penalty contact in `contact` that began with an approach: the time the
+    /// approach takes to cross the thinner body's half thickness (for the step cap).
+    duration: HashMap<(u32, u32), f64>,
+    broadphase: Option<Box<dyn Broadphase + Send>>,
+    scratch: Scratch,
+    points: Vec<ContactPoint>,
+    pub stats: CollisionStats,
+}
+
+impl Clone for CollisionState {
+    fn clone(&self) -> Self {
+        // Geometry is rebuilt from the arguments on first use.
+        CollisionState {
+            contact: self.contact.clone(),
+            stats: self.stats.clone(),
+            ..CollisionState::default()
+        }
+    }
+}
+
+impl std::fmt::Debug for CollisionState {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CollisionState")
+            .field("bodies", &self.shapes.len())
+            .field("contact", &self.contact.len())
+            .field("stats", &self.stats)
+            .finish()
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn add_to(a: &mut [f64], b: [f64; 3]) {
+    a[0] += b[0];
+    a[1] += b[1];
+    a[2] += b[2];
+}
+
+/// Why the world cannot evaluate (reported like a failing block).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CollisionFailure {
+    pub body: String,
+    pub reason: String,
+}
+
+struct View<'a> {
+    m: &'a CollisionModel,
+    r: &'a [f64],
+}
+
+impl View<'_> {
+    fn arg(&self, b: usize, k: usize) -> f64 {
+        self.r[self.m.bodies[b].args[k] as usize]
+    }
+    fn v3(&self, b: usize, k: usize) -> [f64; 3] {
+        [self.arg(b, k), self.arg(b, k + 1), self.arg(b, k + 2)]
+    }
+    fn velocity_at(&self, b: usize, p: [f64; 3], r: [f64; 3]) -> [f64; 3] {
+        let v = self.v3(b, A_V);
+        let w = self.v3(b, A_W);
+        let c = cross(w, sub(p, r));
+        [v[0] + c[0], v[1] + c[1], v[2] + c[2]]
+    }
+    fn mean(&self, a: usize, b: usize, k: usize) -> f64 {
+        0.5 * (self.arg(a, k) + self.arg(b, k))
+    }
+}
+
+fn shape_of(v: &View<'_>, b: usize) -> Result<Shape, String> {
+    let d = v.v3(b, A_DIMS);
+    let kind = match v.arg(b, A_SHAPE).round() as i64 {
+        1 => ShapeKind::Sphere { radius: d[0] },
+        2 => ShapeKind::Box {
+            half: [d[0] / 2.0, d[1] / 2.0, d[2] / 2.0],
+        },
+        3 => ShapeKind::Capsule {
+            half_height: d[1] / 2.0,
+            radius: d[0],
+        },
+        4 => ShapeKind::Cylinder {
+            half_height: d[1] / 2.0,
+            radius: d[0],
+        },
+        5 => ShapeKind::Cone {
+            half_height: d[1] / 2.0,
+            radius: d[0],
+        },
+        6 => ShapeKind::Ellipsoid { semi_axes: d },
+        7 => ShapeKind::HalfSpace,
+        k => return Err(format!("unknown shape code {k}")),
+    };
+    Shape::new(kind).map_err(|e| e.0)
+}
+
+impl CollisionState {
+    fn build(&mut self, v: &View<'_>) -> Result<(), CollisionFailure> {
+        let n = v.m.bodies.len();
+        self.shapes.clear();
+        self.dynamic.clear();
+        for b in 0..n {
+            let s = shape_of(v, b).map_err(|reason| CollisionFailure {
+                body: v.m.bodies[b].name.clone(),
+                reason,
+            })?;
+            self.shapes.push(s);
+            self.dynamic.push(v.arg(b, A_DYNAMIC) != 0.0);
+        }
+        let choice = v.r[v.m.world_args[2] as usize].round() as i64;
+        let bounded = self.shapes.iter().filter(|s| s.is_bounded()).count();
+        // Two bodies (or fewer bounded ones) leave the broadphase nothing to save.
+        self.broadphase = Some(if choice == 1 || (choice == 0 && n <= 2) || bounded <= 1 {
+            Box::new(AllPairs::default())
+        } else {
+            Box::new(SweepAndPrune::default())
+        });
+        Ok(())
+    }
+
+    /// Evaluates the world: forces, torques and gaps into their registers; in event
+    /// mode also the contact set and impulses.
+    pub fn evaluate(
+        &mut self,
+        m: &CollisionModel,
+        r: &mut [f64],
+        event_mode: bool,
+    ) -> Result<(), CollisionFailure> {
+        self.stats.evaluations += 1;
+        let n = m.bodies.len();
+        if self.shapes.len() != n {
+            self.build(&View { m, r })?;
+        }
+        let margin = r[m.world_args[0] as usize].max(0.0);
+        let tol = r[m.world_args[1] as usize].max(0.0);
+        let sweep = r[m.world_args[3] as usize] != 0.0;
+        {
+            let v = View { m, r };
+            self.placements.clear();
+            for b in 0..n {
+                let rot = [v.v3(b, A_ROT), v.v3(b, A_ROT + 3), v.v3(b, A_ROT + 6)];
+                let det = dot(rot[0], cross(rot[1], rot[2]));
+                let finite = m.bodies[b].args[A_R..A_DYNAMIC]
+                    .iter()
+                    .all(|&x| r[x as usize].is_finite());
+                if !finite || (det - 1.0).abs() > 0.1 {
+                    return Err(CollisionFailure {
+                        body: m.bodies[b].name.clone(),
+                        reason: format!(
+                            "placement or velocity is not finite, or the rotation matrix is not \
+                             a rotation (det = {det:.3})"
+                        ),
+                    });
+                }
+                self.placements.push(Placement {
+                    r: v.v3(b, A_R),
+                    rot,
+                });
+            }
+        }
+        if self.origin.len() != n {
+            self.origin = self.placements.clone();
+        }
+        if event_mode && m.bodies.iter().any(|_| true) {
+            self.impulses(m, r, tol)?;
+        }
+        let v = View { m, r };
+        // Bounding boxes: current and at the start of the step, for the sweep.
+        self.boxes.clear();
+        for b in 0..n {
+            let now = aabb(&self.shapes[b], &self.placements[b]);
+            let then = aabb(&self.shapes[b], &self.origin[b]);
+            self.boxes.push(now.merged(&then).loosened(margin));
+        }
+        let bp = self.broadphase.as_mut().expect("built above");
+        let before = bp.tests();
+        bp.pairs(&self.boxes, &mut self.pairs);
+        self.stats.broadphase_tests += bp.tests() - before;
+
+        let mut out = vec![0.0; 6 * n];
+        let (mut g_new, mut g_sep) = (1.0f64, 1.0f64);
+        let mut seen_contact = 0usize;
+        let mut changes = 0u64;
+        for &(i, j) in &self.pairs {
+            let (a, b) = (i as usize, j as usize);
+            if !self.dynamic[a] && !self.dynamic[b] {
+                continue;
+            }
+            let ga = v.arg(a, A_GROUP).round() as i64;
+            if ga != 0 && ga == v.arg(b, A_GROUP).round() as i64 {
+                continue;
+            }
+            self.stats.narrowphase_pairs += 1;
+            self.points.clear();
+            contacts(
+                &self.shapes[a],
+                &self.placements[a],
+                &self.shapes[b],
+                &self.placements[b],
+                margin,
+                &mut self.scratch,
+                &mut self.points,
+            )
+            .map_err(|e| CollisionFailure {
+                body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
+                reason: e.0,
+            })?;
+            let dist = self.points.iter().map(|c| c.dist).fold(margin, f64::min);
+            let key = (i, j);
+            let (ra, rb) = (self.placements[a].r, self.placements[b].r);
+            if event_mode {
+                let in_contact = self.contact.contains_key(&key);
+                if !in_contact && dist <= tol {
+                    let approach = self
+                        .points
+                        .iter()
+                        .min_by(|x, y| x.dist.total_cmp(&y.dist))
+                        .map(|c| {
+                            let p = mid(c);
+                            let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
+                            dot(rel, c.normal).max(0.0)
+                        })
+                        .unwrap_or(0.0);
+                    self.contact.insert(key, approach);
+                    if v.arg(a, A_IMPULSE) == 0.0 && v.arg(b, A_IMPULSE) == 0.0 && approach > 0.0 {
+                        let thin = self.shapes[a]
+                            .half_thickness
+                            .min(self.shapes[b].half_thickness);
+                        self.duration.insert(key, thin / approach);
+                    }
+                    changes += 1;
+                } else if in_contact && dist > 2.0 * tol {
+                    self.contact.remove(&key);
+                    self.duration.remove(&key);
+                    changes += 1;
+                }
+            }
+            match self.contact.get(&key) {
+                Some(_) => {
+                    seen_contact += 1;
+                    g_sep = g_sep.min(2.0 * tol - dist);
+                }
+                None => {
+                    let mut g = dist;
+                    if dist > 0.0 && sweep {
+                        // Did the pair pass through each other since the last step?
+                        let da = sub(self.placements[a].r, self.origin[a].r);
+                        let db = sub(self.placements[b].r, self.origin[b].r);
+                        let rel = sub(da, db);
+                        if dot(rel, rel) > 0.0 {
+                            if let Some(s) = time_of_impact(
+                                &self.shapes[a],
+                                &self.origin[a],
+                                da,
+                                &self.shapes[b],
+                                &self.origin[b],
+                                db,
+                                1.0,
+                            ) {
+                                if s < 1.0 {
+                                    g = -(1.0 - s) * dot(rel, rel).sqrt();
+                                }
+                            }
+                        }
+                    }
+                    g_new = g_new.min(g);
+                }
+            }
+            if v.arg(a, A_IMPULSE) != 0.0 || v.arg(b, A_IMPULSE) != 0.0 {
+                continue;
+            }
+            // Penalty forces at every penetrating point.
+            let v_impact = self.contact.get(&key).copied().unwrap_or(0.0).max(1e-3);
+            let k = v.mean(a, b, A_K);
+            let nexp = v.mean(a, b, A_N);
+            let damping = match v.arg(a, A_LAW).round() as i64 {
+                2 => Damping::HuntCrossley {
+                    e: v.mean(a, b, A_E),
+                },
+                3 => Damping::Flores {
+                    e: v.mean(a, b, A_E),
+                },
+                _ => Damping::Clipped {
+                    d: v.mean(a, b, A_D),
+                },
+            };
+            let friction = Friction {
+                mu_static: v.mean(a, b, A_MU_STATIC),
+                mu_sliding: v.mean(a, b, A_MU_SLIDING),
+                v_switch: v.mean(a, b, A_V_SWITCH).max(f64::MIN_POSITIVE),
+                f_max: v.mean(a, b, A_F_MAX),
+            };
+            for c in &self.points {
+                if c.dist >= 0.0 {
+                    continue;
+                }
+                let p = mid(c);
+                let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
+                let vn = dot(rel, c.normal);
+                let fnorm = laws::normal_force(k, nexp, damping, -c.dist, vn, v_impact);
+                let mut fa = [
+                    -fnorm * c.normal[0],
+                    -fnorm * c.normal[1],
+                    -fnorm * c.normal[2],
+                ];
+                if !friction.is_zero() {
+                    let vt = [
+                        rel[0] - vn * c.normal[0],
+                        rel[1] - vn * c.normal[1],
+                        rel[2] - vn * c.normal[2],
+                    ];
+                    let ff = laws::friction_force(&friction, vt, fnorm);
+                    fa = [fa[0] + ff[0], fa[1] + ff[1], fa[2] + ff[2]];
+                }
+                let fb = [-fa[0], -fa[1], -fa[2]];
+                add_to(&mut out[6 * a..6 * a + 3], fa);
+                add_to(&mut out[6 * a + 3..6 * a + 6], cross(sub(p, ra), fa));
+                add_to(&mut out[6 * b..6 * b + 3], fb);
+                add_to(&mut out[6 * b + 3..6 * b + 6], cross(sub(p, rb), fb));
+            }
+        }
+        // Pairs in contact that are no longer candidates have separated by more than
+        // the margin.
+        if seen_contact < self.contact.len() {
+            if event_mode {
+                let pairs = &self.pairs;
+                let before = self.contact.len();
+                self.contact.retain(|k, _| pairs.contains(k));
+                self.duration.retain(|k, _| pairs.contains(k));
+                changes += (before - self.contact.len()) as u64;
+            } else {
+                g_sep = g_sep.min(2.0 * tol - margin.max(3.0 * tol));
+            }
+        }
+        self.stats.contact_changes += changes;
+        for (b, body) in m.bodies.iter().enumerate() {
+            for k in 0..6 {
+                r[body.outputs[k] as usize] = out[6 * b + k];
+            }
+        }
+        r[m.gaps[0] as usize] = g_new;
+        r[m.gaps[1] as usize] = g_sep;
+        Ok(())
+    }
+
+    /// Newton restitution impulses along the normal at the deepest point of every pair
+    /// in contact that approaches, repeated until none does (sequential impulses: a
+    /// row of touching balls passes the impulse on).
+    fn impulses(
+        &mut self,
+        m: &CollisionModel,
+        r: &mut [f64],
+        tol: f64,
+    ) -> Result<(), CollisionFailure> {
+        let n = m.bodies.len();
+        if !m
+            .bodies
+            .iter()
+            .any(|b| r[b.args[A_IMPULSE] as usize] != 0.0)
+        {
+            return Ok(());
+        }
+        // Candidate pairs from the current placements.
+        self.boxes.clear();
+        for b in 0..n {
+            self.boxes
+                .push(aabb(&self.shapes[b], &self.placements[b]).loosened(2.0 * tol));
+        }
+        let bp = self.broadphase.as_mut().expect("built");
+        bp.pairs(&self.boxes, &mut self.pairs);
+        let pairs = self.pairs.clone();
+        for _sweep in 0..1000 {
+            let mut any = false;
+            for &(i, j) in &pairs {
+                let (a, b) = (i as usize, j as usize);
+                if !self.dynamic[a] && !self.dynamic[b] {
+                    continue;
+                }
+                let v = View { m, r };
+                if v.arg(a, A_IMPULSE) == 0.0 && v.arg(b, A_IMPULSE) == 0.0 {
+                    continue;
+                }
+                let ga = v.arg(a, A_GROUP).round() as i64;
+                if ga != 0 && ga == v.arg(b, A_GROUP).round() as i64 {
+                    continue;
+                }
+                self.points.clear();
+                contacts(
+                    &self.shapes[a],
+                    &self.placements[a],
+                    &self.shapes[b],
+                    &self.placements[b],
+                    2.0 * tol,
+                    &mut self.scratch,
+                    &mut self.points,
+                )
+                .map_err(|e| CollisionFailure {
+                    body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
+                    reason: e.0,
+                })?;
+                let Some(c) = self
+                    .points
+                    .iter()
+                    .min_by(|x, y| x.dist.total_cmp(&y.dist))
+                    .copied()
+                else {
+                    continue;
+                };
+                let p = mid(&c);
+                let (ra, rb) = (self.placements[a].r, self.placements[b].r);
+                let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
+                let vn = dot(rel, c.normal);
+                if vn <= 1e-12 * (dot(rel, rel).sqrt() + 1.0) {
+                    continue;
+                }
+                let e = v.mean(a, b, A_E);
+                let inv = |body: usize, arm: [f64; 3]| -> (f64, [f64; 3], [f64; 3]) {
+                    if !self.dynamic[body] {
+                        return (0.0, [0.0; 3], [0.0; 3]);
+                    }
+                    let im = 1.0 / v.arg(body, A_MASS);
+                    let pl = &self.placements[body];
+                    let ib = v.v3(body, A_INERTIA);
+                    // I^-1 (arm x n) in world coordinates.
+                    let an = pl.unrotate(cross(arm, c.normal));
+                    let x = pl.rotate([an[0] / ib[0], an[1] / ib[1], an[2] / ib[2]]);
+                    (im, x, arm)
+                };
+                let (ima, xa, arma) = inv(a, sub(p, ra));
+                let (imb, xb, armb) = inv(b, sub(p, rb));
+                let kk =
+                    ima + imb + dot(cross(xa, arma), c.normal) + dot(cross(xb, armb), c.normal);
+                if kk <= 0.0 || !kk.is_finite() {
+                    continue;
+                }
+                let j = (1.0 + e) * vn / kk;
+                for (body, sign, im, x) in [(a, -1.0, ima, xa), (b, 1.0, imb, xb)] {
+                    if !self.dynamic[body] {
+                        continue;
+                    }
+                    let Some(regs) = m.bodies[body].velocity_states else {
+                        return Err(CollisionFailure {
+                            body: m.bodies[body].name.clone(),
+                            reason: "impulse impacts need the body's velocity and angular \
+                                     velocity to be state variables"
+                                .into(),
+                        });
+                    };
+                    for k in 0..3 {
+                        r[regs[k] as usize] += sign * j * im * c.normal[k];
+                        r[regs[3 + k] as usize] += sign * j * x[k];
+                    }
+                }
+                self.stats.impulses += 1;
+                any = true;
+            }
+            if !any {
+                return Ok(());
+            }
+        }
+        Err(CollisionFailure {
+            body: "the collision world".into(),
+            reason: "impulses did not settle after 1000 sweeps (a locked cluster of bodies)".into(),
+        })
+    }
+
+    /// The current placements become the origin of the next sweep (after each accepted
+    /// step and each event).
+    pub fn commit(&mut self) {
+        self.origin.clone_from(&self.placements);
+    }
+
+    /// The largest step the integrator may take while the current penalty impacts
+    /// last: a quarter of the time the approach speed needs to cross the thinner body's
+    /// half thickness. Without it a step that starts at the touching instant could put
+    /// every stage on the far side of a thin body, where the contact force is zero, and
+    /// pass through it with no error to notice; with it some stage always sees the force.
+    pub fn step_cap(&self) -> f64 {
+        self.duration
+            .values()
+            .fold(f64::INFINITY, |a, &d| a.min(d / 4.0))
+    }
+
+    pub fn pairs_in_contact(&self) -> usize {
+        self.contact.len()
+    }
+}
+
+fn mid(c: &ContactPoint) -> [f64; 3] {
+    [
+        0.5 * (c.point_a[0] + c.point_b[0]),
+        0.5 * (c.point_a[1] + c.point_b[1]),
+        0.5 * (c.point_a[2] + c.point_b[2]),
+    ]
+}

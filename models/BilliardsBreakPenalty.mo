@@ -1,0 +1,27 @@
+model BilliardsBreakPenalty "Billiards: a cue ball into a triangle of 15 balls, penalty contact"
+  import Unimo.Collision.*;
+  parameter Real R = 0.0286;
+  parameter Real m = 0.17;
+  inner CollisionWorld world(g = {0, 0, 0}, K = 1e8, n = 1.5, law = DampingLaw.Flores, e = 0.95);
+  Ball cue(radius = R, m = m, r0 = {-0.6, 0, 0}, v0 = {5, 0.05, 0});
+  Ball b1(radius = R, m = m, r0 = {0.3, 0.0, 0});
+  Ball b2(radius = R, m = m, r0 = {0.3495453133505077, -0.028605000000000002, 0});
+  Ball b3(radius = R, m = m, r0 = {0.3495453133505077, 0.028605000000000002, 0});
+  Ball b4(radius = R, m = m, r0 = {0.39909062670101547, -0.057210000000000004, 0});
+  Ball b5(radius = R, m = m, r0 = {0.39909062670101547, 0.0, 0});
+  Ball b6(radius = R, m = m, r0 = {0.39909062670101547, 0.057210000000000004, 0});
+  Ball b7(radius = R, m = m, r0 = {0.4486359400515232, -0.085815, 0});
+  Ball b8(radius = R, m = m, r0 = {0.4486359400515232, -0.028605000000000002, 0});
+  Ball b9(radius = R, m = m, r0 = {0.4486359400515232, 0.028605000000000002, 0});
+  Ball b10(radius = R, m = m, r0 = {0.4486359400515232, 0.085815, 0});
+  Ball b11(radius = R, m = m, r0 = {0.4981812534020309, -0.11442000000000001, 0});
+  Ball b12(radius = R, m = m, r0 = {0.4981812534020309, -0.057210000000000004, 0});
+  Ball b13(radius = R, m = m, r0 = {0.4981812534020309, 0.0, 0});
+  Ball b14(radius = R, m = m, r0 = {0.4981812534020309, 0.057210000000000004, 0});
+  Ball b15(radius = R, m = m, r0 = {0.4981812534020309, 0.11442000000000001, 0});
+  Real Px = m * cue.v[1] + m * b1.v[1] + m * b2.v[1] + m * b3.v[1] + m * b4.v[1] + m * b5.v[1] + m * b6.v[1] + m * b7.v[1] + m * b8.v[1] + m * b9.v[1] + m * b10.v[1] + m * b11.v[1] + m * b12.v[1] + m * b13.v[1] + m * b14.v[1] + m * b15.v[1] "Momentum";
+  Real Py = m * cue.v[2] + m * b1.v[2] + m * b2.v[2] + m * b3.v[2] + m * b4.v[2] + m * b5.v[2] + m * b6.v[2] + m * b7.v[2] + m * b8.v[2] + m * b9.v[2] + m * b10.v[2] + m * b11.v[2] + m * b12.v[2] + m * b13.v[2] + m * b14.v[2] + m * b15.v[2] "Momentum";
+  Real Pz = m * cue.v[3] + m * b1.v[3] + m * b2.v[3] + m * b3.v[3] + m * b4.v[3] + m * b5.v[3] + m * b6.v[3] + m * b7.v[3] + m * b8.v[3] + m * b9.v[3] + m * b10.v[3] + m * b11.v[3] + m * b12.v[3] + m * b13.v[3] + m * b14.v[3] + m * b15.v[3] "Momentum";
+  Real E = 0.5 * m * (cue.v * cue.v) + 0.5 * cue.J * (cue.w * cue.w) + 0.5 * m * (b1.v * b1.v) + 0.5 * b1.J * (b1.w * b1.w) + 0.5 * m * (b2.v * b2.v) + 0.5 * b2.J * (b2.w * b2.w) + 0.5 * m * (b3.v * b3.v) + 0.5 * b3.J * (b3.w * b3.w) + 0.5 * m * (b4.v * b4.v) + 0.5 * b4.J * (b4.w * b4.w) + 0.5 * m * (b5.v * b5.v) + 0.5 * b5.J * (b5.w * b5.w) + 0.5 * m * (b6.v * b6.v) + 0.5 * b6.J * (b6.w * b6.w) + 0.5 * m * (b7.v * b7.v) + 0.5 * b7.J * (b7.w * b7.w) + 0.5 * m * (b8.v * b8.v) + 0.5 * b8.J * (b8.w * b8.w) + 0.5 * m * (b9.v * b9.v) + 0.5 * b9.J * (b9.w * b9.w) + 0.5 * m * (b10.v * b10.v) + 0.5 * b10.J * (b10.w * b10.w) + 0.5 * m * (b11.v * b11.v) + 0.5 * b11.J * (b11.w * b11.w) + 0.5 * m * (b12.v * b12.v) + 0.5 * b12.J * (b12.w * b12.w) + 0.5 * m * (b13.v * b13.v) + 0.5 * b13.J * (b13.w * b13.w) + 0.5 * m * (b14.v * b14.v) + 0.5 * b14.J * (b14.w * b14.w) + 0.5 * m * (b15.v * b15.v) + 0.5 * b15.J * (b15.w * b15.w) "Kinetic energy";
+  annotation(experiment(StopTime = 1, Tolerance = 1e-6, Interval = 0.01));
+end BilliardsBreakPenalty;

@@ -1,0 +1,3 @@
+within;
+package Unimo "Components backed by unimo's runtime (external objects)"
+end Unimo;
