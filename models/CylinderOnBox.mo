@@ -8,7 +8,7 @@ model CylinderOnBox "A cylinder lying on a box under gravity: a line contact tha
   RigidBody cylinder(shape = ShapeType.Cylinder, dims = {radius, length, 0}, m = m,
     I = {m * (3 * radius ^ 2 + length ^ 2) / 12, m * radius ^ 2 / 2, m * (3 * radius ^ 2 + length ^ 2) / 12},
     r0 = {0, 0, 0.1 + radius - m * 9.81 / 2 / 1e7},
-    R0 = {{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}});
+    R0 = {{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}, f = zeros(3), t = zeros(3));
   Obstacle table(shape = ShapeType.Box, dims = {1, 1, 0.2}, r0 = {0, 0, 0});
   annotation(experiment(StopTime = 10, Tolerance = 1e-6, Interval = 0.01));
 end CylinderOnBox;

@@ -205,7 +205,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             if a.stats {
                 let s = &result.stats;
                 eprintln!(
-                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}}}",
+                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
                 format!("{:?}", a.method).to_lowercase(),
                 compiled.states.len(),
                 s.solver.steps,
@@ -221,7 +221,19 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 compiled.plan_ops(),
                 compiled.roots.len(),
                 compile_ms,
-                simulate_ms
+                simulate_ms,
+                match &s.collision {
+                    Some(c) => format!(
+                        ",\"collision\":{{\"bodies\":{},\"evaluations\":{},\"broadphase_tests\":{},\"narrowphase_pairs\":{},\"impulses\":{},\"contact_changes\":{}}}",
+                        compiled.collision.as_ref().map_or(0, |c| c.bodies.len()),
+                        c.evaluations,
+                        c.broadphase_tests,
+                        c.narrowphase_pairs,
+                        c.impulses,
+                        c.contact_changes
+                    ),
+                    None => String::new(),
+                }
             );
             }
             if let Some(msg) = &result.terminated {

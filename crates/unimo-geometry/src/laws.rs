@@ -14,8 +14,9 @@ pub enum Damping {
 }
 
 /// Normal force magnitude (pushing the bodies apart, never negative) for penetration
-/// `delta >= 0` growing at `delta_dot`; `v_impact` is the approach speed when the
-/// contact began (used by the restitution laws).
+/// `delta >= 0` growing at `delta_dot`; `v_impact` is the impact speed the restitution
+/// laws divide by (the collision world passes the pair's current relative energy as a
+/// speed, which equals the impact speed throughout an undamped binary impact).
 pub fn normal_force(
     k: f64,
     n: f64,

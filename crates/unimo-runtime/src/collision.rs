@@ -8,7 +8,10 @@
 //! mode. `gaps[0]` is the smallest distance over pairs outside `C` (it also turns
 //! negative when a pair's linear sweep since the last accepted step hits, so a fast
 //! body cannot pass through a thin one within a step); `gaps[1]` is `2 tol` minus the
-//! largest distance over pairs in `C` (negative once a pair has separated). Both are
+//! largest distance over pairs in `C` (negative once a pair has separated). A pair
+//! joins `C` at an event when its distance is at most `tol` and leaves it when it is
+//! more than `1.5 tol`: both decisions sit well inside the hysteresis band, so a
+//! crossing located to rounding always changes the set. Both are
 //! zero crossings of the world's `when`, so onset and separation are located events.
 //! With impulse impacts, the world applies Newton restitution impulses to the bodies'
 //! velocity states in event mode (sequential impulses until no pair approaches).
@@ -331,7 +334,9 @@ impl CollisionState {
                         self.duration.insert(key, thin / approach);
                     }
                     changes += 1;
-                } else if in_contact && dist > 2.0 * tol {
+                } else if in_contact && dist > 1.5 * tol {
+                    // The separation crossing is located where dist = 2 tol (to rounding):
+                    // deciding at 1.5 tol keeps the decision on the right side of it.
                     self.contact.remove(&key);
                     self.duration.remove(&key);
                     changes += 1;
@@ -372,7 +377,21 @@ impl CollisionState {
                 continue;
             }
             // Penalty forces at every penetrating point.
-            let v_impact = self.contact.get(&key).copied().unwrap_or(0.0).max(1e-3);
+            let mass = |x: usize| {
+                if self.dynamic[x] {
+                    v.arg(x, A_MASS)
+                } else {
+                    f64::INFINITY
+                }
+            };
+            let (ma, mb) = (mass(a), mass(b));
+            let m_eff = if ma.is_infinite() {
+                mb
+            } else if mb.is_infinite() {
+                ma
+            } else {
+                ma * mb / (ma + mb)
+            };
             let k = v.mean(a, b, A_K);
             let nexp = v.mean(a, b, A_N);
             let damping = match v.arg(a, A_LAW).round() as i64 {
@@ -399,7 +418,15 @@ impl CollisionState {
                 let p = mid(c);
                 let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
                 let vn = dot(rel, c.normal);
-                let fnorm = laws::normal_force(k, nexp, damping, -c.dist, vn, v_impact);
+                // The restitution laws divide by the impact speed. The speed at first
+                // touch is wrong when other bodies push the contact harder later (a rack
+                // of balls: over-damped rebound); the pair's current relative energy,
+                // kinetic along the normal plus elastic, as a speed, equals the impact
+                // speed throughout an undamped binary impact and follows such pushes.
+                let delta = -c.dist;
+                let elastic = 2.0 * k * delta.powf(nexp + 1.0) / ((nexp + 1.0) * m_eff);
+                let v_ref = (vn * vn + elastic).sqrt().max(V_FLOOR);
+                let fnorm = laws::normal_force(k, nexp, damping, delta, vn, v_ref);
                 let mut fa = [
                     -fnorm * c.normal[0],
                     -fnorm * c.normal[1],
@@ -587,6 +614,9 @@ impl CollisionState {
         self.contact.len()
     }
 }
+
+/// Smallest reference speed of the restitution laws (a contact at rest).
+const V_FLOOR: f64 = 1e-6;
 
 fn mid(c: &ContactPoint) -> [f64; 3] {
     [

@@ -117,6 +117,8 @@ pub struct SimStats {
     pub events: usize,
     pub event_iterations: usize,
     pub rhs_evaluations: u64,
+    /// The collision world's counters, when the model has one.
+    pub collision: Option<crate::collision::CollisionStats>,
 }
 
 /// Results computed so far (also after a failure).
@@ -830,6 +832,7 @@ impl<'a> Simulator<'a> {
     fn finish(mut self, solver: &Solver) -> SimResult {
         self.result.stats.solver = solver.stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
+        self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
         self.result.final_states = self.states();
         self.result
     }

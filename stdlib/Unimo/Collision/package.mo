@@ -103,15 +103,35 @@ package Collision "Collision detection and contact forces between rigid bodies (
     Real v[3](start = v0, each fixed = true);
     Real w[3](start = w0, each fixed = true) "World coordinates";
     Real Iw[3, 3] "Inertia tensor, world coordinates";
+    input Real f[3] "Other force on the body, at its origin (an equation or a modifier: f = zeros(3) for none)";
+    input Real t[3] "Other torque on the body, about its origin (t = zeros(3) for none)";
     CollisionBody body(shape = shape, dims = dims, m = m, I = I, r = r, R = R, v = v, w = w);
   equation
     der(r) = v;
-    m * der(v) = body.F + m * world.g;
+    m * der(v) = body.F + f + m * world.g;
     der(R) = skew(w) * R;
     Iw = R * diagonal(I) * transpose(R);
     // Euler's equations in world coordinates: d(Iw w)/dt = T.
-    Iw * der(w) + cross(w, Iw * w) = body.T;
+    Iw * der(w) + cross(w, Iw * w) = body.T + t;
   end RigidBody;
+
+  model TranslatingBody "A body with a shape that translates only (its orientation is fixed, as if guided)"
+    outer CollisionWorld world;
+    parameter ShapeType shape = ShapeType.Box;
+    parameter Real dims[3] = {0.1, 0.1, 0.1};
+    parameter Real m = 1;
+    parameter Real r0[3] = {0, 0, 1};
+    parameter Real R0[3, 3] = identity(3) "The fixed orientation";
+    parameter Real v0[3] = {0, 0, 0};
+    Real r[3](start = r0, each fixed = true);
+    Real v[3](start = v0, each fixed = true);
+    input Real f[3] "Other force on the body (f = zeros(3) for none)";
+    CollisionBody body(shape = shape, dims = dims, m = m, I = {1e30, 1e30, 1e30}, r = r, R = R0,
+      v = v, w = zeros(3));
+  equation
+    der(r) = v;
+    m * der(v) = body.F + f + m * world.g;
+  end TranslatingBody;
 
   model Obstacle "A shape fixed to the ground"
     parameter ShapeType shape = ShapeType.Box;
