@@ -4,10 +4,11 @@ end World;
 
 model Body
   outer World world;
+  parameter Real gLocal = world.g "a parameter bound through the outer";
   Real h(start = 1, fixed = true), v(start = 0, fixed = true);
 equation
   der(h) = v;
-  der(v) = -world.g;
+  der(v) = -gLocal;
 end Body;
 
 model Cluster "inner of its own: bodies inside see the cluster's world"
