@@ -286,7 +286,8 @@ impl CollisionState {
         let (mut g_new, mut g_sep) = (1.0f64, 1.0f64);
         let mut seen_contact = 0usize;
         let mut changes = 0u64;
-        for &(i, j) in &self.pairs {
+        for p in 0..self.pairs.len() {
+            let (i, j) = self.pairs[p];
             let (a, b) = (i as usize, j as usize);
             if !self.dynamic[a] && !self.dynamic[b] {
                 continue;
@@ -296,20 +297,7 @@ impl CollisionState {
                 continue;
             }
             self.stats.narrowphase_pairs += 1;
-            self.points.clear();
-            contacts(
-                &self.shapes[a],
-                &self.placements[a],
-                &self.shapes[b],
-                &self.placements[b],
-                margin,
-                &mut self.scratch,
-                &mut self.points,
-            )
-            .map_err(|e| CollisionFailure {
-                body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
-                reason: e.0,
-            })?;
+            self.pair_contacts(m, a, b, margin)?;
             let dist = self.points.iter().map(|c| c.dist).fold(margin, f64::min);
             let key = (i, j);
             let (ra, rb) = (self.placements[a].r, self.placements[b].r);
@@ -513,20 +501,7 @@ impl CollisionState {
                 if ga != 0 && ga == v.arg(b, A_GROUP).round() as i64 {
                     continue;
                 }
-                self.points.clear();
-                contacts(
-                    &self.shapes[a],
-                    &self.placements[a],
-                    &self.shapes[b],
-                    &self.placements[b],
-                    2.0 * tol,
-                    &mut self.scratch,
-                    &mut self.points,
-                )
-                .map_err(|e| CollisionFailure {
-                    body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
-                    reason: e.0,
-                })?;
+                self.pair_contacts(m, a, b, 2.0 * tol)?;
                 let Some(c) = self
                     .points
                     .iter()
@@ -591,6 +566,32 @@ impl CollisionState {
             body: "the collision world".into(),
             reason: "impulses did not settle after 1000 sweeps (a locked cluster of bodies)".into(),
         })
+    }
+
+    /// The contact points of bodies `a` and `b` closer than `prediction`, into
+    /// `self.points`.
+    fn pair_contacts(
+        &mut self,
+        m: &CollisionModel,
+        a: usize,
+        b: usize,
+        prediction: f64,
+    ) -> Result<(), CollisionFailure> {
+        self.points.clear();
+        contacts(
+            &self.shapes[a],
+            &self.placements[a],
+            &self.shapes[b],
+            &self.placements[b],
+            prediction,
+            &mut self.scratch,
+            &mut self.points,
+        )
+        .map_err(|e| CollisionFailure {
+            body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
+            reason: e.0,
+        })?;
+        Ok(())
     }
 
     /// The current placements become the origin of the next sweep (after each accepted
