@@ -7,10 +7,7 @@ mod common;
 use unimo_runtime::sim::{simulate, SimOptions, SimResult};
 use unimo_solve::Method;
 
-fn load(file: &str) -> unimo_cli::LoadedModel {
-    unimo_cli::load_model(&[common::root().join(file)], None)
-        .unwrap_or_else(|e| panic!("{file}:\n{e}"))
-}
+use common::load;
 
 fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64, stop: f64) -> SimResult {
     let o = SimOptions {
@@ -49,7 +46,7 @@ fn series(r: &SimResult, name: &str) -> Vec<f64> {
 fn a_fast_ball_never_passes_through_a_thin_plate() {
     // 5 cm ball, 100 m/s, 1 cm plate (top at z = 0.005): explicit and implicit
     // methods, tolerances 1e-3 to 1e-9.
-    let m = load("tests/collision/Tunnel.mo");
+    let m = load("tests/collision/Tunnel.mo", None);
     for method in [Method::Dopri5, Method::Radau5, Method::Bdf] {
         for k in 3..=9 {
             let rtol = 10f64.powi(-k);
@@ -74,7 +71,7 @@ fn a_fast_ball_never_passes_through_a_thin_plate() {
 fn without_the_sweep_the_ball_ghosts_through() {
     // The same scene with the sweep test off: a step from above to below the plate
     // sees no overlap at either end (paper B's "ghosting"), so the test above can fail.
-    let m = load("tests/collision/TunnelNoSweep.mo");
+    let m = load("tests/collision/TunnelNoSweep.mo", None);
     let r = run(&m, Method::Dopri5, 1e-3, 0.05);
     let z = series(&r, "ball.r[3]");
     assert!(*z.last().unwrap() < -3.0, "{:?}", z.last());
@@ -87,7 +84,7 @@ fn momentum_and_energy(r: &SimResult) -> (Vec<[f64; 2]>, Vec<f64>) {
 
 #[test]
 fn impulse_impacts_conserve_momentum_and_energy_to_round_off() {
-    let m = load("models/BilliardsBreakImpulses.mo");
+    let m = load("models/BilliardsBreakImpulses.mo", None);
     let r = run(&m, Method::Dopri5, 1e-6, 1.0);
     let (p, e) = momentum_and_energy(&r);
     let p0 = (p[0][0].hypot(p[0][1]), e[0]);
@@ -111,7 +108,7 @@ fn penalty_impacts_keep_momentum_and_never_gain_energy() {
     // At rtol 1e-7: at 1e-6 the state interpolated at the first located onset carries
     // an error of 1.7e-5 of the energy (the step's later stages felt the contact force),
     // which shows up as a rise; from 1e-7 on there is none (docs/results/paper-b.md).
-    let m = load("models/BilliardsBreakPenalty.mo");
+    let m = load("models/BilliardsBreakPenalty.mo", None);
     let r = run(&m, Method::Dopri5, 1e-7, 1.0);
     let (p, e) = momentum_and_energy(&r);
     let dp = p
@@ -150,7 +147,7 @@ fn penalty_impacts_keep_momentum_and_never_gain_energy() {
 #[test]
 fn contact_onset_is_a_located_event() {
     // Dropped from 1 m with radius 0.1: touches at sqrt(2 * 0.9 / 9.81).
-    let m = load("models/CollisionBouncingBall.mo");
+    let m = load("models/CollisionBouncingBall.mo", None);
     let r = run(&m, Method::Bdf, 1e-8, 3.0);
     let t_touch = (2.0 * 0.9 / 9.81f64).sqrt();
     let first = r
@@ -184,7 +181,7 @@ fn apexes(r: &SimResult) -> String {
 
 #[test]
 fn a_cylinder_lying_on_a_box_stays_at_rest() {
-    let m = load("models/CylinderOnBox.mo");
+    let m = load("models/CylinderOnBox.mo", None);
     let r = run(&m, Method::Auto, 1e-6, 10.0);
     for k in 1..=3 {
         let w = series(&r, &format!("cylinder.w[{k}]"));
@@ -201,7 +198,7 @@ fn a_cylinder_lying_on_a_box_stays_at_rest() {
 
 #[test]
 fn a_placement_computed_by_the_model_is_refused() {
-    let m = load("tests/collision/ComputedPlacement.mo");
+    let m = load("tests/collision/ComputedPlacement.mo", None);
     let o = SimOptions {
         start: 0.0,
         stop: 1.0,

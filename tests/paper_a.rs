@@ -9,10 +9,7 @@ mod common;
 use unimo_runtime::sim::{simulate, SimOptions, SimResult};
 use unimo_solve::Method;
 
-fn load(file: &str, model: Option<&str>) -> unimo_cli::LoadedModel {
-    unimo_cli::load_model(&[common::root().join(file)], model)
-        .unwrap_or_else(|e| panic!("{file}:\n{e}"))
-}
+use common::load;
 
 /// Runs in the regularising time `time` up to `stop`; the models end themselves with
 /// `terminate` when their physical time `t` reaches `tStop`.

@@ -9,6 +9,12 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// Loads and compiles a model of the repository (`model`: its name when the file holds
+/// several); panics with the diagnostics otherwise.
+pub fn load(file: &str, model: Option<&str>) -> unimo_cli::LoadedModel {
+    unimo_cli::load_model(&[root().join(file)], model).unwrap_or_else(|e| panic!("{file}:\n{e}"))
+}
+
 /// `file: CODE @l:c, CODE @l:c` lines of a manifest (lines starting with `#` skipped).
 pub fn manifest(rel: &str) -> BTreeMap<String, Vec<String>> {
     std::fs::read_to_string(root().join(rel))

@@ -43,16 +43,9 @@ pub enum ShapeKind {
 }
 
 /// Why a shape could not be built.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
 pub struct ShapeError(pub String);
-
-impl std::fmt::Display for ShapeError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ShapeError {}
 
 /// A homogeneous ellipsoid `x²/a² + y²/b² + z²/c² <= 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
