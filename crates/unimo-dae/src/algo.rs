@@ -56,6 +56,7 @@ impl Lowerer<'_> {
             locals.push(Local {
                 name: t.name,
                 value,
+                record: t.record,
             });
         }
         self.locals = locals;
@@ -199,6 +200,7 @@ impl Lowerer<'_> {
             self.locals.push(Local {
                 name: first.name.text.to_string(),
                 value: Some(v),
+                record: None,
             });
             let f = self.exec_for(rest, body);
             self.locals.pop();
@@ -250,6 +252,15 @@ impl Lowerer<'_> {
             self.locals[k].value = Some(new);
             return Ok(());
         }
+        // A field of a function's record variable (`c.re := ...`).
+        if !target.global && target.parts.len() > 1 {
+            let head = target.parts[0].name.text.as_str();
+            if let Some(k) = self.locals.iter().rposition(|l| l.name == head) {
+                if self.locals[k].record.is_some() {
+                    return self.assign_record_field(k, &target.parts[1..], value, span);
+                }
+            }
+        }
         // A model variable (algorithm section).
         let key = unimo_flat::eval::var_key(target);
         let Some((first, dims)) = self.vars.get(&key).cloned() else {
@@ -280,7 +291,11 @@ impl Lowerer<'_> {
     }
 
     /// Row-major positions selected by constant subscripts of an array of size `dims`.
-    fn positions(&mut self, dims: &[usize], subs: &[Subscript]) -> DaeResult<Vec<usize>> {
+    pub(crate) fn positions(
+        &mut self,
+        dims: &[usize],
+        subs: &[Subscript],
+    ) -> DaeResult<Vec<usize>> {
         let mut pos = vec![0usize];
         for (d, &n) in dims.iter().enumerate() {
             let picks: Vec<usize> = match subs.get(d) {
@@ -536,11 +551,20 @@ impl Lowerer<'_> {
             self.locals.push(Local {
                 name: input.name.clone(),
                 value: Some(value),
+                record: input.record.clone(),
             });
         }
         for v in f.outputs.iter().chain(&f.locals) {
             let value = match &v.default {
                 Some(d) => Some(self.expr(d)?),
+                None if v.record.is_some() => {
+                    let n = self.record_local_size(v, span)?;
+                    let nan = self.dae.arena.constant(f64::NAN);
+                    Some(Tensor {
+                        data: vec![nan; n],
+                        dims: vec![n],
+                    })
+                }
                 None if v.dims.iter().all(|d| d.is_some()) => {
                     let dims: Vec<usize> = v.dims.iter().map(|d| d.unwrap_or(0)).collect();
                     let nan = self.dae.arena.constant(f64::NAN);
@@ -555,6 +579,7 @@ impl Lowerer<'_> {
             self.locals.push(Local {
                 name: v.name.clone(),
                 value,
+                record: v.record.clone(),
             });
         }
         self.exec_block(&f.algorithm)?;

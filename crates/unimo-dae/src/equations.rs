@@ -119,6 +119,7 @@ impl Lowerer<'_> {
             self.locals.push(crate::lower::Local {
                 name: first.name.text.to_string(),
                 value: Some(v),
+                record: None,
             });
             let r = self.for_rows(rest, body);
             self.locals.pop();
@@ -364,6 +365,7 @@ impl Lowerer<'_> {
                     self.locals.push(crate::lower::Local {
                         name: first.name.text.to_string(),
                         value: Some(v),
+                        record: None,
                     });
                     let mut r = Ok(());
                     for e in body {

@@ -18,6 +18,7 @@ pub mod expr;
 pub mod lower;
 pub mod plan;
 pub mod prune;
+mod records;
 pub mod tensor;
 
 pub use dae::Dae;

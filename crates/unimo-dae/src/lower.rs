@@ -22,6 +22,9 @@ pub(crate) const MAX_INLINE_DEPTH_PUB: usize = 32;
 pub(crate) struct Local {
     pub name: String,
     pub value: Option<Tensor>,
+    /// The record type of a function's record input, output or local: its value is
+    /// the fields side by side (see `records.rs`).
+    pub record: Option<String>,
 }
 
 pub struct Lowerer<'m> {
@@ -192,13 +195,19 @@ impl<'m> Lowerer<'m> {
                 Variability::Continuous => ScalarKind::Discrete,
             };
             let first = ScalarId(self.dae.scalars.len() as u32);
+            // A flat model read back names its variables `'body.r'`: results use the
+            // name inside the quotes, as for the original model.
+            let display = match v.name.strip_prefix('\'').and_then(|n| n.strip_suffix('\'')) {
+                Some(inner) if !inner.is_empty() => inner.replace("\\'", "'"),
+                _ => v.name.clone(),
+            };
             for idx in index_tuples(&v.dims) {
                 let name = if idx.is_empty() {
-                    v.name.clone()
+                    display.clone()
                 } else {
                     format!(
                         "{}[{}]",
-                        v.name,
+                        display,
                         idx.iter()
                             .map(|i| i.to_string())
                             .collect::<Vec<_>>()
@@ -310,6 +319,9 @@ impl<'m> Lowerer<'m> {
                 return Ok(Tensor::scalar(t));
             }
             if let Some(l) = self.local(name) {
+                if l.record.is_some() && !r.parts[0].subscripts.is_empty() {
+                    return Err(unsupported("subscripts on a record", r.span));
+                }
                 let Some(v) = l.value.clone() else {
                     return Err(DaeError::new(
                         "E3012",
@@ -318,6 +330,14 @@ impl<'m> Lowerer<'m> {
                     ));
                 };
                 return self.subscript(v, &r.parts[0].subscripts, r.span);
+            }
+        }
+        // A field of a function's record variable (`a.re`).
+        if r.parts.len() > 1 && !r.global {
+            if let Some(l) = self.local(r.parts[0].name.text.as_str()) {
+                if let (Some(ty), Some(v)) = (l.record.clone(), l.value.clone()) {
+                    return self.record_field(ty, v, &r.parts[1..], r.span);
+                }
             }
         }
         // Subscripts of an inner part (`p[i].x` in a loop) must be known here: they
@@ -358,12 +378,20 @@ impl<'m> Lowerer<'m> {
             return self.global_ref(r);
         }
         let Some((first, dims)) = self.vars.get(&key).cloned() else {
+            // A whole record instance (`z`, `c[2]`).
+            let mut instance = key.clone();
+            if let Some(last) = r.parts.last() {
+                instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+            }
+            if let Some(t) = self.record_instance(&instance, r.span)? {
+                return Ok(t);
+            }
             return Err(DaeError::new(
                 "E3010",
                 format!("`{key}` is not a variable of the flat model"),
                 r.span,
             )
-            .help("records and string variables are not lowered yet"));
+            .help("string variables are not lowered"));
         };
         let subs = r
             .parts
@@ -705,6 +733,7 @@ impl<'m> Lowerer<'m> {
             self.locals.push(Local {
                 name: first.name.text.to_string(),
                 value: Some(v),
+                record: None,
             });
             let r = self.comprehension(body, rest);
             self.locals.pop();
@@ -791,6 +820,9 @@ impl<'m> Lowerer<'m> {
             if let Some(f) = self.functions.get(name.as_str()).copied() {
                 let mut outs = self.inline_call(f, args, span)?;
                 return Ok(outs.swap_remove(0));
+            }
+            if let Some(t) = self.constructor(&name, args, span)? {
+                return Ok(t);
             }
             // Builtin functions reached by a global name (`Modelica.Math.sin` style
             // wrappers are user functions; these are enumerations' `Integer` etc.).

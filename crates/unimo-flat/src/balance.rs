@@ -18,6 +18,8 @@ pub struct Balance {
 
 struct Shapes<'m> {
     dims: HashMap<String, &'m [usize]>,
+    /// Record types by full name: a constructor call has the size of its fields.
+    records: HashMap<&'m str, &'m crate::functions::FlatRecord>,
 }
 
 impl Shapes<'_> {
@@ -65,6 +67,16 @@ impl Shapes<'_> {
             }
             ExprKind::Call { func, args } => {
                 let name = func.to_dotted();
+                if self.records.contains_key(name.trim_start_matches('.')) {
+                    // A record constructor: its arguments side by side.
+                    let n: usize = args
+                        .positional
+                        .iter()
+                        .chain(args.named.iter().map(|a| &a.value))
+                        .map(|a| sat_product(&self.of(a)))
+                        .sum();
+                    return vec![n];
+                }
                 let arg = |k: usize| {
                     args.positional
                         .get(k)
@@ -249,6 +261,7 @@ pub fn count(model: &FlatModel) -> Balance {
             .iter()
             .map(|v| (v.name.clone(), v.dims.as_slice()))
             .collect(),
+        records: model.records.iter().map(|r| (r.name.as_str(), r)).collect(),
     };
     let unknowns = model
         .vars

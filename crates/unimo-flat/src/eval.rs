@@ -92,8 +92,8 @@ impl Value {
             Value::Str(s) => ExprKind::String(s.clone()),
             Value::Enum(_, name) => ExprKind::Ref(ComponentRef {
                 global: false,
-                parts: name
-                    .split('.')
+                parts: crate::flat::split_name(name)
+                    .into_iter()
                     .map(|p| unimo_syntax::ast::RefPart {
                         name: unimo_syntax::ast::Ident {
                             text: p.into(),

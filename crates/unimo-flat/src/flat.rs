@@ -12,7 +12,7 @@ use std::fmt::Write;
 use unimo_source::Span;
 use unimo_syntax::ast::{
     Causality, ClassModification, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident,
-    RefPart, Statement, StatementKind,
+    Name, RefPart, Statement, StatementKind,
 };
 use unimo_syntax::print;
 
@@ -88,6 +88,36 @@ pub struct FlatModel {
     pub enumerations: Vec<(String, Vec<String>)>,
     /// The user functions called (transitively), sorted by name.
     pub functions: Vec<crate::functions::FlatFunction>,
+    /// The record types the model uses (components, constructors, function
+    /// arguments), sorted by name.
+    pub records: Vec<crate::functions::FlatRecord>,
+    /// Every record instance by path (`z`, `body.frame`, `c[2]`) with its record type's
+    /// full name; its fields are variables named `path.field`.
+    pub record_instances: Vec<(String, String)>,
+}
+
+/// Splits a dotted name at the dots outside quoted identifiers
+/// (`'Pkg.f'.x` is `'Pkg.f'` and `x`).
+pub fn split_name(name: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut quoted = false;
+    let bytes = name.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' if quoted => i += 1,
+            b'\'' => quoted = !quoted,
+            b'.' if !quoted => {
+                out.push(&name[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    out.push(&name[start..]);
+    out
 }
 
 /// A flat reference: the instance path as reference parts.
@@ -236,33 +266,86 @@ pub fn rewrite_refs(e: &mut Expr, f: &mut dyn FnMut(&mut ComponentRef)) {
     }
 }
 
-fn type_name(t: &FlatType) -> String {
+pub(crate) fn type_name(t: &FlatType) -> String {
     match t {
         FlatType::Real => "Real".into(),
         FlatType::Integer => "Integer".into(),
         FlatType::Boolean => "Boolean".into(),
         FlatType::String => "String".into(),
-        // Enumerations are referred to by their global name (they live in the model's
-        // files or the library, like the functions the equations call).
+        // The predefined enumerations by their names.
         FlatType::Enumeration { name, .. } if name == "StateSelect" || name == "AssertionLevel" => {
             name.clone()
         }
-        FlatType::Enumeration { name, .. } => format!(
-            ".{}",
-            name.split('.').map(quote).collect::<Vec<_>>().join(".")
-        ),
+        // Other enumerations are printed as types before the model.
+        FlatType::Enumeration { name, .. } => quote(name),
     }
 }
 
 impl FlatModel {
-    /// Prints the model as flat Modelica (parses back to the same model).
+    /// Prints the model as flat Modelica that stands alone: the enumeration types,
+    /// records and functions it uses first (named by their full quoted names, as
+    /// `'Pkg.f'`), then the model; it parses back to the same model.
     pub fn to_modelica(&self) -> String {
+        let p = Printer::new(self);
+        let mut out = String::new();
+        for (name, literals) in &self.enumerations {
+            let _ = writeln!(
+                out,
+                "type {} = enumeration({});",
+                quote(name),
+                literals.join(", ")
+            );
+        }
+        // The model and its functions first: they decide which records are printed
+        // (those the text names).
+        let mut body = String::new();
+        let mut functions: Vec<&crate::functions::FlatFunction> =
+            self.functions.iter().filter(|f| !f.external).collect();
+        functions.sort_by_key(|f| quote(&f.name));
+        for f in functions {
+            p.function(&mut body, f);
+        }
+        let model = self.model_text(&p);
+        let mut used: Vec<String> = p.used_records.borrow().iter().cloned().collect();
+        let mut k = 0;
+        while k < used.len() {
+            if let Some(r) = p.records.get(used[k].as_str()) {
+                for f in &r.fields {
+                    if let Some(t) = &f.record {
+                        if !used.contains(t) {
+                            used.push(t.clone());
+                        }
+                    }
+                }
+            }
+            k += 1;
+        }
+        let mut records: Vec<&crate::functions::FlatRecord> = self
+            .records
+            .iter()
+            .filter(|r| used.contains(&r.name))
+            .collect();
+        records.sort_by_key(|r| quote(&r.name));
+        for r in records {
+            let name = quote(&r.name);
+            let _ = writeln!(out, "record {name}");
+            for f in &r.fields {
+                let _ = writeln!(out, "  {};", p.func_var(f));
+            }
+            let _ = writeln!(out, "end {name};");
+        }
+        out.push_str(&body);
+        out.push_str(&model);
+        out
+    }
+
+    fn model_text(&self, p: &Printer<'_>) -> String {
         let mut out = String::new();
         let name = quote(&self.name);
         let _ = writeln!(out, "class {name}");
         for v in &self.vars {
             out.push_str("  ");
-            out.push_str(&self.var_decl(v));
+            out.push_str(&p.var_decl(v));
             out.push_str(";\n");
         }
         let sections = [
@@ -273,7 +356,7 @@ impl FlatModel {
             if !eqs.is_empty() {
                 let _ = writeln!(out, "{head}");
                 for e in eqs {
-                    write_equation(&mut out, e, 1);
+                    p.equation(&mut out, e, 1);
                 }
             }
         }
@@ -284,7 +367,7 @@ impl FlatModel {
             for stmts in algs {
                 let _ = writeln!(out, "{head}");
                 for s in stmts {
-                    write_statement(&mut out, s, 1);
+                    p.statement(&mut out, s, 1);
                 }
             }
         }
@@ -297,6 +380,250 @@ impl FlatModel {
         }
         let _ = writeln!(out, "end {name};");
         out
+    }
+
+    /// Number of scalar variables by variability.
+    pub fn count(&self, var: Variability) -> usize {
+        self.vars
+            .iter()
+            .filter(|v| v.variability == var)
+            .map(FlatVar::size)
+            .sum()
+    }
+}
+
+/// Children of an expression, mutably (subscripts of references excluded).
+fn for_each_child(e: &mut Expr, f: &mut dyn FnMut(&mut Expr)) {
+    match &mut e.kind {
+        ExprKind::Call { args, .. } => {
+            args.positional.iter_mut().for_each(&mut *f);
+            args.named.iter_mut().for_each(|a| f(&mut a.value));
+            for i in &mut args.iterators {
+                if let Some(r) = &mut i.range {
+                    f(r);
+                }
+            }
+        }
+        ExprKind::Unary { operand, .. } => f(operand),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            f(lhs);
+            f(rhs);
+        }
+        ExprKind::If {
+            branches,
+            otherwise,
+        } => {
+            for (c, v) in branches {
+                f(c);
+                f(v);
+            }
+            f(otherwise);
+        }
+        ExprKind::Range { start, step, stop } => {
+            f(start);
+            if let Some(s) = step {
+                f(s);
+            }
+            f(stop);
+        }
+        ExprKind::Array(items) => items.iter_mut().for_each(f),
+        ExprKind::Matrix(rows) => rows.iter_mut().flatten().for_each(f),
+        ExprKind::Tuple(items) => items.iter_mut().flatten().for_each(f),
+        ExprKind::Comprehension { body, indices } => {
+            for i in indices.iter_mut() {
+                if let Some(r) = &mut i.range {
+                    f(r);
+                }
+            }
+            f(body);
+        }
+        ExprKind::PartialApplication { args, .. } => {
+            args.iter_mut().for_each(|a| f(&mut a.value));
+        }
+        ExprKind::Ref(_)
+        | ExprKind::Integer(_)
+        | ExprKind::Real(_)
+        | ExprKind::Bool(_)
+        | ExprKind::String(_)
+        | ExprKind::End => {}
+    }
+}
+
+/// One quoted identifier for a full class name.
+fn class_ident(name: &str, span: Span) -> Ident {
+    Ident {
+        text: SmolStr::new(quote(name.trim_start_matches('.'))),
+        span,
+    }
+}
+
+/// Prints a flat model's parts so that the text stands alone: calls of the model's
+/// functions and record constructors and its enumeration literals name the
+/// definitions printed before the model, and a whole record is written as its
+/// constructor applied to its fields.
+struct Printer<'a> {
+    functions: std::collections::HashSet<&'a str>,
+    records: std::collections::HashMap<&'a str, &'a crate::functions::FlatRecord>,
+    instances: std::collections::HashMap<&'a str, &'a str>,
+    enumerations: std::collections::HashSet<&'a str>,
+    variables: std::collections::HashSet<&'a str>,
+    /// Records named by the printed text (their definitions are printed).
+    used_records: std::cell::RefCell<std::collections::BTreeSet<String>>,
+}
+
+impl<'a> Printer<'a> {
+    fn new(m: &'a FlatModel) -> Printer<'a> {
+        Printer {
+            functions: m
+                .functions
+                .iter()
+                .filter(|f| !f.external)
+                .map(|f| f.name.as_str())
+                .collect(),
+            records: m.records.iter().map(|r| (r.name.as_str(), r)).collect(),
+            instances: m
+                .record_instances
+                .iter()
+                .map(|(k, r)| (k.as_str(), r.as_str()))
+                .collect(),
+            enumerations: m.enumerations.iter().map(|(n, _)| n.as_str()).collect(),
+            variables: m.vars.iter().map(|v| v.name.as_str()).collect(),
+            used_records: Default::default(),
+        }
+    }
+
+    /// Calls and enumeration literals renamed to the printed definitions; with
+    /// `model`, whole records written as constructor calls.
+    fn standalone(&self, e: &mut Expr, model: bool) {
+        for_each_child(e, &mut |c| self.standalone(c, model));
+        match &mut e.kind {
+            ExprKind::Call { func, .. } if func.global => {
+                let name = func
+                    .parts
+                    .iter()
+                    .map(|p| p.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join(".");
+                if self.records.contains_key(name.as_str()) {
+                    self.used_records.borrow_mut().insert(name.clone());
+                }
+                if self.functions.contains(name.as_str())
+                    || self.records.contains_key(name.as_str())
+                {
+                    *func = Name {
+                        global: false,
+                        parts: vec![class_ident(&name, func.span)],
+                        span: func.span,
+                    };
+                }
+            }
+            ExprKind::Ref(r) if r.parts.len() >= 2 && self.is_literal(r) => {
+                let n = r.parts.len();
+                let ty = r.parts[..n - 1]
+                    .iter()
+                    .map(|p| p.name.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join(".");
+                if self.enumerations.contains(ty.as_str()) {
+                    let literal = r.parts[n - 1].clone();
+                    r.global = true;
+                    r.parts = vec![
+                        RefPart {
+                            name: class_ident(&ty, r.span),
+                            subscripts: Vec::new(),
+                        },
+                        literal,
+                    ];
+                }
+            }
+            ExprKind::Ref(r) if model && !r.global => {
+                let mut key = crate::eval::var_key(r);
+                if self.variables.contains(key.as_str()) {
+                    return;
+                }
+                if let Some(last) = r.parts.last() {
+                    key.push_str(&print::subscripts(&last.subscripts));
+                }
+                if let Some(c) = self.record_value(&key, e.span) {
+                    *e = c;
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Whether `r` names a literal of one of the model's enumeration types.
+    fn is_literal(&self, r: &ComponentRef) -> bool {
+        let n = r.parts.len();
+        let ty = r.parts[..n - 1]
+            .iter()
+            .map(|p| p.name.text.as_str())
+            .collect::<Vec<_>>()
+            .join(".");
+        self.enumerations.contains(ty.as_str())
+            && (r.global || !self.variables.contains(crate::eval::var_key(r).as_str()))
+    }
+
+    /// The record instance at `key` as a constructor call of its fields.
+    fn record_value(&self, key: &str, span: Span) -> Option<Expr> {
+        let ty = self.instances.get(key)?;
+        let rec = self.records.get(ty)?;
+        self.used_records.borrow_mut().insert(ty.to_string());
+        let positional = rec
+            .fields
+            .iter()
+            .map(|f| {
+                let path = format!("{key}.{}", f.name);
+                match f.record.as_ref().filter(|_| f.dims.is_empty()) {
+                    Some(_) => self.record_value(&path, span),
+                    None => None,
+                }
+                .unwrap_or(Expr {
+                    kind: ExprKind::Ref(ComponentRef {
+                        global: false,
+                        parts: vec![RefPart {
+                            name: Ident {
+                                text: SmolStr::new(quote(&path)),
+                                span,
+                            },
+                            subscripts: Vec::new(),
+                        }],
+                        span,
+                    }),
+                    span,
+                })
+            })
+            .collect();
+        Some(Expr {
+            kind: ExprKind::Call {
+                func: Name {
+                    global: false,
+                    parts: vec![class_ident(ty, span)],
+                    span,
+                },
+                args: Box::new(unimo_syntax::ast::CallArgs {
+                    positional,
+                    named: Vec::new(),
+                    iterators: Vec::new(),
+                    span,
+                }),
+            },
+            span,
+        })
+    }
+
+    /// A model expression as text.
+    fn expr(&self, e: &Expr) -> String {
+        let mut e = e.clone();
+        self.standalone(&mut e, true);
+        print::expr(&printable(&e))
+    }
+
+    /// A function body's expression as text (its names are local, not flat).
+    fn local_expr(&self, e: &Expr) -> String {
+        let mut e = e.clone();
+        self.standalone(&mut e, false);
+        print::expr(&e)
     }
 
     fn var_decl(&self, v: &FlatVar) -> String {
@@ -332,13 +659,13 @@ impl FlatModel {
                     } else {
                         ""
                     };
-                    format!("{each}{n} = {}", print::expr(&printable(e)))
+                    format!("{each}{n} = {}", self.expr(e))
                 })
                 .collect();
             let _ = write!(s, "({})", attrs.join(", "));
         }
         if let Some(b) = &v.binding {
-            let _ = write!(s, " = {}", print::expr(&printable(b)));
+            let _ = write!(s, " = {}", self.expr(b));
         }
         if let Some(d) = &v.description {
             s.push(' ');
@@ -347,172 +674,222 @@ impl FlatModel {
         s
     }
 
-    /// Number of scalar variables by variability.
-    pub fn count(&self, var: Variability) -> usize {
-        self.vars
-            .iter()
-            .filter(|v| v.variability == var)
-            .map(FlatVar::size)
-            .sum()
+    /// `input Real x[3] = ...` of a function or record.
+    fn func_var(&self, v: &crate::functions::FuncVar) -> String {
+        if let Some(r) = &v.record {
+            self.used_records.borrow_mut().insert(r.clone());
+        }
+        let mut s = quote(&v.base);
+        s.push(' ');
+        s.push_str(&quote(&v.name));
+        if !v.dims.is_empty() {
+            let d: Vec<String> = v
+                .dims
+                .iter()
+                .map(|n| n.map_or(":".to_owned(), |n| n.to_string()))
+                .collect();
+            let _ = write!(s, "[{}]", d.join(", "));
+        }
+        if let Some(d) = &v.default {
+            let _ = write!(s, " = {}", self.local_expr(d));
+        }
+        s
+    }
+
+    fn function(&self, out: &mut String, f: &crate::functions::FlatFunction) {
+        let name = quote(&f.name);
+        let _ = writeln!(out, "function {name}");
+        for v in &f.inputs {
+            let _ = writeln!(out, "  input {};", self.func_var(v));
+        }
+        for v in &f.outputs {
+            let _ = writeln!(out, "  output {};", self.func_var(v));
+        }
+        if !f.locals.is_empty() {
+            out.push_str("protected\n");
+            for v in &f.locals {
+                let _ = writeln!(out, "  {};", self.func_var(v));
+            }
+        }
+        if !f.algorithm.is_empty() {
+            out.push_str("algorithm\n");
+            for s in &f.algorithm {
+                self.statement_in(out, s, 1, false);
+            }
+        }
+        let _ = writeln!(out, "end {name};");
+    }
+
+    /// `if c then ... elseif ... else ... end if;` (or `when`/`elsewhen`), each body
+    /// written by `item` one level deeper.
+    #[allow(clippy::too_many_arguments)]
+    fn branches<T>(
+        &self,
+        out: &mut String,
+        depth: usize,
+        (first, next, end): (&str, &str, &str),
+        branches: &[(Expr, Vec<T>)],
+        otherwise: &[T],
+        model: bool,
+        item: &dyn Fn(&mut String, &T, usize),
+    ) {
+        for (i, (c, body)) in branches.iter().enumerate() {
+            if i > 0 {
+                indent(out, depth);
+            }
+            let kw = if i == 0 { first } else { next };
+            let c = if model {
+                self.expr(c)
+            } else {
+                self.local_expr(c)
+            };
+            let _ = writeln!(out, "{kw} {c} then");
+            for b in body {
+                item(out, b, depth + 1);
+            }
+        }
+        if !otherwise.is_empty() {
+            indent(out, depth);
+            out.push_str("else\n");
+            for b in otherwise {
+                item(out, b, depth + 1);
+            }
+        }
+        indent(out, depth);
+        let _ = writeln!(out, "{end};");
+    }
+
+    fn equation(&self, out: &mut String, e: &Equation, depth: usize) {
+        indent(out, depth);
+        let item = |o: &mut String, e: &Equation, d: usize| self.equation(o, e, d);
+        match &e.kind {
+            EquationKind::Simple { lhs, rhs } => {
+                let _ = writeln!(out, "{} = {};", self.expr(lhs), self.expr(rhs));
+            }
+            EquationKind::Call(c) => {
+                let _ = writeln!(out, "{};", self.expr(c));
+            }
+            EquationKind::Connect { a, b } => {
+                let _ = writeln!(
+                    out,
+                    "connect({}, {});",
+                    print::cref(&printable_ref(a)),
+                    print::cref(&printable_ref(b))
+                );
+            }
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => self.branches(
+                out,
+                depth,
+                ("if", "elseif", "end if"),
+                branches,
+                otherwise,
+                true,
+                &item,
+            ),
+            EquationKind::For { indices, body } => {
+                let _ = writeln!(out, "for {} loop", print::for_indices(indices));
+                for b in body {
+                    self.equation(out, b, depth + 1);
+                }
+                indent(out, depth);
+                out.push_str("end for;\n");
+            }
+            EquationKind::When { branches } => self.branches(
+                out,
+                depth,
+                ("when", "elsewhen", "end when"),
+                branches,
+                &[],
+                true,
+                &item,
+            ),
+        }
+    }
+
+    fn statement(&self, out: &mut String, s: &Statement, depth: usize) {
+        self.statement_in(out, s, depth, true);
+    }
+
+    /// A statement of the model's algorithm (`model`) or of a function body.
+    fn statement_in(&self, out: &mut String, s: &Statement, depth: usize, model: bool) {
+        indent(out, depth);
+        let expr = |e: &Expr| {
+            if model {
+                self.expr(e)
+            } else {
+                self.local_expr(e)
+            }
+        };
+        let target = |r: &ComponentRef| {
+            if model {
+                print::cref(&printable_ref(r))
+            } else {
+                print::cref(r)
+            }
+        };
+        let item = |o: &mut String, s: &Statement, d: usize| self.statement_in(o, s, d, model);
+        match &s.kind {
+            StatementKind::Assign { target: t, value } => {
+                let _ = writeln!(out, "{} := {};", target(t), expr(value));
+            }
+            StatementKind::MultiAssign { targets, value } => {
+                let t: Vec<String> = targets
+                    .iter()
+                    .map(|t| t.as_ref().map(&expr).unwrap_or_default())
+                    .collect();
+                let _ = writeln!(out, "({}) := {};", t.join(", "), expr(value));
+            }
+            StatementKind::Call(e) => {
+                let _ = writeln!(out, "{};", expr(e));
+            }
+            StatementKind::If {
+                branches,
+                otherwise,
+            } => self.branches(
+                out,
+                depth,
+                ("if", "elseif", "end if"),
+                branches,
+                otherwise,
+                model,
+                &item,
+            ),
+            StatementKind::For { indices, body } => {
+                let _ = writeln!(out, "for {} loop", print::for_indices(indices));
+                for b in body {
+                    self.statement_in(out, b, depth + 1, model);
+                }
+                indent(out, depth);
+                out.push_str("end for;\n");
+            }
+            StatementKind::While { condition, body } => {
+                let _ = writeln!(out, "while {} loop", expr(condition));
+                for b in body {
+                    self.statement_in(out, b, depth + 1, model);
+                }
+                indent(out, depth);
+                out.push_str("end while;\n");
+            }
+            StatementKind::When { branches } => self.branches(
+                out,
+                depth,
+                ("when", "elsewhen", "end when"),
+                branches,
+                &[],
+                model,
+                &item,
+            ),
+            StatementKind::Return => out.push_str("return;\n"),
+            StatementKind::Break => out.push_str("break;\n"),
+        }
     }
 }
 
 fn indent(out: &mut String, depth: usize) {
     for _ in 0..depth {
         out.push_str("  ");
-    }
-}
-
-/// `if c then ... elseif ... else ... end if;` (or `when`/`elsewhen`), each body
-/// written by `item` one level deeper.
-#[allow(clippy::too_many_arguments)]
-fn write_branches<T>(
-    out: &mut String,
-    depth: usize,
-    (first, next, end): (&str, &str, &str),
-    branches: &[(Expr, Vec<T>)],
-    otherwise: &[T],
-    item: fn(&mut String, &T, usize),
-) {
-    for (i, (c, body)) in branches.iter().enumerate() {
-        if i > 0 {
-            indent(out, depth);
-        }
-        let kw = if i == 0 { first } else { next };
-        let _ = writeln!(out, "{kw} {} then", print::expr(&printable(c)));
-        for b in body {
-            item(out, b, depth + 1);
-        }
-    }
-    if !otherwise.is_empty() {
-        indent(out, depth);
-        out.push_str("else\n");
-        for b in otherwise {
-            item(out, b, depth + 1);
-        }
-    }
-    indent(out, depth);
-    let _ = writeln!(out, "{end};");
-}
-
-fn write_equation(out: &mut String, e: &Equation, depth: usize) {
-    indent(out, depth);
-    match &e.kind {
-        EquationKind::Simple { lhs, rhs } => {
-            let _ = writeln!(
-                out,
-                "{} = {};",
-                print::expr(&printable(lhs)),
-                print::expr(&printable(rhs))
-            );
-        }
-        EquationKind::Call(c) => {
-            let _ = writeln!(out, "{};", print::expr(&printable(c)));
-        }
-        EquationKind::Connect { a, b } => {
-            let _ = writeln!(
-                out,
-                "connect({}, {});",
-                print::cref(&printable_ref(a)),
-                print::cref(&printable_ref(b))
-            );
-        }
-        EquationKind::If {
-            branches,
-            otherwise,
-        } => write_branches(
-            out,
-            depth,
-            ("if", "elseif", "end if"),
-            branches,
-            otherwise,
-            write_equation,
-        ),
-        EquationKind::For { indices, body } => {
-            let _ = writeln!(out, "for {} loop", print::for_indices(indices));
-            for b in body {
-                write_equation(out, b, depth + 1);
-            }
-            indent(out, depth);
-            out.push_str("end for;\n");
-        }
-        EquationKind::When { branches } => write_branches(
-            out,
-            depth,
-            ("when", "elsewhen", "end when"),
-            branches,
-            &[],
-            write_equation,
-        ),
-    }
-}
-
-fn write_statement(out: &mut String, s: &Statement, depth: usize) {
-    indent(out, depth);
-    match &s.kind {
-        StatementKind::Assign { target, value } => {
-            let _ = writeln!(
-                out,
-                "{} := {};",
-                print::cref(&printable_ref(target)),
-                print::expr(&printable(value))
-            );
-        }
-        StatementKind::MultiAssign { targets, value } => {
-            let t: Vec<String> = targets
-                .iter()
-                .map(|t| {
-                    t.as_ref()
-                        .map(|e| print::expr(&printable(e)))
-                        .unwrap_or_default()
-                })
-                .collect();
-            let _ = writeln!(
-                out,
-                "({}) := {};",
-                t.join(", "),
-                print::expr(&printable(value))
-            );
-        }
-        StatementKind::Call(e) => {
-            let _ = writeln!(out, "{};", print::expr(&printable(e)));
-        }
-        StatementKind::If {
-            branches,
-            otherwise,
-        } => write_branches(
-            out,
-            depth,
-            ("if", "elseif", "end if"),
-            branches,
-            otherwise,
-            write_statement,
-        ),
-        StatementKind::For { indices, body } => {
-            let _ = writeln!(out, "for {} loop", print::for_indices(indices));
-            for b in body {
-                write_statement(out, b, depth + 1);
-            }
-            indent(out, depth);
-            out.push_str("end for;\n");
-        }
-        StatementKind::While { condition, body } => {
-            let _ = writeln!(out, "while {} loop", print::expr(&printable(condition)));
-            for b in body {
-                write_statement(out, b, depth + 1);
-            }
-            indent(out, depth);
-            out.push_str("end while;\n");
-        }
-        StatementKind::When { branches } => write_branches(
-            out,
-            depth,
-            ("when", "elsewhen", "end when"),
-            branches,
-            &[],
-            write_statement,
-        ),
-        StatementKind::Return => out.push_str("return;\n"),
-        StatementKind::Break => out.push_str("break;\n"),
     }
 }

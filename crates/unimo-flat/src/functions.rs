@@ -2,8 +2,10 @@
 //! names resolved (calls made global, package constants inlined), for the back end.
 
 use crate::eval::{self, Value};
-use crate::instantiate::Instantiator;
+use crate::flat::FlatType;
+use crate::instantiate::{Instantiator, Kind};
 use crate::lookup::Found;
+use crate::modif::Mod;
 use crate::modif::Scope;
 use crate::tree::ClassId;
 use unimo_source::Span;
@@ -19,6 +21,20 @@ pub struct FuncVar {
     pub dims: Vec<Option<usize>>,
     /// The default (inputs) or binding (outputs and locals).
     pub default: Option<Expr>,
+    /// The type resolved through short class definitions: `Real`, `Integer`,
+    /// `Boolean`, `String`, or the full name of an enumeration or record type.
+    pub base: String,
+    /// Set when the type is a record (its full name, as in [`FlatRecord`]).
+    pub record: Option<String>,
+}
+
+/// A record type: its fields in constructor order (inherited ones first).
+#[derive(Clone, Debug)]
+pub struct FlatRecord {
+    /// Full dotted name, as constructor calls in the flat model spell it.
+    pub name: String,
+    pub fields: Vec<FuncVar>,
+    pub origin: Span,
 }
 
 /// A user function with an algorithm body.
@@ -30,7 +46,8 @@ pub struct FlatFunction {
     pub outputs: Vec<FuncVar>,
     pub locals: Vec<FuncVar>,
     pub algorithm: Vec<Statement>,
-    /// `external` functions have no body the back end can use.
+    /// A function without a body (no algorithm, no output binding): the back end
+    /// cannot inline it.
     pub external: bool,
     pub origin: Span,
 }
@@ -179,10 +196,14 @@ impl Instantiator<'_, '_> {
                 continue;
             }
             done.push(name.clone());
-            let parts: Vec<&str> = name.split('.').collect();
+            let parts: Vec<&str> = crate::flat::split_name(&name);
             let Some(Found::Class(c)) = self.tree.lookup_dotted(None, &parts, false) else {
                 continue;
             };
+            if self.is_record(c) {
+                self.note_record(c);
+                continue;
+            }
             if self.tree.get(c).def.kind != ClassKind::Function {
                 continue;
             }
@@ -190,10 +211,186 @@ impl Instantiator<'_, '_> {
                 for s in &f.algorithm {
                     statement_calls(s, &mut pending);
                 }
+                for v in f.inputs.iter().chain(&f.outputs).chain(&f.locals) {
+                    if let Some(d) = &v.default {
+                        called_functions(d, &mut pending);
+                    }
+                }
                 self.model.functions.push(f);
             }
         }
         self.model.functions.sort_by(|a, b| a.name.cmp(&b.name));
+        // The record types used, with the records their fields use.
+        let mut k = 0;
+        while k < self.records_used.len() {
+            let c = self.records_used[k];
+            k += 1;
+            let r = self.flat_record(c);
+            for f in &r.fields {
+                if let Some(d) = &f.default {
+                    let mut calls = Vec::new();
+                    called_functions(d, &mut calls);
+                    for name in calls {
+                        let parts = crate::flat::split_name(&name);
+                        if let Some(Found::Class(rc)) = self.tree.lookup_dotted(None, &parts, false)
+                        {
+                            if self.is_record(rc) {
+                                self.note_record(rc);
+                            }
+                        }
+                    }
+                }
+            }
+            self.model.records.push(r);
+        }
+        self.model.records.sort_by(|a, b| a.name.cmp(&b.name));
+    }
+
+    /// A function's or record's variable: dimensions evaluated where they are known,
+    /// the type resolved (records noted for the model).
+    fn func_var(
+        &mut self,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+        scope: &Scope,
+        local_names: &mut Vec<String>,
+    ) -> FuncVar {
+        let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
+        let start = if cc.type_name.global {
+            None
+        } else {
+            Some(scope.class)
+        };
+        let (mut base, mut record, mut short_dims) = (cc.type_name.to_dotted(), None, Vec::new());
+        if let Some(found) = self.tree.lookup_dotted(start, &parts, false) {
+            if let Some((kind, _, sd)) = self.resolve_type_dims(found, &Mod::default()) {
+                short_dims = sd;
+                match kind {
+                    Kind::Builtin(FlatType::Enumeration { name, .. }) => base = name,
+                    Kind::Builtin(t) => base = crate::flat::type_name(&t),
+                    Kind::Class(c) => {
+                        base = self.tree.full_name(c);
+                        if self.is_record(c) {
+                            self.note_record(c);
+                            record = Some(base.clone());
+                        }
+                    }
+                }
+            }
+        }
+        let mut dims: Vec<Option<usize>> = d
+            .dims
+            .iter()
+            .chain(&cc.type_dims)
+            .map(|s| match s {
+                Subscript::Colon(_) => None,
+                Subscript::Expr(x) => {
+                    let x = self.function_expr(x, scope, local_names);
+                    match eval::eval(&x, self, &mut Vec::new()) {
+                        Ok(Value::Int(n)) if n >= 0 => Some(n as usize),
+                        _ => None,
+                    }
+                }
+            })
+            .collect();
+        for (s, sc) in &short_dims {
+            dims.push(match s {
+                Subscript::Colon(_) => None,
+                Subscript::Expr(x) => {
+                    let x = self.function_expr(x, sc, &mut Vec::new());
+                    match eval::eval(&x, self, &mut Vec::new()) {
+                        Ok(Value::Int(n)) if n >= 0 => Some(n as usize),
+                        _ => None,
+                    }
+                }
+            });
+        }
+        let default = d
+            .modification
+            .as_ref()
+            .and_then(|m| m.binding.as_ref())
+            .map(|b| self.function_expr(b, scope, local_names));
+        FuncVar {
+            name: d.name.text.to_string(),
+            type_name: cc.type_name.to_dotted(),
+            dims,
+            default,
+            base,
+            record,
+        }
+    }
+
+    /// A record type's fields, inherited ones first.
+    fn flat_record(&mut self, class: ClassId) -> FlatRecord {
+        let mut classes = Vec::new();
+        self.record_classes(class, &mut classes, 0);
+        let mut fields = Vec::new();
+        for c in classes {
+            let def = self.tree.get(c).def.clone();
+            let ClassBody::Long { composition, .. } = &def.body else {
+                continue;
+            };
+            let scope = Scope {
+                class: c,
+                prefix: Vec::new(),
+            };
+            let mut names: Vec<String> = composition
+                .elements
+                .iter()
+                .filter_map(|e| match &e.kind {
+                    ElementKind::Component(cc) => Some(cc),
+                    _ => None,
+                })
+                .flat_map(|cc| cc.components.iter().map(|d| d.name.text.to_string()))
+                .collect();
+            for e in &composition.elements {
+                if let ElementKind::Component(cc) = &e.kind {
+                    for d in &cc.components {
+                        let v = self.func_var(cc, d, &scope, &mut names);
+                        fields.push(v);
+                    }
+                }
+            }
+            // `extends Base(field = value)` changes an inherited field's default.
+            for e in &composition.elements {
+                let ElementKind::Extends(x) = &e.kind else {
+                    continue;
+                };
+                for arg in x.modification.iter().flat_map(|m| &m.args) {
+                    let Argument::Modify {
+                        name,
+                        modification: Some(m),
+                        ..
+                    } = arg
+                    else {
+                        continue;
+                    };
+                    let (Some(b), [field]) = (&m.binding, name.parts.as_slice()) else {
+                        continue;
+                    };
+                    let value = self.function_expr(b, &scope, &mut names);
+                    if let Some(f) = fields.iter_mut().find(|f| f.name == field.text.as_str()) {
+                        f.default = Some(value);
+                    }
+                }
+            }
+        }
+        FlatRecord {
+            name: self.tree.full_name(class),
+            fields,
+            origin: self.tree.get(class).def.name.span,
+        }
+    }
+
+    /// `class` and its bases, bases first.
+    fn record_classes(&mut self, class: ClassId, out: &mut Vec<ClassId>, depth: usize) {
+        if depth > 32 {
+            return;
+        }
+        for b in self.tree.bases(class) {
+            self.record_classes(b, out, depth + 1);
+        }
+        out.push(class);
     }
 
     fn flat_function(&mut self, class: ClassId, name: &str) -> Option<FlatFunction> {
@@ -225,32 +422,7 @@ impl Instantiator<'_, '_> {
                 continue;
             };
             for d in &cc.components {
-                let dims = cc
-                    .type_dims
-                    .iter()
-                    .chain(&d.dims)
-                    .map(|s| match s {
-                        Subscript::Colon(_) => None,
-                        Subscript::Expr(x) => {
-                            let x = self.function_expr(x, &scope, &mut local_names);
-                            match eval::eval(&x, self, &mut Vec::new()) {
-                                Ok(Value::Int(n)) if n >= 0 => Some(n as usize),
-                                _ => None,
-                            }
-                        }
-                    })
-                    .collect();
-                let default = d
-                    .modification
-                    .as_ref()
-                    .and_then(|m| m.binding.as_ref())
-                    .map(|b| self.function_expr(b, &scope, &mut local_names));
-                let var = FuncVar {
-                    name: d.name.text.to_string(),
-                    type_name: cc.type_name.to_dotted(),
-                    dims,
-                    default,
-                };
+                let var = self.func_var(cc, d, &scope, &mut local_names);
                 match cc.prefix.causality {
                     Some(Causality::Input) => f.inputs.push(var),
                     Some(Causality::Output) => f.outputs.push(var),
@@ -266,7 +438,10 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
-        f.external = composition.sections.is_empty() && f.algorithm.is_empty();
+        // No body: no algorithm and no output computed by its binding.
+        f.external = composition.sections.is_empty()
+            && f.algorithm.is_empty()
+            && f.outputs.iter().all(|o| o.default.is_none());
         Some(f)
     }
 }

@@ -70,10 +70,15 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// Instance keys of `outer` components, with the path of the `inner` they stand for.
     outer_alias: HashMap<String, Vec<RefPart>>,
     depth: usize,
+    /// Record classes the model uses, in the order first seen.
+    pub(crate) records_used: Vec<ClassId>,
+    /// Redeclared classes by (instance key, class name): what the name means inside
+    /// that instance (`redeclare model Sensor = OffsetSensor`).
+    pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
 }
 
 /// The type a component turns out to have.
-enum Kind {
+pub(crate) enum Kind {
     Builtin(FlatType),
     Class(ClassId),
 }
@@ -96,7 +101,7 @@ fn int_expr(i: i64, span: Span) -> Expr {
 }
 
 /// The instance key of a path (all subscripts included).
-fn instance_key(path: &[RefPart]) -> String {
+pub(crate) fn instance_key(path: &[RefPart]) -> String {
     let mut k = eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()));
     if let Some(last) = path.last() {
         k.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
@@ -145,6 +150,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             budget_used: 0,
             stopped: false,
             outer_alias: HashMap::new(),
+            records_used: Vec::new(),
+            class_redeclares: HashMap::new(),
             depth: 0,
         }
     }
@@ -239,7 +246,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
     /// Like [`resolve_type`], also returning the array dimensions the short class
     /// definitions add (`type Position3 = Real[3]`), outermost first, with their scope.
     #[allow(clippy::type_complexity)]
-    fn resolve_type_dims(
+    pub(crate) fn resolve_type_dims(
         &mut self,
         mut found: Found,
         m: &Mod,
@@ -362,6 +369,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             class,
             prefix: prefix.to_vec(),
         };
+        self.register_class_redeclares(class, composition, prefix, m);
         // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
         // it travels into the bases like an extends modifier (under the instance's).
         let mut own_redeclares = Mod::default();
@@ -599,7 +607,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             }
             None => {
                 let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
-                self.tree.lookup_dotted(Some(scope.class), &parts, false)
+                self.lookup_class_path(scope, &parts)
             }
         };
         let Some(found) = found else { return }; // unknown type: reported by the name check
@@ -661,24 +669,26 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 self.model.vars.push(var);
             }
             Kind::Class(c) => {
-                // A binding of a structured (record) component is a record equation.
-                if let (Some(b), false) = (
-                    &merged.binding,
-                    matches!(
-                        variability,
-                        Some(Variability::Parameter | Variability::Constant)
-                    ),
-                ) {
-                    let rhs = self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new());
-                    let lhs = Expr {
-                        kind: ExprKind::Ref(crate::flat::path_ref(path.clone(), d.span)),
-                        span: d.span,
-                    };
-                    self.model.equations.push(Equation {
-                        kind: EquationKind::Simple { lhs, rhs },
-                        comment: Comment::default(),
-                        span: d.span,
+                let record = self.is_record(c);
+                // A record binding is split into field bindings where it can be
+                // (per element of an array of records).
+                let merged = if record && dims.is_empty() {
+                    self.note_record_instance(&key, c);
+                    self.split_record_binding(c, merged)
+                } else {
+                    merged
+                };
+                // An array of records is bound element by element when its binding
+                // can be taken apart (an array of constructor calls, a record array).
+                let per_element = record
+                    && !dims.is_empty()
+                    && merged.binding.as_ref().is_some_and(|b| {
+                        let first = vec![1; dims.len()];
+                        self.pick_element(&b.expr, &b.scope, &first).is_some()
                     });
+                // A binding of a structured component left whole is a record equation.
+                if !per_element {
+                    self.record_binding_equation(&merged, &path, variability, &key, d.span);
                 }
                 // `input`/`output` on a structured component applies to its variables;
                 // those of the top-level model's connectors are the model's interface.
@@ -698,7 +708,24 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         }
                         // A modifier without `each` gives element t its part of the
                         // array value (spec 7.2.5).
-                        let element = self.element_mod(&merged, &t);
+                        let mut element = self.element_mod(&merged, &t);
+                        if record {
+                            let key = instance_key(&p);
+                            self.note_record_instance(&key, c);
+                            element.binding = if per_element {
+                                merged.binding.as_ref().and_then(|b| {
+                                    let e = self.pick_element(&b.expr, &b.scope, &t)?;
+                                    Some(Bound {
+                                        expr: e,
+                                        scope: b.scope.clone(),
+                                    })
+                                })
+                            } else {
+                                None
+                            };
+                            element = self.split_record_binding(c, element);
+                            self.record_binding_equation(&element, &p, variability, &key, d.span);
+                        }
                         self.class_body(c, &p, &element, variability, top);
                     }
                 }
@@ -1137,7 +1164,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     return r;
                 }
             };
-            let mut parts: Vec<RefPart> = full.split('.').map(|p| part(p, r.span)).collect();
+            let mut parts: Vec<RefPart> = crate::flat::split_name(&full)
+                .into_iter()
+                .map(|p| part(p, r.span))
+                .collect();
             if let (Some(last), Some(orig)) = (parts.last_mut(), r.parts.last()) {
                 last.subscripts = orig.subscripts.clone();
             }
@@ -1148,6 +1178,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             };
         }
         r
+    }
+
+    /// `e` flattened in `scope`, outside any loop.
+    pub(crate) fn flat_expr(&mut self, e: &Expr, scope: &Scope) -> Expr {
+        self.expr(e, scope, &mut Vec::new(), &mut Vec::new())
     }
 
     fn expr(
@@ -1168,6 +1203,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         }
                     }
                 }
+                if let Some(v) = self.redeclared_constant(r, scope, locals) {
+                    return v;
+                }
                 let fr = self.cref(r, scope, iters, locals);
                 if fr.global {
                     if let Some(v) = self.package_constant(&fr) {
@@ -1182,14 +1220,19 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     func.clone()
                 } else {
                     let parts: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
-                    let start = if func.global { None } else { Some(scope.class) };
-                    match self.tree.lookup_dotted(start, &parts, false) {
+                    let found = if func.global {
+                        self.tree.lookup_dotted(None, &parts, false)
+                    } else {
+                        self.lookup_class_path(scope, &parts)
+                    };
+                    match found {
                         Some(Found::Class(c)) => {
+                            let c = self.real_class(c);
                             let full = self.tree.full_name(c);
                             Name {
                                 global: true,
-                                parts: full
-                                    .split('.')
+                                parts: crate::flat::split_name(&full)
+                                    .into_iter()
                                     .map(|p| Ident {
                                         text: p.into(),
                                         span: func.span,
@@ -1307,6 +1350,17 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 name: i.name.clone(),
                 range: i.range.as_ref().map(|r| {
                     let flat = self.expr(r, scope, iters, locals);
+                    // A range of a function's inputs or locals stays as written.
+                    let mut local = false;
+                    crate::flat::rewrite_refs(&mut flat.clone(), &mut |r| {
+                        local |= !r.global
+                            && r.parts
+                                .first()
+                                .is_some_and(|p| locals.iter().any(|l| *l == p.name.text))
+                    });
+                    if local {
+                        return flat;
+                    }
                     // A range of parameters is decided here, so that the flat text
                     // names no structural parameter (they are folded away).
                     match eval::eval(&flat, self, iters) {
@@ -1325,27 +1379,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         let Some(Found::Class(owner)) = self.tree.lookup_dotted(None, owner_path, false) else {
             return None;
         };
-        let def = self.tree.get(owner).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
-            return None;
-        };
-        let (cc, decl) = composition.elements.iter().find_map(|e| match &e.kind {
-            ElementKind::Component(cc) => cc
-                .components
-                .iter()
-                .find(|d| d.name.text == *last)
-                .map(|d| (cc, d)),
-            _ => None,
-        })?;
-        if cc.prefix.variability != Some(unimo_syntax::ast::Variability::Constant) {
-            return None;
-        }
-        let binding = decl.modification.as_ref()?.binding.as_ref()?;
-        let scope = Scope {
-            class: owner,
-            prefix: Vec::new(),
-        };
-        let flat = self.expr(binding, &scope, &mut Vec::new(), &mut Vec::new());
+        let (binding, scope) = self.class_constant(owner, last, 0)?;
+        let flat = self.expr(&binding, &scope, &mut Vec::new(), &mut Vec::new());
         let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
         let subs = r
             .parts
@@ -1356,6 +1391,84 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             Some(v.to_expr(r.span))
         } else {
             None
+        }
+    }
+
+    /// The value of constant `name` of class `owner`: declared there, or inherited,
+    /// with the modifiers of short class definitions and `extends` clauses on the way
+    /// (`package Water extends PartialMedium(cp = 4184)`, `package M = Water`).
+    pub(crate) fn class_constant(
+        &mut self,
+        owner: ClassId,
+        name: &str,
+        depth: usize,
+    ) -> Option<(Expr, Scope)> {
+        if depth > MAX_DEPTH {
+            return None;
+        }
+        let def = self.tree.get(owner).def.clone();
+        let here = Scope {
+            class: owner,
+            prefix: Vec::new(),
+        };
+        let modified = |cm: &Option<ClassModification>| -> Option<Expr> {
+            cm.iter().flat_map(|m| &m.args).find_map(|a| match a {
+                Argument::Modify {
+                    name: n,
+                    modification: Some(m),
+                    ..
+                } if n.parts.len() == 1 && n.parts[0].text == name => m.binding.clone(),
+                _ => None,
+            })
+        };
+        match &def.body {
+            ClassBody::Short { modification, .. } => {
+                // The modifier of a short class is written in its enclosing scope.
+                if let Some(b) = modified(modification) {
+                    let scope = Scope {
+                        class: self.tree.get(owner).parent.unwrap_or(owner),
+                        prefix: Vec::new(),
+                    };
+                    return Some((b, scope));
+                }
+                let base = self.tree.bases(owner).first().copied()?;
+                self.class_constant(base, name, depth + 1)
+            }
+            ClassBody::Long { composition, .. } => {
+                for e in &composition.elements {
+                    if let ElementKind::Component(cc) = &e.kind {
+                        if let Some(d) = cc.components.iter().find(|d| d.name.text == name) {
+                            if cc.prefix.variability
+                                != Some(unimo_syntax::ast::Variability::Constant)
+                            {
+                                return None;
+                            }
+                            let b = d.modification.as_ref()?.binding.clone()?;
+                            return Some((b, here));
+                        }
+                    }
+                }
+                let extends: Vec<Option<ClassModification>> = composition
+                    .elements
+                    .iter()
+                    .filter_map(|e| match &e.kind {
+                        ElementKind::Extends(x) => Some(x.modification.clone()),
+                        _ => None,
+                    })
+                    .collect();
+                let bases = self.tree.bases(owner);
+                for (base, m) in bases.into_iter().zip(extends) {
+                    if !self.tree.has_component(base, name) {
+                        continue;
+                    }
+                    if let Some(b) = modified(&m) {
+                        return Some((b, here));
+                    }
+                    return self.class_constant(base, name, depth + 1);
+                }
+                None
+            }
+            ClassBody::Enumeration { .. } => None,
         }
     }
 }
@@ -1417,7 +1530,7 @@ impl Instantiator<'_, '_> {
         out
     }
 
-    fn pick_element(&mut self, e: &Expr, scope: &Scope, index: &[i64]) -> Option<Expr> {
+    pub(crate) fn pick_element(&mut self, e: &Expr, scope: &Scope, index: &[i64]) -> Option<Expr> {
         let Some((&first, rest)) = index.split_first() else {
             return Some(e.clone());
         };

@@ -63,7 +63,7 @@ impl Instantiator<'_, '_> {
                 what: format!("calls nested deeper than {MAX_CALL_DEPTH} in `{name}`"),
             });
         }
-        let parts: Vec<&str> = name.split('.').collect();
+        let parts: Vec<&str> = crate::flat::split_name(name);
         let Some(Found::Class(f)) = self.tree.lookup_dotted(None, &parts, false) else {
             return Err(not_constant(span, format!("a call of `{name}`")));
         };

@@ -20,6 +20,8 @@ mod interp;
 pub mod lookup;
 pub mod modif;
 pub mod provider;
+pub(crate) mod records;
+pub(crate) mod redeclare;
 pub mod resolve;
 pub mod tree;
 

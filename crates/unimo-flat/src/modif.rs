@@ -31,6 +31,9 @@ pub struct Mod {
     pub children: Vec<(SmolStr, Mod)>,
     /// `redeclare Type name` applied to this element, with the scope of the new type name.
     pub redeclare: Option<(Name, Scope)>,
+    /// `redeclare model Name = ...` applied to this (class) element: the new class
+    /// definition, with the scope it was written in.
+    pub class_redeclare: Option<(std::sync::Arc<unimo_syntax::ast::ClassDef>, Scope)>,
     pub each: bool,
     pub is_final: bool,
 }
@@ -44,7 +47,10 @@ impl Mod {
     }
 
     pub fn is_empty(&self) -> bool {
-        self.binding.is_none() && self.children.is_empty() && self.redeclare.is_none()
+        self.binding.is_none()
+            && self.children.is_empty()
+            && self.redeclare.is_none()
+            && self.class_redeclare.is_none()
     }
 
     /// `self` over `inner`: `self`'s values win, children merge by name.
@@ -55,6 +61,9 @@ impl Mod {
         }
         if self.redeclare.is_some() {
             out.redeclare = self.redeclare.clone();
+        }
+        if self.class_redeclare.is_some() {
+            out.class_redeclare = self.class_redeclare.clone();
         }
         out.each |= self.each;
         out.is_final |= self.is_final;
@@ -101,6 +110,20 @@ impl Mod {
                     }
                 }
                 Argument::Redeclare { element, each, .. } => {
+                    if let RedeclaredElement::Class(cd) = element {
+                        let m = Mod {
+                            class_redeclare: Some((
+                                std::sync::Arc::new((**cd).clone()),
+                                scope.clone(),
+                            )),
+                            ..Mod::default()
+                        };
+                        out = Mod {
+                            children: vec![(cd.name.text.clone(), m)],
+                            ..Mod::default()
+                        }
+                        .over(&out);
+                    }
                     if let RedeclaredElement::Component(cc) = element {
                         for d in &cc.components {
                             let mut m = d

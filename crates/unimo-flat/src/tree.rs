@@ -267,6 +267,23 @@ impl<'p> ClassTree<'p> {
     /// The directly declared child class `name` of `class` (nested definition or file
     /// in its package folder), loading it if needed. Inherited classes are not here:
     /// see [`crate::lookup`].
+    /// A class written inside a modifier (`redeclare model M = N(...)`): known by id,
+    /// looked up from `parent`, but no member of it.
+    pub fn add_detached(&mut self, parent: ClassId, def: Arc<ClassDef>) -> ClassId {
+        let file = self.get(parent).file;
+        self.add(ClassEntry {
+            name: def.name.text.clone(),
+            parent: Some(parent),
+            def,
+            file,
+            location: None,
+            children: HashMap::new(),
+            declared: Default::default(),
+            nested: Default::default(),
+            imports: Default::default(),
+        })
+    }
+
     pub fn child_class(&mut self, class: ClassId, name: &str) -> Option<ClassId> {
         if let Some(&cached) = self.get(class).children.get(name) {
             return cached;

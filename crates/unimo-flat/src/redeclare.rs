@@ -1,0 +1,138 @@
+//! Redeclared classes (spec 7.3): `redeclare model Sensor = OffsetSensor(offset = 0.05)`
+//! in a component modifier, in an `extends` modifier, or as an element of a class
+//! body changes what the replaceable class name means inside one instance. The
+//! instantiator keeps, per instance, the class each redeclared name stands for, and
+//! resolves component types, function calls and package constants through it.
+
+use crate::eval;
+use crate::instantiate::{instance_key, Instantiator};
+use crate::lookup::Found;
+use crate::modif::{Mod, Scope};
+use crate::tree::ClassId;
+use smol_str::SmolStr;
+use unimo_syntax::ast::*;
+
+impl Instantiator<'_, '_> {
+    /// Notes the class redeclarations that apply inside the instance at `prefix`:
+    /// the instance's modifier first (it wins), then the class's own `redeclare`
+    /// elements; `extends` modifiers are noted when their base is instantiated.
+    pub(crate) fn register_class_redeclares(
+        &mut self,
+        class: ClassId,
+        composition: &Composition,
+        prefix: &[RefPart],
+        m: &Mod,
+    ) {
+        let key = instance_key(prefix);
+        for (name, child) in &m.children {
+            let Some((def, scope)) = &child.class_redeclare else {
+                continue;
+            };
+            let k = (key.clone(), name.clone());
+            if self.class_redeclares.contains_key(&k) {
+                continue;
+            }
+            let id = self.tree.add_detached(scope.class, def.clone());
+            self.class_redeclares.insert(k, id);
+        }
+        for e in &composition.elements {
+            let (true, ElementKind::Class(cd)) = (e.redeclare, &e.kind) else {
+                continue;
+            };
+            let k = (key.clone(), cd.name.text.clone());
+            if self.class_redeclares.contains_key(&k) {
+                continue;
+            }
+            if let Some(id) = self.tree.child_class(class, &cd.name.text) {
+                self.class_redeclares.insert(k, id);
+            }
+        }
+    }
+
+    /// The class a replaceable class name stands for inside the instance of `scope`.
+    fn redeclared(&self, scope: &Scope, name: &str) -> Option<ClassId> {
+        if self.class_redeclares.is_empty() {
+            return None;
+        }
+        let key = instance_key(&scope.prefix);
+        self.class_redeclares
+            .get(&(key, SmolStr::new(name)))
+            .copied()
+    }
+
+    /// Looks up a class path from `scope`, through the instance's redeclared classes.
+    pub(crate) fn lookup_class_path(&mut self, scope: &Scope, parts: &[&str]) -> Option<Found> {
+        let (first, rest) = parts.split_first()?;
+        // Only a name that means a class here can be redeclared (not a component).
+        if let Some(rc) = self.redeclared(scope, first) {
+            if let Some(Found::Class(_)) = self.tree.lookup_simple(Some(scope.class), first, false)
+            {
+                let mut found = Found::Class(rc);
+                for p in rest {
+                    found = match found {
+                        Found::Class(c) => match self.tree.member_class(c, p) {
+                            Some(m) => Found::Class(m),
+                            None if self.tree.has_component(c, p) => Found::Component(c),
+                            None => return None,
+                        },
+                        other => return Some(other),
+                    };
+                }
+                return Some(found);
+            }
+        }
+        self.tree.lookup_dotted(Some(scope.class), parts, false)
+    }
+
+    /// A class written in a modifier has no global name: the class it names instead
+    /// (`redeclare function f = g` is `g`), for a call's global name.
+    pub(crate) fn real_class(&mut self, mut c: ClassId) -> ClassId {
+        for _ in 0..32 {
+            let entry = self.tree.get(c);
+            let detached = self.class_redeclares.values().any(|&v| v == c);
+            let short = matches!(
+                &entry.def.body,
+                ClassBody::Short {
+                    modification: None,
+                    ..
+                }
+            );
+            if !(detached && short) {
+                return c;
+            }
+            match self.tree.bases(c).first() {
+                Some(&b) => c = b,
+                None => return c,
+            }
+        }
+        c
+    }
+
+    /// `Medium.cp` where `Medium` is redeclared in this instance: the constant's value.
+    pub(crate) fn redeclared_constant(
+        &mut self,
+        r: &ComponentRef,
+        scope: &Scope,
+        locals: &[String],
+    ) -> Option<Expr> {
+        if r.global || r.parts.len() < 2 || self.class_redeclares.is_empty() {
+            return None;
+        }
+        let first = r.parts[0].name.text.as_str();
+        if locals.iter().any(|l| l == first) || self.redeclared(scope, first).is_none() {
+            return None;
+        }
+        if r.parts.iter().any(|p| !p.subscripts.is_empty()) {
+            return None;
+        }
+        let names: Vec<&str> = r.parts.iter().map(|p| p.name.text.as_str()).collect();
+        let (last, owner_path) = names.split_last()?;
+        let Some(Found::Class(owner)) = self.lookup_class_path(scope, owner_path) else {
+            return None;
+        };
+        let (binding, bscope) = self.class_constant(owner, last, 0)?;
+        let flat = self.flat_expr(&binding, &bscope);
+        let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
+        Some(v.to_expr(r.span))
+    }
+}
