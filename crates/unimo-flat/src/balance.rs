@@ -5,7 +5,8 @@
 
 use crate::eval::var_key;
 use crate::flat::{FlatModel, Variability};
-use std::collections::{BTreeSet, HashMap};
+use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeSet;
 use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
@@ -17,7 +18,9 @@ pub struct Balance {
 }
 
 struct Shapes<'m> {
-    dims: HashMap<String, &'m [usize]>,
+    dims: HashMap<&'m str, &'m [usize]>,
+    /// Scalar sizes of the record instances (`z` of `z.re`, `z.im`).
+    record_sizes: HashMap<&'m str, usize>,
     /// Record types by full name: a constructor call has the size of its fields.
     records: HashMap<&'m str, &'m crate::functions::FlatRecord>,
 }
@@ -27,16 +30,16 @@ impl Shapes<'_> {
         match &e.kind {
             ExprKind::Ref(r) => {
                 let key = var_key(r);
-                let Some(d) = self.dims.get(&key) else {
+                let Some(d) = self.dims.get(key.as_str()) else {
                     // A record: as many scalars as its variables.
-                    let prefix = format!("{key}.");
-                    let n: usize = self
-                        .dims
-                        .iter()
-                        .filter(|(k, _)| k.starts_with(&prefix))
-                        .map(|(_, d)| sat_product(d))
-                        .sum();
-                    return if n > 0 { vec![n] } else { Vec::new() };
+                    let mut instance = key;
+                    if let Some(last) = r.parts.last() {
+                        instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+                    }
+                    return match self.record_sizes.get(instance.as_str()) {
+                        Some(&n) if n > 0 => vec![n],
+                        _ => Vec::new(),
+                    };
                 };
                 let subs = r
                     .parts
@@ -255,12 +258,29 @@ fn assigned(stmts: &[Statement], out: &mut BTreeSet<String>) {
 
 /// Counts the scalar equations and unknowns of `model`.
 pub fn count(model: &FlatModel) -> Balance {
+    let mut record_sizes: HashMap<&str, usize> = HashMap::default();
+    if !model.record_instances.is_empty() {
+        for (k, _) in &model.record_instances {
+            record_sizes.insert(k.as_str(), 0);
+        }
+        // Each variable counts for every record instance its name is inside of.
+        for v in &model.vars {
+            for (i, c) in v.name.char_indices() {
+                if c == '.' {
+                    if let Some(n) = record_sizes.get_mut(&v.name[..i]) {
+                        *n += v.size();
+                    }
+                }
+            }
+        }
+    }
     let shapes = Shapes {
         dims: model
             .vars
             .iter()
-            .map(|v| (v.name.clone(), v.dims.as_slice()))
+            .map(|v| (v.name.as_str(), v.dims.as_slice()))
             .collect(),
+        record_sizes,
         records: model.records.iter().map(|r| (r.name.as_str(), r)).collect(),
     };
     let unknowns = model
@@ -288,7 +308,7 @@ pub fn count(model: &FlatModel) -> Balance {
         assigned(alg, &mut names);
         let assigned_size = names
             .iter()
-            .map(|n| shapes.dims.get(n).map_or(1, |d| sat_product(d)))
+            .map(|n| shapes.dims.get(n.as_str()).map_or(1, |d| sat_product(d)))
             .fold(0, usize::saturating_add);
         equations = equations.saturating_add(assigned_size);
     }

@@ -5,7 +5,7 @@
 use crate::eval::var_key;
 use crate::flat::FlatModel;
 use crate::instantiate::Connect;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::{
     BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart,
@@ -51,14 +51,16 @@ fn var_ref(name: &str, span: Span) -> Expr {
 
 /// The primitive variables inside the connector instance `key`: (suffix, var index).
 /// `names` is every variable name, sorted, with its index: a range query, not a scan.
-fn members(names: &std::collections::BTreeMap<String, usize>, key: &str) -> Vec<(String, usize)> {
+fn members<'n>(
+    names: &std::collections::BTreeMap<&'n str, usize>,
+    key: &str,
+) -> Vec<(&'n str, usize)> {
     names
-        .range(key.to_owned()..)
+        .range::<str, _>((std::ops::Bound::Included(key), std::ops::Bound::Unbounded))
         .take_while(|(n, _)| n.starts_with(key))
         .filter_map(|(n, &i)| {
             let rest = &n[key.len()..];
-            (rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
-                .then(|| (rest.to_owned(), i))
+            (rest.is_empty() || rest.starts_with('.') || rest.starts_with('[')).then_some((rest, i))
         })
         .collect()
 }
@@ -67,7 +69,7 @@ fn members(names: &std::collections::BTreeMap<String, usize>, key: &str) -> Vec<
 pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) -> Vec<Diagnostic> {
     let mut diags = Vec::new();
     let mut nodes: Vec<Node> = Vec::new();
-    let mut index: HashMap<Node, usize> = HashMap::new();
+    let mut index: HashMap<Node, usize> = HashMap::default();
     let mut parent: Vec<usize> = Vec::new();
     let mut node = |n: Node, nodes: &mut Vec<Node>, parent: &mut Vec<usize>| -> usize {
         *index.entry(n.clone()).or_insert_with(|| {
@@ -76,12 +78,12 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
             parent.len() - 1
         })
     };
-    let mut spans: HashMap<usize, Span> = HashMap::new();
-    let names: std::collections::BTreeMap<String, usize> = model
+    let mut spans: HashMap<usize, Span> = HashMap::default();
+    let names: std::collections::BTreeMap<&str, usize> = model
         .vars
         .iter()
         .enumerate()
-        .map(|(i, v)| (v.name.clone(), i))
+        .map(|(i, v)| (v.name.as_str(), i))
         .collect();
     for c in connects {
         let (ka, kb) = (var_key_full(&c.a), var_key_full(&c.b));
@@ -101,8 +103,8 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
             );
             continue;
         }
-        let sa: Vec<&str> = ma.iter().map(|(s, _)| s.as_str()).collect();
-        let sb: Vec<&str> = mb.iter().map(|(s, _)| s.as_str()).collect();
+        let sa: Vec<&str> = ma.iter().map(|(s, _)| *s).collect();
+        let sb: Vec<&str> = mb.iter().map(|(s, _)| *s).collect();
         if sa != sb {
             let missing: Vec<&str> = sa
                 .iter()
@@ -189,7 +191,7 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
     }
     // Group the nodes by set, in order of first appearance.
     let mut sets: Vec<Vec<usize>> = Vec::new();
-    let mut set_of_root: HashMap<usize, usize> = HashMap::new();
+    let mut set_of_root: HashMap<usize, usize> = HashMap::default();
     for n in 0..nodes.len() {
         let r = find(&mut parent, n);
         let k = *set_of_root.entry(r).or_insert_with(|| {

@@ -7,8 +7,8 @@ use crate::flat::{FlatModel, FlatType, FlatVar, VarId, Variability};
 use crate::lookup::{Found, BUILTIN_FUNCTIONS};
 use crate::modif::{Bound, Mod, Scope};
 use crate::tree::{ClassId, ClassTree};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use smol_str::SmolStr;
-use std::collections::{HashMap, HashSet};
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
@@ -137,21 +137,21 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         Instantiator {
             tree,
             model: FlatModel::default(),
-            var_index: HashMap::new(),
+            var_index: HashMap::default(),
             connects: Vec::new(),
             diags: Vec::new(),
-            values: HashMap::new(),
-            evaluating: HashSet::new(),
+            values: HashMap::default(),
+            evaluating: HashSet::default(),
             absent: Vec::new(),
-            declared: HashMap::new(),
+            declared: HashMap::default(),
             inners: Vec::new(),
             call_depth: 0,
             inherited_causality: None,
             budget_used: 0,
             stopped: false,
-            outer_alias: HashMap::new(),
+            outer_alias: HashMap::default(),
             records_used: Vec::new(),
-            class_redeclares: HashMap::new(),
+            class_redeclares: HashMap::default(),
             depth: 0,
         }
     }
@@ -1244,6 +1244,27 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         _ => func.clone(),
                     }
                 };
+                // A reduction over component array elements (`sum(c[i].f for i in
+                // 1:n)`) is written out: `sum({c[1].f, c[2].f, ...})`.
+                if let (Some(body), true) = (args.positional.first(), args.positional.len() == 1) {
+                    if let Some(items) = self.unroll(body, &args.iterators, scope, iters, locals) {
+                        return Expr {
+                            kind: ExprKind::Call {
+                                func,
+                                args: Box::new(CallArgs {
+                                    positional: vec![Expr {
+                                        kind: ExprKind::Array(items),
+                                        span,
+                                    }],
+                                    named: Vec::new(),
+                                    iterators: Vec::new(),
+                                    span: args.span,
+                                }),
+                            },
+                            span,
+                        };
+                    }
+                }
                 let n = args.iterators.len();
                 let iterators = self.indices(&args.iterators, scope, iters, locals);
                 locals.extend(iterators.iter().map(|i| i.name.text.to_string()));
@@ -1272,6 +1293,12 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
             ExprKind::Comprehension { body, indices } => {
+                if let Some(items) = self.unroll(body, indices, scope, iters, locals) {
+                    return Expr {
+                        kind: ExprKind::Array(items),
+                        span,
+                    };
+                }
                 let indices = self.indices(indices, scope, iters, locals);
                 let n = indices.len();
                 locals.extend(indices.iter().map(|i| i.name.text.to_string()));
@@ -1334,6 +1361,52 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             other => other.clone(),
         };
         Expr { kind, span }
+    }
+
+    /// The elements of a one-iterator comprehension whose body selects components by
+    /// the iterator (`{coil[i].r[3] for i in 1:n}`), when its range is known: a flat
+    /// model has `coil[1].r`, not `coil[i].r`.
+    fn unroll(
+        &mut self,
+        body: &Expr,
+        indices: &[ForIndex],
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> Option<Vec<Expr>> {
+        let [index] = indices else {
+            return None;
+        };
+        let name = index.name.text.as_str();
+        let mut selects = false;
+        crate::flat::rewrite_refs(&mut body.clone(), &mut |r| {
+            let n = r.parts.len();
+            for p in &r.parts[..n.saturating_sub(1)] {
+                for sub in &p.subscripts {
+                    if let Subscript::Expr(e) = sub {
+                        let mut uses = false;
+                        crate::flat::rewrite_refs(&mut e.clone(), &mut |x| {
+                            uses |= x.parts.len() == 1 && x.parts[0].name.text == name;
+                        });
+                        selects |= uses;
+                    }
+                }
+            }
+        });
+        if !selects {
+            return None;
+        }
+        let range = self.expr(index.range.as_ref()?, scope, iters, locals);
+        let Ok(Value::Array(values)) = eval::eval(&range, self, iters) else {
+            return None;
+        };
+        let mut items = Vec::with_capacity(values.len());
+        for v in values {
+            iters.push((name.to_owned(), v));
+            items.push(self.expr(body, scope, iters, locals));
+            iters.pop();
+        }
+        Some(items)
     }
 
     /// `for` indices with their ranges made absolute (the names stay local).

@@ -5,7 +5,7 @@ use crate::eval::{self, Env, EvalError, Value};
 use crate::instantiate::Instantiator;
 use crate::lookup::Found;
 use crate::modif::Scope;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
@@ -81,7 +81,7 @@ impl Instantiator<'_, '_> {
             class: f,
             prefix: Vec::new(),
         };
-        let mut locals: HashMap<String, Value> = HashMap::new();
+        let mut locals: HashMap<String, Value> = HashMap::default();
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
         let mut defaults = Vec::new();

@@ -23,6 +23,14 @@ impl Instantiator<'_, '_> {
         prefix: &[RefPart],
         m: &Mod,
     ) {
+        let any = m.children.iter().any(|(_, c)| c.class_redeclare.is_some())
+            || composition
+                .elements
+                .iter()
+                .any(|e| e.redeclare && matches!(e.kind, ElementKind::Class(_)));
+        if !any {
+            return;
+        }
         let key = instance_key(prefix);
         for (name, child) in &m.children {
             let Some((def, scope)) = &child.class_redeclare else {

@@ -6,8 +6,8 @@
 //! scene pays only for the classes it uses (`LoadStats` counts them).
 
 use crate::provider::{LibLocation, SourceProvider};
+use rustc_hash::FxHashMap as HashMap;
 use smol_str::SmolStr;
-use std::collections::HashMap;
 use std::sync::Arc;
 use unimo_source::{Diagnostic, FileId, SourceMap};
 use unimo_syntax::ast::{ClassDef, ElementKind, StoredDefinition};
@@ -140,11 +140,11 @@ impl<'p> ClassTree<'p> {
             provider,
             sources: SourceMap::new(),
             classes: Vec::new(),
-            user_top: HashMap::new(),
-            library_top: HashMap::new(),
+            user_top: HashMap::default(),
+            library_top: HashMap::default(),
             diagnostics: Vec::new(),
             stats: LoadStats::default(),
-            bases_cache: HashMap::new(),
+            bases_cache: HashMap::default(),
         }
     }
 
@@ -197,7 +197,7 @@ impl<'p> ClassTree<'p> {
                 def: Arc::new(c),
                 file,
                 location: None,
-                children: HashMap::new(),
+                children: HashMap::default(),
                 declared: Default::default(),
                 nested: Default::default(),
                 imports: Default::default(),
@@ -277,7 +277,7 @@ impl<'p> ClassTree<'p> {
             def,
             file,
             location: None,
-            children: HashMap::new(),
+            children: HashMap::default(),
             declared: Default::default(),
             nested: Default::default(),
             imports: Default::default(),
@@ -306,7 +306,7 @@ impl<'p> ClassTree<'p> {
                 def: Arc::new(def),
                 file,
                 location: None,
-                children: HashMap::new(),
+                children: HashMap::default(),
                 declared: Default::default(),
                 nested: Default::default(),
                 imports: Default::default(),
@@ -363,7 +363,7 @@ impl<'p> ClassTree<'p> {
             def: Arc::new(def),
             file,
             location,
-            children: HashMap::new(),
+            children: HashMap::default(),
             declared: Default::default(),
             nested: Default::default(),
             imports: Default::default(),
