@@ -100,6 +100,12 @@ fn int_expr(i: i64, span: Span) -> Expr {
     }
 }
 
+/// Builtin functions applied element by element to an array argument.
+const ELEMENTWISE_FUNCTIONS: &[&str] = &[
+    "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
+    "exp", "log", "log10", "floor", "ceil", "der", "pre",
+];
+
 /// The instance key of a path (all subscripts included).
 pub(crate) fn instance_key(path: &[RefPart]) -> String {
     let mut k = eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()));
@@ -1639,8 +1645,77 @@ impl Instantiator<'_, '_> {
             _ => {
                 // A constant array: evaluate it and pick the element.
                 let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
-                let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
-                self.pick_value(v, index, e.span)
+                if let Ok(v) = eval::eval(&flat, self, &mut Vec::new()) {
+                    return self.pick_value(v, index, e.span);
+                }
+                // An element-wise expression of arrays that are not constant
+                // (`u = us + ones(n)`): the element of each operand.
+                let picked = |this: &mut Self, x: &Expr| this.pick_element(x, scope, index);
+                let kind = match &e.kind {
+                    ExprKind::Binary { op, lhs, rhs } => {
+                        let elementwise = matches!(
+                            op,
+                            BinaryOp::Add
+                                | BinaryOp::Sub
+                                | BinaryOp::ElemAdd
+                                | BinaryOp::ElemSub
+                                | BinaryOp::ElemMul
+                                | BinaryOp::ElemDiv
+                                | BinaryOp::ElemPow
+                        );
+                        let (l, r) = (picked(self, lhs), picked(self, rhs));
+                        match (l, r) {
+                            (Some(l), Some(r)) if elementwise => ExprKind::Binary {
+                                op: *op,
+                                lhs: Box::new(l),
+                                rhs: Box::new(r),
+                            },
+                            // An array scaled by a scalar.
+                            (Some(l), None)
+                                if elementwise || matches!(op, BinaryOp::Mul | BinaryOp::Div) =>
+                            {
+                                ExprKind::Binary {
+                                    op: *op,
+                                    lhs: Box::new(l),
+                                    rhs: rhs.clone(),
+                                }
+                            }
+                            (None, Some(r)) if elementwise || matches!(op, BinaryOp::Mul) => {
+                                ExprKind::Binary {
+                                    op: *op,
+                                    lhs: lhs.clone(),
+                                    rhs: Box::new(r),
+                                }
+                            }
+                            _ => return None,
+                        }
+                    }
+                    ExprKind::Unary { op, operand } => ExprKind::Unary {
+                        op: *op,
+                        operand: Box::new(picked(self, operand)?),
+                    },
+                    ExprKind::Call { func, args }
+                        if !func.global
+                            && func.parts.len() == 1
+                            && ELEMENTWISE_FUNCTIONS.contains(&func.parts[0].text.as_str())
+                            && args.positional.len() == 1
+                            && args.named.is_empty()
+                            && args.iterators.is_empty() =>
+                    {
+                        let x = picked(self, &args.positional[0])?;
+                        ExprKind::Call {
+                            func: func.clone(),
+                            args: Box::new(CallArgs {
+                                positional: vec![x],
+                                named: Vec::new(),
+                                iterators: Vec::new(),
+                                span: args.span,
+                            }),
+                        }
+                    }
+                    _ => return None,
+                };
+                Some(Expr { kind, span: e.span })
             }
         }
     }
