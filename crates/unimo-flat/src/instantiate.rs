@@ -75,6 +75,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// Redeclared classes by (instance key, class name): what the name means inside
     /// that instance (`redeclare model Sensor = OffsetSensor`).
     pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
+    /// Class paths looked up from a class (without redeclarations), by (class, path).
+    pub(crate) type_cache: HashMap<(ClassId, String), Option<Found>>,
 }
 
 /// The type a component turns out to have.
@@ -158,6 +160,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             outer_alias: HashMap::default(),
             records_used: Vec::new(),
             class_redeclares: HashMap::default(),
+            type_cache: HashMap::default(),
             depth: 0,
         }
     }
@@ -1130,7 +1133,12 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             let mut head = scope.prefix.clone();
             head.push(r.parts[0].clone());
             // A reference through an `outer` component goes to its `inner`.
-            let mut parts = match self.outer_alias.get(&instance_key_no_subs(&head)) {
+            let alias = if self.outer_alias.is_empty() {
+                None
+            } else {
+                self.outer_alias.get(&instance_key_no_subs(&head))
+            };
+            let mut parts = match alias {
                 Some(inner) => {
                     let mut p = inner.clone();
                     if let Some(last) = p.last_mut() {

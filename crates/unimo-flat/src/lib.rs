@@ -45,11 +45,15 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     diags.extend(connect::generate(&mut model, &connects, &absent));
     // Canonical order: constants and parameters first, each group in declaration order
     // (so that flattening the printed model gives the same text).
-    model.vars.sort_by_key(|v| {
-        !matches!(
-            v.variability,
-            flat::Variability::Constant | flat::Variability::Parameter
-        )
-    });
+    // (a stable partition: moving the large variable records once, not sorting them)
+    let (mut fixed, rest): (Vec<FlatVar>, Vec<FlatVar>) =
+        std::mem::take(&mut model.vars).into_iter().partition(|v| {
+            matches!(
+                v.variability,
+                flat::Variability::Constant | flat::Variability::Parameter
+            )
+        });
+    fixed.extend(rest);
+    model.vars = fixed;
     (model, diags)
 }

@@ -89,7 +89,15 @@ impl Instantiator<'_, '_> {
                 return Some(found);
             }
         }
-        self.tree.lookup_dotted(Some(scope.class), parts, false)
+        // The same type names are looked up from the same classes many times (a
+        // model of 10^5 components): cached per (class, dotted name).
+        let key = (scope.class, parts.join("."));
+        if let Some(f) = self.type_cache.get(&key) {
+            return *f;
+        }
+        let found = self.tree.lookup_dotted(Some(scope.class), parts, false);
+        self.type_cache.insert(key, found);
+        found
     }
 
     /// A class written in a modifier has no global name: the class it names instead
