@@ -463,6 +463,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     if e.outer && !e.inner {
                         continue; // aliased above
                     }
+                    if let Some(child) = m.child(&d.name.text) {
+                        self.check_element_modifier(e, d, child);
+                    }
                     self.component(&scope, cc, d, m, variability, top);
                 }
             }

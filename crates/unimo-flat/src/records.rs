@@ -133,6 +133,7 @@ impl Instantiator<'_, '_> {
             }
             ExprKind::Ref(r) => fields
                 .iter()
+                .filter(|f| f.input)
                 .map(|f| {
                     let mut r = r.clone();
                     r.parts.push(RefPart {

@@ -10,6 +10,7 @@ use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
 use crate::tree::ClassId;
 use smol_str::SmolStr;
+use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -36,6 +37,9 @@ impl Instantiator<'_, '_> {
             let Some((def, scope)) = &child.class_redeclare else {
                 continue;
             };
+            if self.class_element_replaceable(class, name, 0) == Some(false) {
+                self.not_replaceable(name, def.name.span);
+            }
             let k = (key.clone(), name.clone());
             if self.class_redeclares.contains_key(&k) {
                 continue;
@@ -47,6 +51,26 @@ impl Instantiator<'_, '_> {
             let (true, ElementKind::Class(cd)) = (e.redeclare, &e.kind) else {
                 continue;
             };
+            let inherited = self
+                .tree
+                .bases(class)
+                .into_iter()
+                .find_map(|b| self.class_element_replaceable(b, &cd.name.text, 0));
+            match inherited {
+                Some(false) => self.not_replaceable(&cd.name.text, cd.name.span),
+                None => self.diags.push(
+                    Diagnostic::error(
+                        "E2015",
+                        format!(
+                            "`redeclare` of `{}`, which no base class declares",
+                            cd.name.text
+                        ),
+                    )
+                    .at(cd.name.span, "redeclared here")
+                    .with_help("a redeclaration replaces a replaceable element of a base class"),
+                ),
+                Some(true) => {}
+            }
             let k = (key.clone(), cd.name.text.clone());
             if self.class_redeclares.contains_key(&k) {
                 continue;
@@ -150,5 +174,71 @@ impl Instantiator<'_, '_> {
         let flat = self.flat_expr(&binding, &bscope);
         let v = eval::eval(&flat, self, &mut Vec::new()).ok()?;
         Some(v.to_expr(r.span))
+    }
+
+    /// Whether the class element `name` of `class` (or of a base) is `replaceable`;
+    /// `None` when there is no such class element.
+    fn class_element_replaceable(
+        &mut self,
+        class: ClassId,
+        name: &str,
+        depth: usize,
+    ) -> Option<bool> {
+        if depth > 32 {
+            return None;
+        }
+        let def = self.tree.get(class).def.clone();
+        if let ClassBody::Long { composition, .. } = &def.body {
+            for e in &composition.elements {
+                if let ElementKind::Class(cd) = &e.kind {
+                    if cd.name.text == name {
+                        return Some(e.replaceable || e.redeclare);
+                    }
+                }
+            }
+        }
+        for b in self.tree.bases(class) {
+            if let Some(r) = self.class_element_replaceable(b, name, depth + 1) {
+                return Some(r);
+            }
+        }
+        None
+    }
+
+    fn not_replaceable(&mut self, name: &str, span: Span) {
+        self.diags.push(
+            Diagnostic::error(
+                "E2015",
+                format!("`{name}` is redeclared but not `replaceable`"),
+            )
+            .at(span, "redeclared here")
+            .with_help(format!(
+                "declare it `replaceable {name} ...` in the class that has it"
+            )),
+        );
+    }
+
+    /// A modifier of element `d`: a redeclaration needs a `replaceable` element
+    /// (`E2015`), a `final` element takes no modifier (`E2016`).
+    pub(crate) fn check_element_modifier(&mut self, e: &Element, d: &ComponentDecl, m: &Mod) {
+        if let Some((name, _)) = &m.redeclare {
+            if !e.replaceable && !e.redeclare {
+                self.not_replaceable(&d.name.text, name.span);
+            }
+        }
+        if e.is_final && (m.binding.is_some() || !m.children.is_empty()) {
+            let span = m.binding.as_ref().map_or(d.name.span, |b| b.expr.span);
+            self.diags.push(
+                Diagnostic::error(
+                    "E2016",
+                    format!(
+                        "`{}` is declared `final` and cannot be modified",
+                        d.name.text
+                    ),
+                )
+                .at(span, "modified here")
+                .with_label(d.name.span, "declared `final` here"),
+            );
+        }
     }
 }
