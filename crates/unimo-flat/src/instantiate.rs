@@ -77,6 +77,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
     /// Class paths looked up from a class (without redeclarations), by (class, path).
     pub(crate) type_cache: HashMap<(ClassId, String), Option<Found>>,
+    /// Per class: declared `replaceable` in its parent, and its constraining clause.
+    pub(crate) constraint_cache: HashMap<ClassId, Option<(bool, Option<ConstrainingClause>)>>,
 }
 
 /// The type a component turns out to have.
@@ -161,6 +163,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             records_used: Vec::new(),
             class_redeclares: HashMap::default(),
             type_cache: HashMap::default(),
+            constraint_cache: HashMap::default(),
             depth: 0,
         }
     }
@@ -466,6 +469,22 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     if let Some(child) = m.child(&d.name.text) {
                         self.check_element_modifier(e, d, child);
                     }
+                    // `replaceable T x constrainedby C(mods)`: the constraining
+                    // modifiers apply to `x`, whatever type it ends up with.
+                    if let Some(cm) = e
+                        .constrainedby
+                        .as_ref()
+                        .and_then(|c| c.modification.as_ref())
+                    {
+                        let cmod = Mod::from_class_mod(cm, &scope);
+                        let mut m2 = m.clone();
+                        let name = d.name.text.clone();
+                        let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
+                        m2.children.retain(|(n, _)| *n != name);
+                        m2.children.push((name, child));
+                        self.component(&scope, cc, d, &m2, variability, top);
+                        continue;
+                    }
                     self.component(&scope, cc, d, m, variability, top);
                 }
             }
@@ -588,7 +607,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             .as_ref()
             .map(|dm| Mod::from_modification(dm, scope))
             .unwrap_or_default();
-        let merged = match m.child(name) {
+        let mut merged = match m.child(name) {
             Some(outer) => outer.over(&decl_mod),
             None => decl_mod,
         };
@@ -615,11 +634,23 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         let found = match &merged.redeclare {
             Some((n, s)) => {
                 let parts: Vec<&str> = n.parts.iter().map(|p| p.text.as_str()).collect();
-                self.tree.lookup_dotted(Some(s.class), &parts, false)
+                let found = self.tree.lookup_dotted(Some(s.class), &parts, false);
+                if let Some(Found::Class(new)) = found {
+                    self.check_plug_compatible(scope, cc, name, new, n.span);
+                }
+                found
             }
             None => {
                 let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
-                self.lookup_class_path(scope, &parts)
+                let found = self.lookup_class_path(scope, &parts);
+                // A replaceable class's constraining modifiers (and, when it was
+                // redeclared, a check that the new class fits).
+                if let Some(Found::Class(c)) = found {
+                    if let Some(cmod) = self.class_constraint(scope, &parts, c, d.span) {
+                        merged = merged.over(&cmod);
+                    }
+                }
+                found
             }
         };
         let Some(found) = found else { return }; // unknown type: reported by the name check

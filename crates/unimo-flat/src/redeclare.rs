@@ -242,3 +242,119 @@ impl Instantiator<'_, '_> {
         }
     }
 }
+
+impl Instantiator<'_, '_> {
+    /// Whether class `class` is declared `replaceable` in its parent, with its
+    /// constraining clause (cached: asked for every component of that type).
+    fn class_element(&mut self, class: ClassId) -> Option<(bool, Option<ConstrainingClause>)> {
+        if let Some(c) = self.constraint_cache.get(&class) {
+            return c.clone();
+        }
+        let info = (|| {
+            let parent = self.tree.get(class).parent?;
+            let name = self.tree.get(class).name.clone();
+            let def = self.tree.get(parent).def.clone();
+            let ClassBody::Long { composition, .. } = &def.body else {
+                return None;
+            };
+            composition
+                .elements
+                .iter()
+                .find(|e| matches!(&e.kind, ElementKind::Class(cd) if cd.name.text == name))
+                .map(|e| (e.replaceable, e.constrainedby.clone()))
+        })();
+        self.constraint_cache.insert(class, info.clone());
+        info
+    }
+
+    /// For a component whose type name `parts` resolved to `found` from `scope`: the
+    /// modifiers of the replaceable class's constraining clause, and, when the class
+    /// was redeclared in this instance, a check that the new class has every element
+    /// of the constraining one (`E2015`).
+    pub(crate) fn class_constraint(
+        &mut self,
+        scope: &Scope,
+        parts: &[&str],
+        found: ClassId,
+        span: Span,
+    ) -> Option<Mod> {
+        if parts.len() != 1 {
+            return None;
+        }
+        // The class as declared (not redeclared) tells the constraint.
+        let original = match self.tree.lookup_dotted(Some(scope.class), parts, false) {
+            Some(Found::Class(c)) => c,
+            _ => return None,
+        };
+        let (replaceable, constrainedby) = self.class_element(original)?;
+        if !replaceable {
+            return None;
+        }
+        let parent = self.tree.get(original).parent?;
+        let decl_scope = Scope {
+            class: parent,
+            prefix: Vec::new(),
+        };
+        if found != original {
+            let constraint = match &constrainedby {
+                Some(c) => {
+                    let names: Vec<&str> = c.base.parts.iter().map(|p| p.text.as_str()).collect();
+                    match self.tree.lookup_dotted(Some(parent), &names, false) {
+                        Some(Found::Class(k)) => k,
+                        _ => original,
+                    }
+                }
+                None => original,
+            };
+            // Point at the redeclaration when it is a class written in a modifier.
+            let at = if self.class_redeclares.values().any(|&v| v == found) {
+                self.tree.get(found).def.name.span
+            } else {
+                span
+            };
+            self.check_fits(found, constraint, parts[0], at);
+        }
+        let cm = constrainedby.as_ref()?.modification.as_ref()?;
+        Some(Mod::from_class_mod(cm, &decl_scope))
+    }
+
+    /// A component redeclared with type `new`: it must have every element of the type
+    /// it replaces (or of that declaration's constraining class).
+    pub(crate) fn check_plug_compatible(
+        &mut self,
+        scope: &Scope,
+        cc: &ComponentClause,
+        name: &str,
+        new: ClassId,
+        span: Span,
+    ) {
+        let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
+        if let Some(Found::Class(old)) = self.tree.lookup_dotted(Some(scope.class), &parts, false) {
+            self.check_fits(new, old, name, span);
+        }
+    }
+
+    fn check_fits(&mut self, new: ClassId, constraint: ClassId, what: &str, span: Span) {
+        let missing: Vec<String> = self
+            .record_fields(constraint)
+            .into_iter()
+            .filter(|f| !self.tree.has_component(new, &f.name))
+            .map(|f| f.name.to_string())
+            .collect();
+        if !missing.is_empty() {
+            let _ = new;
+            let cname = self.tree.full_name(constraint);
+            self.diags.push(
+                Diagnostic::error(
+                    "E2015",
+                    format!(
+                        "`{what}` is redeclared as a class without {}, which `{cname}` has",
+                        missing.join(", ")
+                    ),
+                )
+                .at(span, "redeclared here")
+                .with_help("a redeclared class must have every element of the class it replaces (or of its constraining class)"),
+            );
+        }
+    }
+}
