@@ -112,13 +112,18 @@ impl Value {
 
 /// The key of a flat reference: all parts with their subscripts, but the last part's.
 pub fn var_key(r: &ComponentRef) -> String {
-    let mut s = String::new();
-    for (i, p) in r.parts.iter().enumerate() {
+    var_key_parts(&r.parts)
+}
+
+/// [`var_key`] of a path given as its parts.
+pub fn var_key_parts(parts: &[unimo_syntax::ast::RefPart]) -> String {
+    let mut s = String::with_capacity(parts.len() * 8);
+    for (i, p) in parts.iter().enumerate() {
         if i > 0 {
             s.push('.');
         }
         s.push_str(&p.name.text);
-        if i + 1 < r.parts.len() {
+        if i + 1 < parts.len() && !p.subscripts.is_empty() {
             s.push_str(&unimo_syntax::print::subscripts(&p.subscripts));
         }
     }

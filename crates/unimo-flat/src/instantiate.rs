@@ -112,7 +112,7 @@ const ELEMENTWISE_FUNCTIONS: &[&str] = &[
 
 /// The instance key of a path (all subscripts included).
 pub(crate) fn instance_key(path: &[RefPart]) -> String {
-    let mut k = eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()));
+    let mut k = eval::var_key_parts(path);
     if let Some(last) = path.last() {
         k.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
     }
@@ -121,7 +121,7 @@ pub(crate) fn instance_key(path: &[RefPart]) -> String {
 
 /// The instance key of a path, without the last part's subscripts.
 fn instance_key_no_subs(path: &[RefPart]) -> String {
-    eval::var_key(&crate::flat::path_ref(path.to_vec(), Span::default()))
+    eval::var_key_parts(path)
 }
 
 /// All index tuples of an array of the given dimensions, in row-major order.
@@ -582,7 +582,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         top: bool,
     ) {
         let name = d.name.text.as_str();
-        let mut instance = eval::var_key(&crate::flat::path_ref(scope.prefix.clone(), d.span));
+        let mut instance = eval::var_key_parts(&scope.prefix);
         if let Some(last) = scope.prefix.last() {
             instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
         }
@@ -613,7 +613,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         };
         let mut path = scope.prefix.clone();
         path.push(part(name, d.name.span));
-        let key = eval::var_key(&crate::flat::path_ref(path.clone(), d.span));
+        let key = eval::var_key_parts(&path);
         if let Some(cond) = &d.condition {
             let flat = self.expr(cond, scope, &mut Vec::new(), &mut Vec::new());
             match eval::eval(&flat, self, &mut Vec::new()) {
