@@ -361,3 +361,15 @@ fn records_simulate_to_the_closed_form() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `parameter Real k(fixed = false)` is an unknown of the initialization: `k * k = 9`
+/// from the start guess 1 gives k = 3; the parameter `k2 = 2 * k` follows it, and
+/// x(t) = 2 exp(-3 t).
+#[test]
+fn fixed_false_parameters_are_solved_at_initialization() {
+    let m = load("tests/flatten/ok/free_parameter.mo");
+    let r = run(&m, Method::Radau5, 1e-10, 1e-12, 1.0, 1);
+    let want = [("y", 6.0), ("x", 2.0 * (-3.0f64).exp())];
+    let digits = scd(&r, &want);
+    assert!(digits >= 8.0, "free parameter: scd {digits}");
+}

@@ -91,6 +91,11 @@ pub struct CompiledModel {
     pub nominals: Vec<f64>,
     /// Start attributes: which states have `fixed = true`.
     pub fixed: Vec<bool>,
+    /// Parameters with `fixed = false` and no binding: solved for by the initial
+    /// equations (register, name).
+    pub free_parameters: Vec<(Reg, String)>,
+    /// The other parameters, computed again from the free ones.
+    pub dependent_parameters: Tape,
     /// Initial equations as residual registers, computed by `initial_tape` after steps.
     pub initial_tape: Tape,
     pub initial_residuals: Vec<Reg>,
@@ -207,12 +212,26 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
 
     let mut parameters = Tape::default();
     let mut memo = HashMap::default();
+    // `parameter Real k(fixed = false)` without a binding is an unknown of the
+    // initialization (its start value is the first guess); the parameters that depend
+    // on it are computed again by `dependent_parameters` while it is solved for.
+    let free = |p: ScalarId| dae.scalar(p).fixed == Some(false) && dae.scalar(p).binding.is_none();
+    let mut free_parameters = Vec::new();
+    let mut dependent_parameters = Tape::default();
+    let mut dependent_memo = HashMap::default();
     for p in parameter_order(dae) {
-        if let Some(b) = dae.scalar(p).binding {
-            c.assign(p, b, &mut parameters, &mut memo);
-        } else if let Some(st) = dae.scalar(p).start {
-            c.assign(p, st, &mut parameters, &mut memo);
+        let value = dae.scalar(p).binding.or(dae.scalar(p).start);
+        if let Some(v) = value {
+            c.assign(p, v, &mut parameters, &mut memo);
         }
+        if free(p) {
+            free_parameters.push((layout.var(p), dae.name(p)));
+        } else if let Some(v) = value {
+            c.assign(p, v, &mut dependent_parameters, &mut dependent_memo);
+        }
+    }
+    if free_parameters.is_empty() {
+        dependent_parameters = Tape::default();
     }
     let collision = compile_collision(dae, plan, &mut c, body_outputs, gaps);
     let mut starts = Tape::default();
@@ -465,6 +484,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         outputs,
         nominals,
         fixed,
+        free_parameters,
+        dependent_parameters,
         initial_tape,
         initial_residuals: initial_regs,
         ops_total: 0,

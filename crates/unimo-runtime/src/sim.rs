@@ -387,22 +387,32 @@ impl<'a> Simulator<'a> {
         Ok(())
     }
 
-    /// Newton on the initial equations; the unknowns are the states not `fixed`, the
-    /// ones that influence the residuals most chosen by pivoting when there are more
-    /// free states than equations.
+    /// Newton on the initial equations; the unknowns are the states not `fixed` and
+    /// the parameters with `fixed = false`, the ones that influence the residuals most
+    /// chosen by pivoting when there are more unknowns than equations.
     fn solve_initial_equations(&mut self) -> Result<(), SimError> {
         let m = self.m();
         let n_eq = m.initial_residuals.len();
-        let free: Vec<usize> = (0..m.states.len()).filter(|&k| !m.fixed[k]).collect();
+        // Unknowns as (register, name): free states, then free parameters.
+        let unknowns: Vec<(usize, String)> = (0..m.states.len())
+            .filter(|&k| !m.fixed[k])
+            .map(|k| (m.states[k] as usize, m.state_names[k].clone()))
+            .chain(
+                m.free_parameters
+                    .iter()
+                    .map(|(r, n)| (*r as usize, n.clone())),
+            )
+            .collect();
+        let free: Vec<usize> = (0..unknowns.len()).collect();
         let names = |ks: &[usize]| {
             ks.iter()
-                .map(|&k| m.state_names[k].clone())
+                .map(|&k| unknowns[k].1.clone())
                 .collect::<Vec<_>>()
         };
         if free.len() < n_eq {
             return Err(SimError::Init {
                 message: format!(
-                    "{n_eq} initial equations but only {} states without fixed = true",
+                    "{n_eq} initial equations but only {} unknowns (states without fixed = true, parameters with fixed = false)",
                     free.len()
                 ),
                 culprits: names(&free),
@@ -413,6 +423,10 @@ impl<'a> Simulator<'a> {
         // the residuals are not finite. The event iteration afterwards is strict.
         let residual = |me: &mut Self| -> Result<Vec<f64>, SimError> {
             let t = me.ode.regs[me.m().layout.time as usize];
+            let m = me.m();
+            if !m.free_parameters.is_empty() {
+                m.dependent_parameters.run(&mut me.ode.regs, &mut me.ode.ev);
+            }
             let failure =
                 eval_steps_lenient(me.m(), &mut me.ode.regs, &mut me.ode.ev, &mut me.ode.work);
             if let Some(failure) = failure {
@@ -444,7 +458,7 @@ impl<'a> Simulator<'a> {
             // Finite-difference Jacobian over the free states.
             let mut jac = vec![0.0; n_eq * free.len()];
             for (j, &k) in free.iter().enumerate() {
-                let reg = m.states[k] as usize;
+                let reg = unknowns[k].0;
                 let x = self.ode.regs[reg];
                 let h = 1e-7 * x.abs().max(1e-3);
                 self.ode.regs[reg] = x + h;
@@ -476,7 +490,7 @@ impl<'a> Simulator<'a> {
                 });
             }
             for (jj, &j) in cols.iter().enumerate() {
-                let reg = m.states[free[j]] as usize;
+                let reg = unknowns[free[j]].0;
                 self.ode.regs[reg] += b[jj];
             }
         }
