@@ -24,6 +24,7 @@ pub(crate) mod records;
 pub(crate) mod redeclare;
 pub mod resolve;
 pub mod tree;
+pub mod typecheck;
 
 pub use error::FlatError;
 pub use flat::{FlatModel, FlatVar, VarId};
@@ -43,6 +44,10 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
     diags.extend(connect::generate(&mut model, &connects, &absent));
+    // Sizes and types, once the model is whole.
+    if diags.is_empty() {
+        diags.extend(typecheck::check(&model));
+    }
     // Canonical order: constants and parameters first, each group in declaration order
     // (so that flattening the printed model gives the same text).
     // (a stable partition: moving the large variable records once, not sorting them)

@@ -1,0 +1,314 @@
+//! Type and size checks of the flat model: references with more subscripts than their
+//! variable has dimensions (`E2017`), and equations or bindings whose two sides have
+//! certainly different sizes or types (`E2018`: `y = x` with `x[3]`, `b = 1.5` with a
+//! Boolean `b`). Only shapes and types known for certain are compared: a function call
+//! or an expression this check cannot size is left to the back end.
+
+use crate::eval::var_key;
+use crate::flat::{FlatModel, FlatType};
+use rustc_hash::FxHashMap as HashMap;
+use unimo_source::{Diagnostic, Span};
+use unimo_syntax::ast::*;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Ty {
+    Number,
+    Boolean,
+    Text,
+}
+
+impl Ty {
+    fn name(self) -> &'static str {
+        match self {
+            Ty::Number => "a number",
+            Ty::Boolean => "a Boolean",
+            Ty::Text => "a String",
+        }
+    }
+}
+
+struct Checker<'m> {
+    vars: HashMap<&'m str, (&'m [usize], Ty)>,
+    diags: Vec<Diagnostic>,
+}
+
+fn ty_of(t: &FlatType) -> Ty {
+    match t {
+        FlatType::Boolean => Ty::Boolean,
+        FlatType::String => Ty::Text,
+        // Enumerations compare with each other like numbers here.
+        FlatType::Real | FlatType::Integer | FlatType::Enumeration { .. } => Ty::Number,
+    }
+}
+
+const ELEMENTWISE: &[&str] = &[
+    "der", "pre", "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh",
+    "cosh", "tanh", "exp", "log", "log10", "noEvent", "floor", "ceil",
+];
+
+impl Checker<'_> {
+    /// The shape of `e` when it is certain.
+    fn shape(&self, e: &Expr) -> Option<Vec<usize>> {
+        match &e.kind {
+            ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {
+                Some(Vec::new())
+            }
+            ExprKind::Ref(r) if !r.global => {
+                let (dims, _) = self.vars.get(var_key(r).as_str())?;
+                let subs = r.parts.last().map_or(&[][..], |p| &p.subscripts[..]);
+                if subs.len() > dims.len() {
+                    return None; // reported as E2017
+                }
+                let mut out = Vec::new();
+                for (k, n) in dims.iter().enumerate() {
+                    match subs.get(k) {
+                        None | Some(Subscript::Colon(_)) => out.push(*n),
+                        Some(Subscript::Expr(x)) => match &x.kind {
+                            ExprKind::Integer(_) => {}
+                            ExprKind::Range {
+                                start,
+                                step: None,
+                                stop,
+                            } => match (&start.kind, &stop.kind) {
+                                (ExprKind::Integer(a), ExprKind::Integer(b)) => {
+                                    out.push((b - a + 1).max(0) as usize)
+                                }
+                                _ => return None,
+                            },
+                            _ => return None,
+                        },
+                    }
+                }
+                Some(out)
+            }
+            ExprKind::Array(items) => {
+                let first = self.shape(items.first()?)?;
+                for i in &items[1..] {
+                    if self.shape(i)? != first {
+                        return None;
+                    }
+                }
+                let mut d = vec![items.len()];
+                d.extend(first);
+                Some(d)
+            }
+            ExprKind::Unary { operand, .. } => self.shape(operand),
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (a, b) = (self.shape(lhs)?, self.shape(rhs)?);
+                match op {
+                    BinaryOp::Add
+                    | BinaryOp::Sub
+                    | BinaryOp::ElemAdd
+                    | BinaryOp::ElemSub
+                    | BinaryOp::ElemMul
+                    | BinaryOp::ElemDiv
+                    | BinaryOp::ElemPow => {
+                        if a == b || b.is_empty() {
+                            Some(a)
+                        } else if a.is_empty() {
+                            Some(b)
+                        } else {
+                            None
+                        }
+                    }
+                    BinaryOp::Mul if a.is_empty() => Some(b),
+                    BinaryOp::Mul | BinaryOp::Div if b.is_empty() => Some(a),
+                    _ => None,
+                }
+            }
+            ExprKind::Call { func, args }
+                if !func.global
+                    && func.parts.len() == 1
+                    && ELEMENTWISE.contains(&func.parts[0].text.as_str())
+                    && args.positional.len() == 1
+                    && args.iterators.is_empty() =>
+            {
+                self.shape(&args.positional[0])
+            }
+            _ => None,
+        }
+    }
+
+    /// The type of `e` when it is certain.
+    fn ty(&self, e: &Expr) -> Option<Ty> {
+        match &e.kind {
+            ExprKind::Integer(_) | ExprKind::Real(_) => Some(Ty::Number),
+            ExprKind::Bool(_) => Some(Ty::Boolean),
+            ExprKind::String(_) => Some(Ty::Text),
+            ExprKind::Ref(r) if !r.global => self.vars.get(var_key(r).as_str()).map(|v| v.1),
+            ExprKind::Unary { op, operand } => match op {
+                UnaryOp::Not => Some(Ty::Boolean),
+                _ => self.ty(operand).filter(|t| *t == Ty::Number),
+            },
+            ExprKind::Binary { op, lhs, rhs } => match op {
+                BinaryOp::Lt
+                | BinaryOp::Le
+                | BinaryOp::Gt
+                | BinaryOp::Ge
+                | BinaryOp::Eq
+                | BinaryOp::Ne
+                | BinaryOp::And
+                | BinaryOp::Or => Some(Ty::Boolean),
+                BinaryOp::Add => match (self.ty(lhs)?, self.ty(rhs)?) {
+                    (Ty::Text, Ty::Text) => Some(Ty::Text),
+                    (Ty::Number, Ty::Number) => Some(Ty::Number),
+                    _ => None,
+                },
+                _ => (self.ty(lhs)? == Ty::Number && self.ty(rhs)? == Ty::Number)
+                    .then_some(Ty::Number),
+            },
+            ExprKind::Array(items) => {
+                let t = self.ty(items.first()?)?;
+                items[1..]
+                    .iter()
+                    .all(|i| self.ty(i) == Some(t))
+                    .then_some(t)
+            }
+            _ => None,
+        }
+    }
+
+    fn subscripts(&mut self, e: &Expr) {
+        let mut e = e.clone();
+        let mut found = Vec::new();
+        crate::flat::rewrite_refs(&mut e, &mut |r| {
+            if r.global {
+                return;
+            }
+            if let Some((dims, _)) = self.vars.get(var_key(r).as_str()) {
+                let n = r.parts.last().map_or(0, |p| p.subscripts.len());
+                if n > dims.len() {
+                    found.push((var_key(r), n, dims.len(), r.span));
+                }
+            }
+        });
+        for (name, n, d, span) in found {
+            self.diags.push(
+                Diagnostic::error(
+                    "E2017",
+                    format!(
+                        "`{name}` has {d} dimension{}, {n} subscripts given",
+                        if d == 1 { "" } else { "s" }
+                    ),
+                )
+                .at(span, "too many subscripts"),
+            );
+        }
+    }
+
+    fn sides(&mut self, lhs: &Expr, rhs: &Expr, span: Span) {
+        self.subscripts(lhs);
+        self.subscripts(rhs);
+        if let (Some(a), Some(b)) = (self.shape(lhs), self.shape(rhs)) {
+            if a != b {
+                self.diags.push(
+                    Diagnostic::error(
+                        "E2018",
+                        format!(
+                            "the two sides have different sizes: {} and {}",
+                            size_text(&a),
+                            size_text(&b)
+                        ),
+                    )
+                    .at(span, "in this equation"),
+                );
+                return;
+            }
+        }
+        if let (Some(a), Some(b)) = (self.ty(lhs), self.ty(rhs)) {
+            if a != b {
+                self.diags.push(
+                    Diagnostic::error(
+                        "E2018",
+                        format!(
+                            "the two sides have different types: {} and {}",
+                            a.name(),
+                            b.name()
+                        ),
+                    )
+                    .at(span, "in this equation"),
+                );
+            }
+        }
+    }
+
+    fn equations(&mut self, eqs: &[Equation]) {
+        for eq in eqs {
+            match &eq.kind {
+                EquationKind::Simple { lhs, rhs } => self.sides(lhs, rhs, eq.span),
+                EquationKind::Call(c) => self.subscripts(c),
+                EquationKind::Connect { .. } => {}
+                EquationKind::If {
+                    branches,
+                    otherwise,
+                } => {
+                    for (c, body) in branches {
+                        self.subscripts(c);
+                        self.equations(body);
+                    }
+                    self.equations(otherwise);
+                }
+                EquationKind::When { branches } => {
+                    for (c, body) in branches {
+                        self.subscripts(c);
+                        self.equations(body);
+                    }
+                }
+                EquationKind::For { body, .. } => self.equations(body),
+            }
+        }
+    }
+}
+
+fn size_text(d: &[usize]) -> String {
+    if d.is_empty() {
+        "scalar".into()
+    } else {
+        format!(
+            "[{}]",
+            d.iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
+/// Checks the flat model's equations and bindings (`E2017`, `E2018`).
+pub fn check(model: &FlatModel) -> Vec<Diagnostic> {
+    let mut c = Checker {
+        vars: model
+            .vars
+            .iter()
+            .map(|v| (v.name.as_str(), (v.dims.as_slice(), ty_of(&v.ty))))
+            .collect(),
+        diags: Vec::new(),
+    };
+    c.equations(&model.equations);
+    c.equations(&model.initial_equations);
+    for v in &model.vars {
+        let Some(b) = &v.binding else {
+            continue;
+        };
+        let lhs = Expr {
+            kind: ExprKind::Ref(ComponentRef {
+                global: false,
+                parts: vec![RefPart {
+                    name: Ident {
+                        text: v.name.as_str().into(),
+                        span: v.origin,
+                    },
+                    subscripts: Vec::new(),
+                }],
+                span: v.origin,
+            }),
+            span: v.origin,
+        };
+        // A scalar binding of an array variable applies to every element.
+        if !v.dims.is_empty() && c.shape(b).is_some_and(|s| s.is_empty()) {
+            continue;
+        }
+        c.sides(&lhs, b, b.span);
+    }
+    c.diags
+}
