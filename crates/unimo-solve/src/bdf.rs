@@ -20,13 +20,13 @@
 //!   (raising needs `k+1` steps of constant size) and the new step is
 //!   `h (2 err + 1e-4)^(-1/(k+1))`, doubled only when that ratio is at least 2, otherwise
 //!   limited to `[0.5, 0.9] h` (kept when between 1 and 2). One difference: at orders 3–5
-//!   the step is doubled only after `k+1` steps of constant size and order (CVODE waits
-//!   `q+1` steps likewise). Doubling at every step, which IDA does while the error estimate
-//!   is tiny (a polynomial solution), is not zero-stable there: with steps 2, 4, 8, …
-//!   the fixed-leading-coefficient formulas multiply rounding errors by about 4, 12 and 33
-//!   per step at orders 3, 4 and 5 (zero-stable for constant ratios below about 1.42, 1.21,
-//!   1.11). Measured on the bouncing ball: flights at order 3 with ten doublings in a row
-//!   grew rounding to 6e-8 m.
+//!   the step is doubled only after `k+1` steps of constant size and order. Doubling at
+//!   every step, which IDA does while the error estimate is tiny (a polynomial solution),
+//!   is not zero-stable there: with steps 2, 4, 8, … the fixed-leading-coefficient formulas
+//!   multiply rounding errors by about 4, 12 and 33 per step at orders 3, 4 and 5 (power
+//!   iteration of the recurrence for `x' = 0`; zero-stable for constant ratios below about
+//!   1.42, 1.21, 1.11). Measured on the bouncing ball: flights at order 3 with ten
+//!   doublings in a row grew rounding to 6e-8 m.
 //!   Failures: error test (order down, `h` times 0.25–0.9), Newton or evaluation failure (`h`
 //!   times 0.25); ten failures in a row end the integration.
 //! * Start and restart (after every event): `x'(t0)` of differential rows is `f`; for
