@@ -123,10 +123,7 @@ fn impact_time(n: i32, h: f64, g: f64, e: f64) -> f64 {
 }
 
 /// Impact times against the closed form: within 1e-12 relative for every method and
-/// tolerance up to t = 12.5 (16 impacts), and up to t = 12.85 (45 impacts, t* - 5.9e-4)
-/// except BDF at rtol 1e-6, whose order-1 restart after each impact leaves an error of
-/// about atol/200 in h that the slow late bounces turn into 2.8e-12 (measured; see
-/// docs/results/runtime.md).
+/// tolerance up to t = 12.85 (45 impacts, t* - 5.9e-4; see docs/results/runtime.md).
 #[test]
 fn bouncing_ball_impacts_are_exact() {
     let m = load("models/BouncingBall.mo");
@@ -135,11 +132,7 @@ fn bouncing_ball_impacts_are_exact() {
     assert!((zeno - 12.850588106343585).abs() < 1e-12);
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         for rtol in [1e-6, 1e-10] {
-            let stop = if method == Method::Bdf && rtol == 1e-6 {
-                12.5
-            } else {
-                12.85
-            };
+            let stop = 12.85;
             let expected: Vec<f64> = (1..)
                 .map(|n| impact_time(n, h, g, e))
                 .take_while(|&t| t < stop)
