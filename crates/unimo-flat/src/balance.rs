@@ -21,6 +21,8 @@ struct Shapes<'m> {
     dims: HashMap<&'m str, &'m [usize]>,
     /// Scalar sizes of the record instances (`z` of `z.re`, `z.im`).
     record_sizes: HashMap<&'m str, usize>,
+    /// A reused buffer for variable keys.
+    buf: std::cell::RefCell<String>,
     /// Record types by full name: a constructor call has the size of its fields.
     records: HashMap<&'m str, &'m crate::functions::FlatRecord>,
 }
@@ -29,8 +31,13 @@ impl Shapes<'_> {
     fn of(&self, e: &Expr) -> Vec<usize> {
         match &e.kind {
             ExprKind::Ref(r) => {
-                let key = var_key(r);
-                let Some(d) = self.dims.get(key.as_str()) else {
+                let d = {
+                    let mut buf = self.buf.borrow_mut();
+                    crate::eval::var_key_into(&mut buf, &r.parts);
+                    self.dims.get(buf.as_str()).copied()
+                };
+                let Some(d) = d else {
+                    let key = var_key(r);
                     // A record: as many scalars as its variables.
                     let mut instance = key;
                     if let Some(last) = r.parts.last() {
@@ -281,6 +288,7 @@ pub fn count(model: &FlatModel) -> Balance {
             .map(|v| (v.name.as_str(), v.dims.as_slice()))
             .collect(),
         record_sizes,
+        buf: Default::default(),
         records: model.records.iter().map(|r| (r.name.as_str(), r)).collect(),
     };
     let unknowns = model

@@ -118,6 +118,13 @@ pub fn var_key(r: &ComponentRef) -> String {
 /// [`var_key`] of a path given as its parts.
 pub fn var_key_parts(parts: &[unimo_syntax::ast::RefPart]) -> String {
     let mut s = String::with_capacity(parts.len() * 8);
+    var_key_into(&mut s, parts);
+    s
+}
+
+/// [`var_key`] written into `s` (cleared first): no allocation once `s` has grown.
+pub fn var_key_into(s: &mut String, parts: &[unimo_syntax::ast::RefPart]) {
+    s.clear();
     for (i, p) in parts.iter().enumerate() {
         if i > 0 {
             s.push('.');
@@ -127,7 +134,6 @@ pub fn var_key_parts(parts: &[unimo_syntax::ast::RefPart]) -> String {
             s.push_str(&unimo_syntax::print::subscripts(&p.subscripts));
         }
     }
-    s
 }
 
 fn unsupported(e: &Expr, what: &str) -> EvalError {

@@ -194,6 +194,79 @@ pub fn printable(e: &Expr) -> Expr {
     e
 }
 
+/// Calls `f` with every component reference in `e` (not function names), subscripts
+/// of references included.
+pub fn for_each_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
+    match &e.kind {
+        ExprKind::Ref(r) => {
+            for p in &r.parts {
+                for s in &p.subscripts {
+                    if let unimo_syntax::ast::Subscript::Expr(x) = s {
+                        for_each_ref(x, f);
+                    }
+                }
+            }
+            f(r);
+        }
+        ExprKind::Call { args, .. } => {
+            for a in &args.positional {
+                for_each_ref(a, f);
+            }
+            for a in &args.named {
+                for_each_ref(&a.value, f);
+            }
+            for i in &args.iterators {
+                if let Some(r) = &i.range {
+                    for_each_ref(r, f);
+                }
+            }
+        }
+        ExprKind::Unary { operand, .. } => for_each_ref(operand, f),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            for_each_ref(lhs, f);
+            for_each_ref(rhs, f);
+        }
+        ExprKind::If {
+            branches,
+            otherwise,
+        } => {
+            for (c, v) in branches {
+                for_each_ref(c, f);
+                for_each_ref(v, f);
+            }
+            for_each_ref(otherwise, f);
+        }
+        ExprKind::Range { start, step, stop } => {
+            for_each_ref(start, f);
+            if let Some(s) = step {
+                for_each_ref(s, f);
+            }
+            for_each_ref(stop, f);
+        }
+        ExprKind::Array(items) => items.iter().for_each(|i| for_each_ref(i, f)),
+        ExprKind::Matrix(rows) => rows.iter().flatten().for_each(|i| for_each_ref(i, f)),
+        ExprKind::Tuple(items) => items.iter().flatten().for_each(|i| for_each_ref(i, f)),
+        ExprKind::Comprehension { body, indices } => {
+            for i in indices {
+                if let Some(r) = &i.range {
+                    for_each_ref(r, f);
+                }
+            }
+            for_each_ref(body, f);
+        }
+        ExprKind::PartialApplication { args, .. } => {
+            for a in args {
+                for_each_ref(&a.value, f);
+            }
+        }
+        ExprKind::Integer(_)
+        | ExprKind::Real(_)
+        | ExprKind::Bool(_)
+        | ExprKind::String(_)
+        | ExprKind::End => {}
+    }
+}
+
 /// Applies `f` to every component reference in `e` (not to function names).
 pub fn rewrite_refs(e: &mut Expr, f: &mut dyn FnMut(&mut ComponentRef)) {
     match &mut e.kind {

@@ -4,7 +4,7 @@
 //! Boolean `b`). Only shapes and types known for certain are compared: a function call
 //! or an expression this check cannot size is left to the back end.
 
-use crate::eval::var_key;
+use crate::eval::var_key_into;
 use crate::flat::{FlatModel, FlatType};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_source::{Diagnostic, Span};
@@ -30,6 +30,9 @@ impl Ty {
 struct Checker<'m> {
     vars: HashMap<&'m str, (&'m [usize], Ty)>,
     diags: Vec<Diagnostic>,
+    /// Reused buffers for variable keys.
+    key: String,
+    buf: std::cell::RefCell<String>,
 }
 
 fn ty_of(t: &FlatType) -> Ty {
@@ -47,6 +50,13 @@ const ELEMENTWISE: &[&str] = &[
 ];
 
 impl Checker<'_> {
+    /// The dimensions and type of the variable `r` names.
+    fn var(&self, r: &ComponentRef) -> Option<(&[usize], Ty)> {
+        let mut buf = self.buf.borrow_mut();
+        var_key_into(&mut buf, &r.parts);
+        self.vars.get(buf.as_str()).copied()
+    }
+
     /// The shape of `e` when it is certain.
     fn shape(&self, e: &Expr) -> Option<Vec<usize>> {
         match &e.kind {
@@ -54,7 +64,7 @@ impl Checker<'_> {
                 Some(Vec::new())
             }
             ExprKind::Ref(r) if !r.global => {
-                let (dims, _) = self.vars.get(var_key(r).as_str())?;
+                let (dims, _) = self.var(r)?;
                 let subs = r.parts.last().map_or(&[][..], |p| &p.subscripts[..]);
                 if subs.len() > dims.len() {
                     return None; // reported as E2017
@@ -135,7 +145,7 @@ impl Checker<'_> {
             ExprKind::Integer(_) | ExprKind::Real(_) => Some(Ty::Number),
             ExprKind::Bool(_) => Some(Ty::Boolean),
             ExprKind::String(_) => Some(Ty::Text),
-            ExprKind::Ref(r) if !r.global => self.vars.get(var_key(r).as_str()).map(|v| v.1),
+            ExprKind::Ref(r) if !r.global => self.var(r).map(|v| v.1),
             ExprKind::Unary { op, operand } => match op {
                 UnaryOp::Not => Some(Ty::Boolean),
                 _ => self.ty(operand).filter(|t| *t == Ty::Number),
@@ -169,19 +179,21 @@ impl Checker<'_> {
     }
 
     fn subscripts(&mut self, e: &Expr) {
-        let mut e = e.clone();
         let mut found = Vec::new();
-        crate::flat::rewrite_refs(&mut e, &mut |r| {
-            if r.global {
+        let mut key = std::mem::take(&mut self.key);
+        crate::flat::for_each_ref(e, &mut |r| {
+            let n = r.parts.last().map_or(0, |p| p.subscripts.len());
+            if r.global || n == 0 {
                 return;
             }
-            if let Some((dims, _)) = self.vars.get(var_key(r).as_str()) {
-                let n = r.parts.last().map_or(0, |p| p.subscripts.len());
+            var_key_into(&mut key, &r.parts);
+            if let Some((dims, _)) = self.vars.get(key.as_str()) {
                 if n > dims.len() {
-                    found.push((var_key(r), n, dims.len(), r.span));
+                    found.push((key.clone(), n, dims.len(), r.span));
                 }
             }
         });
+        self.key = key;
         for (name, n, d, span) in found {
             self.diags.push(
                 Diagnostic::error(
@@ -283,6 +295,8 @@ pub fn check(model: &FlatModel) -> Vec<Diagnostic> {
             .map(|v| (v.name.as_str(), (v.dims.as_slice(), ty_of(&v.ty))))
             .collect(),
         diags: Vec::new(),
+        key: String::new(),
+        buf: Default::default(),
     };
     c.equations(&model.equations);
     c.equations(&model.initial_equations);
