@@ -143,11 +143,7 @@ impl<'m> Lowerer<'m> {
             };
             data.extend(part.data);
         }
-        let n = data.len();
-        Ok(Some(Tensor {
-            dims: vec![n],
-            data,
-        }))
+        Ok(Some(Tensor::vector(data)))
     }
 
     /// A record constructor call: the arguments (or the fields' defaults) side by side.
@@ -195,11 +191,7 @@ impl<'m> Lowerer<'m> {
             let len = self.field_len(f, span)?;
             data.extend(as_vector(v, len, span)?.data);
         }
-        let n = data.len();
-        Ok(Some(Tensor {
-            dims: vec![n],
-            data,
-        }))
+        Ok(Some(Tensor::vector(data)))
     }
 
     /// The part of a record value that `fields` (`.a.b`) select.

@@ -334,8 +334,7 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
     }
     let mut mentioned = BTreeSet::new();
     let mut note = |e: &Expr| {
-        let mut e = e.clone();
-        crate::flat::rewrite_refs(&mut e, &mut |r| {
+        crate::flat::for_each_ref(e, &mut |r| {
             mentioned.insert(var_key(r));
         });
     };

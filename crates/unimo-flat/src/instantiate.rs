@@ -104,12 +104,6 @@ fn int_expr(i: i64, span: Span) -> Expr {
     }
 }
 
-/// Builtin functions applied element by element to an array argument.
-const ELEMENTWISE_FUNCTIONS: &[&str] = &[
-    "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
-    "exp", "log", "log10", "floor", "ceil", "der", "pre",
-];
-
 /// The instance key of a path (all subscripts included).
 pub(crate) fn instance_key(path: &[RefPart]) -> String {
     let mut k = eval::var_key_parts(path);
@@ -1427,13 +1421,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         };
         let name = index.name.text.as_str();
         let mut selects = false;
-        crate::flat::rewrite_refs(&mut body.clone(), &mut |r| {
+        crate::flat::for_each_ref(body, &mut |r| {
             let n = r.parts.len();
             for p in &r.parts[..n.saturating_sub(1)] {
                 for sub in &p.subscripts {
                     if let Subscript::Expr(e) = sub {
                         let mut uses = false;
-                        crate::flat::rewrite_refs(&mut e.clone(), &mut |x| {
+                        crate::flat::for_each_ref(e, &mut |x| {
                             uses |= x.parts.len() == 1 && x.parts[0].name.text == name;
                         });
                         selects |= uses;
@@ -1473,7 +1467,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     let flat = self.expr(r, scope, iters, locals);
                     // A range of a function's inputs or locals stays as written.
                     let mut local = false;
-                    crate::flat::rewrite_refs(&mut flat.clone(), &mut |r| {
+                    crate::flat::for_each_ref(&flat, &mut |r| {
                         local |= !r.global
                             && r.parts
                                 .first()
@@ -1695,16 +1689,7 @@ impl Instantiator<'_, '_> {
                 let picked = |this: &mut Self, x: &Expr| this.pick_element(x, scope, index);
                 let kind = match &e.kind {
                     ExprKind::Binary { op, lhs, rhs } => {
-                        let elementwise = matches!(
-                            op,
-                            BinaryOp::Add
-                                | BinaryOp::Sub
-                                | BinaryOp::ElemAdd
-                                | BinaryOp::ElemSub
-                                | BinaryOp::ElemMul
-                                | BinaryOp::ElemDiv
-                                | BinaryOp::ElemPow
-                        );
+                        let elementwise = crate::lookup::is_elementwise(*op);
                         let (l, r) = (picked(self, lhs), picked(self, rhs));
                         match (l, r) {
                             (Some(l), Some(r)) if elementwise => ExprKind::Binary {
@@ -1739,7 +1724,8 @@ impl Instantiator<'_, '_> {
                     ExprKind::Call { func, args }
                         if !func.global
                             && func.parts.len() == 1
-                            && ELEMENTWISE_FUNCTIONS.contains(&func.parts[0].text.as_str())
+                            && crate::lookup::ELEMENTWISE_FUNCTIONS
+                                .contains(&func.parts[0].text.as_str())
                             && args.positional.len() == 1
                             && args.named.is_empty()
                             && args.iterators.is_empty() =>

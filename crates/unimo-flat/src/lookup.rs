@@ -16,6 +16,21 @@ pub const BUILTIN_TYPES: &[&str] = &[
 ];
 
 /// Builtin functions and operators usable in expressions (spec 3.7).
+/// Builtin functions applied element by element to an array argument.
+pub const ELEMENTWISE_FUNCTIONS: &[&str] = &[
+    "der", "pre", "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh",
+    "cosh", "tanh", "exp", "log", "log10", "noEvent", "floor", "ceil",
+];
+
+/// Operators that combine arrays element by element (`+`, `-` and the `.` ones).
+pub fn is_elementwise(op: unimo_syntax::ast::BinaryOp) -> bool {
+    use unimo_syntax::ast::BinaryOp::*;
+    matches!(
+        op,
+        Add | Sub | ElemAdd | ElemSub | ElemMul | ElemDiv | ElemPow
+    )
+}
+
 pub const BUILTIN_FUNCTIONS: &[&str] = &[
     "abs",
     "acos",

@@ -44,11 +44,6 @@ fn ty_of(t: &FlatType) -> Ty {
     }
 }
 
-const ELEMENTWISE: &[&str] = &[
-    "der", "pre", "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh",
-    "cosh", "tanh", "exp", "log", "log10", "noEvent", "floor", "ceil",
-];
-
 impl Checker<'_> {
     /// The dimensions and type of the variable `r` names.
     fn var(&self, r: &ComponentRef) -> Option<(&[usize], Ty)> {
@@ -106,13 +101,7 @@ impl Checker<'_> {
             ExprKind::Binary { op, lhs, rhs } => {
                 let (a, b) = (self.shape(lhs)?, self.shape(rhs)?);
                 match op {
-                    BinaryOp::Add
-                    | BinaryOp::Sub
-                    | BinaryOp::ElemAdd
-                    | BinaryOp::ElemSub
-                    | BinaryOp::ElemMul
-                    | BinaryOp::ElemDiv
-                    | BinaryOp::ElemPow => {
+                    op if crate::lookup::is_elementwise(*op) => {
                         if a == b || b.is_empty() {
                             Some(a)
                         } else if a.is_empty() {
@@ -129,7 +118,8 @@ impl Checker<'_> {
             ExprKind::Call { func, args }
                 if !func.global
                     && func.parts.len() == 1
-                    && ELEMENTWISE.contains(&func.parts[0].text.as_str())
+                    && crate::lookup::ELEMENTWISE_FUNCTIONS
+                        .contains(&func.parts[0].text.as_str())
                     && args.positional.len() == 1
                     && args.iterators.is_empty() =>
             {
