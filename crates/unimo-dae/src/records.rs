@@ -218,13 +218,7 @@ impl<'m> Lowerer<'m> {
             };
             match slot.record {
                 Some(r) => ty = r,
-                None if i + 1 < fields.len() => {
-                    return Err(DaeError::new(
-                        "E3010",
-                        format!("`{}` is not a record", p.name.text),
-                        span,
-                    ))
-                }
+                None if i + 1 < fields.len() => return Err(not_a_record(p, span)),
                 None => {}
             }
         }
@@ -253,13 +247,7 @@ impl<'m> Lowerer<'m> {
             offset += s.offset;
             match &s.record {
                 Some(r) => ty = r.clone(),
-                None if i + 1 < fields.len() => {
-                    return Err(DaeError::new(
-                        "E3010",
-                        format!("`{}` is not a record", p.name.text),
-                        span,
-                    ))
-                }
+                None if i + 1 < fields.len() => return Err(not_a_record(p, span)),
                 None => {}
             }
             slot = Some(s);
@@ -313,4 +301,9 @@ fn as_vector(v: Tensor, len: usize, span: Span) -> DaeResult<Tensor> {
         });
     }
     crate::lower::broadcast(v, &[len], span)
+}
+
+/// A field access through something that is not a record (`a.re.x`).
+fn not_a_record(p: &RefPart, span: Span) -> DaeError {
+    DaeError::new("E3010", format!("`{}` is not a record", p.name.text), span)
 }

@@ -84,19 +84,7 @@ impl Tensor {
     }
 }
 
-pub fn fmt_dims(d: &[usize]) -> String {
-    if d.is_empty() {
-        "scalar".into()
-    } else {
-        format!(
-            "[{}]",
-            d.iter()
-                .map(|x| x.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
-    }
-}
+pub use unimo_flat::flat::fmt_dims;
 
 pub fn size_error(a: &[usize], b: &[usize], span: Span) -> DaeError {
     DaeError::new(

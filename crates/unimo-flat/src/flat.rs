@@ -96,6 +96,16 @@ pub struct FlatModel {
     pub record_instances: Vec<(String, String)>,
 }
 
+/// Array dimensions as text: `scalar` or `[3, 2]`.
+pub fn fmt_dims(d: &[usize]) -> String {
+    if d.is_empty() {
+        "scalar".into()
+    } else {
+        let parts: Vec<String> = d.iter().map(|x| x.to_string()).collect();
+        format!("[{}]", parts.join(", "))
+    }
+}
+
 /// Splits a dotted name at the dots outside quoted identifiers
 /// (`'Pkg.f'.x` is `'Pkg.f'` and `x`).
 pub fn split_name(name: &str) -> Vec<&str> {

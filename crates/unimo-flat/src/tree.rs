@@ -37,6 +37,26 @@ pub struct ClassEntry {
 }
 
 impl ClassEntry {
+    fn new(
+        name: SmolStr,
+        parent: Option<ClassId>,
+        def: Arc<ClassDef>,
+        file: FileId,
+        location: Option<LibLocation>,
+    ) -> ClassEntry {
+        ClassEntry {
+            name,
+            parent,
+            def,
+            file,
+            location,
+            children: HashMap::default(),
+            declared: Default::default(),
+            nested: Default::default(),
+            imports: Default::default(),
+        }
+    }
+
     /// The import clauses of this class.
     pub fn imports(&self) -> Vec<&unimo_syntax::ast::Import> {
         let unimo_syntax::ast::ClassBody::Long { composition, .. } = &self.def.body else {
@@ -191,17 +211,13 @@ impl<'p> ClassTree<'p> {
                 Some(p) => self.child_class(p, &name).is_some(),
                 None => self.library_top_level(&name).is_some(),
             };
-            let id = self.add(ClassEntry {
-                name: name.clone(),
+            let id = self.add(ClassEntry::new(
+                name.clone(),
                 parent,
-                def: Arc::new(c),
+                Arc::new(c),
                 file,
-                location: None,
-                children: HashMap::default(),
-                declared: Default::default(),
-                nested: Default::default(),
-                imports: Default::default(),
-            });
+                None,
+            ));
             if !in_library {
                 match parent {
                     Some(p) => {
@@ -271,17 +287,13 @@ impl<'p> ClassTree<'p> {
     /// looked up from `parent`, but no member of it.
     pub fn add_detached(&mut self, parent: ClassId, def: Arc<ClassDef>) -> ClassId {
         let file = self.get(parent).file;
-        self.add(ClassEntry {
-            name: def.name.text.clone(),
-            parent: Some(parent),
+        self.add(ClassEntry::new(
+            def.name.text.clone(),
+            Some(parent),
             def,
             file,
-            location: None,
-            children: HashMap::default(),
-            declared: Default::default(),
-            nested: Default::default(),
-            imports: Default::default(),
-        })
+            None,
+        ))
     }
 
     pub fn child_class(&mut self, class: ClassId, name: &str) -> Option<ClassId> {
@@ -300,17 +312,13 @@ impl<'p> ClassTree<'p> {
         let nested = entry.nested_class(name);
         if let Some(def) = nested {
             let file = entry.file;
-            return Some(self.add(ClassEntry {
-                name: SmolStr::new(name),
-                parent: Some(class),
-                def: Arc::new(def),
+            return Some(self.add(ClassEntry::new(
+                SmolStr::new(name),
+                Some(class),
+                Arc::new(def),
                 file,
-                location: None,
-                children: HashMap::default(),
-                declared: Default::default(),
-                nested: Default::default(),
-                imports: Default::default(),
-            }));
+                None,
+            )));
         }
         let location = entry.location.clone()?;
         self.load_child(Some(class), &location, name)
@@ -357,17 +365,13 @@ impl<'p> ClassTree<'p> {
             .classes
             .into_iter()
             .find(|c| c.name.text == name)?;
-        Some(self.add(ClassEntry {
-            name: SmolStr::new(name),
+        Some(self.add(ClassEntry::new(
+            SmolStr::new(name),
             parent,
-            def: Arc::new(def),
+            Arc::new(def),
             file,
             location,
-            children: HashMap::default(),
-            declared: Default::default(),
-            nested: Default::default(),
-            imports: Default::default(),
-        }))
+        )))
     }
 
     /// Names of the classes declared directly in `class` and in its package folder:

@@ -208,8 +208,8 @@ impl Checker<'_> {
                         "E2018",
                         format!(
                             "the two sides have different sizes: {} and {}",
-                            size_text(&a),
-                            size_text(&b)
+                            crate::flat::fmt_dims(&a),
+                            crate::flat::fmt_dims(&b)
                         ),
                     )
                     .at(span, "in this equation"),
@@ -259,20 +259,6 @@ impl Checker<'_> {
                 EquationKind::For { body, .. } => self.equations(body),
             }
         }
-    }
-}
-
-fn size_text(d: &[usize]) -> String {
-    if d.is_empty() {
-        "scalar".into()
-    } else {
-        format!(
-            "[{}]",
-            d.iter()
-                .map(|n| n.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
     }
 }
 
