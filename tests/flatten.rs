@@ -84,3 +84,68 @@ fn flatten_errors_name_the_problem() {
         insta::assert_snapshot!(format!("flat_err_{}", file.trim_end_matches(".mo")), stderr);
     }
 }
+
+/// A chain of `links` springs and masses through connectors, with `extra` declarations
+/// and `extra_eq` equations added to the top-level model (the scale benchmark's model).
+fn chain_source(links: usize, extra: &str, extra_eq: &str) -> String {
+    use std::fmt::Write;
+    let mut s = String::from(
+        "connector Flange\n  Real s;\n  flow Real f;\nend Flange;\n\
+         connector Switch\n  Boolean s;\n  flow Real f;\nend Switch;\n\
+         model Mass\n  parameter Real m = 1;\n  Flange a, b;\n  Real s(start = 0, fixed = true), v(start = 0, fixed = true);\n\
+         equation\n  a.s = s;\n  b.s = s;\n  der(s) = v;\n  m * der(v) = a.f + b.f;\nend Mass;\n\
+         model Spring\n  parameter Real c = 1;\n  Flange a, b;\nequation\n  a.f = c * (a.s - b.s);\n  b.f = -a.f;\nend Spring;\n\
+         model Fixed\n  Flange b;\nequation\n  b.s = 0;\nend Fixed;\n",
+    );
+    s.push_str("model Chain\n  Fixed fixed;\n");
+    s.push_str(extra);
+    for i in 1..=links {
+        let _ = writeln!(s, "  Spring s{i}(c = {i});\n  Mass m{i};");
+    }
+    s.push_str("equation\n  connect(fixed.b, s1.a);\n");
+    s.push_str(extra_eq);
+    for i in 1..=links {
+        let _ = writeln!(s, "  connect(s{i}.b, m{i}.a);");
+        if i < links {
+            let _ = writeln!(s, "  connect(m{i}.b, s{}.a);", i + 1);
+        }
+    }
+    s.push_str("end Chain;\n");
+    s
+}
+
+/// Flattens `text` (its last class) in memory: the model and the diagnostic codes.
+fn flatten_text(text: &str) -> (unimo_flat::FlatModel, Vec<String>) {
+    let provider = unimo_flat::MemoryProvider::new();
+    let mut tree = unimo_flat::ClassTree::new(&provider);
+    let file = tree.sources.add("chain.mo", text.to_owned());
+    let parsed = unimo_syntax::parse(file, text);
+    assert!(!parsed.has_errors());
+    let classes = tree.add_user_file(file, parsed.ast);
+    let (model, diags) = unimo_flat::flatten(&mut tree, *classes.last().unwrap());
+    let codes = diags.iter().map(|d| d.code.to_string()).collect();
+    (model, codes)
+}
+
+/// Large models (past the size where the type check runs beside the connection
+/// sets) are checked like small ones: a sound chain balances, a Boolean side of a
+/// Real equation is `E2018`, a Boolean connected to a Real is `E2006`.
+#[test]
+fn large_models_are_checked_like_small_ones() {
+    // 24,001 equations before the connections; 10 unknowns per link.
+    let links = 4_000;
+    let (model, codes) = flatten_text(&chain_source(links, "", ""));
+    assert!(codes.is_empty(), "{codes:?}");
+    let b = unimo_flat::balance::count(&model);
+    assert_eq!((b.equations, b.unknowns), (10 * links + 2, 10 * links + 2));
+
+    let (_, codes) = flatten_text(&chain_source(links, "  Boolean flag;\n", "  flag = 1.5;\n"));
+    assert_eq!(codes, ["E2018"]);
+
+    let (_, codes) = flatten_text(&chain_source(
+        links,
+        "  Switch sw;\n",
+        "  connect(sw, m1.b);\n",
+    ));
+    assert_eq!(codes, ["E2006"]);
+}

@@ -18,6 +18,7 @@ pub struct Balance {
 }
 
 struct Shapes<'m> {
+    /// Dimensions of the array variables; a name not here is a scalar (or a record).
     dims: HashMap<&'m str, &'m [usize]>,
     /// Scalar sizes of the record instances (`z` of `z.re`, `z.im`).
     record_sizes: HashMap<&'m str, usize>,
@@ -37,6 +38,9 @@ impl Shapes<'_> {
                     self.dims.get(buf.as_str()).copied()
                 };
                 let Some(d) = d else {
+                    if self.record_sizes.is_empty() {
+                        return Vec::new();
+                    }
                     let key = var_key(r);
                     // A record: as many scalars as its variables.
                     let mut instance = key;
@@ -282,9 +286,12 @@ pub fn count(model: &FlatModel) -> Balance {
         }
     }
     let shapes = Shapes {
+        // Scalars are left out: most models are mostly scalars, and a small map is
+        // looked up in cache.
         dims: model
             .vars
             .iter()
+            .filter(|v| !v.dims.is_empty())
             .map(|v| (v.name.as_str(), v.dims.as_slice()))
             .collect(),
         record_sizes,

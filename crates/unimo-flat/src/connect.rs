@@ -49,24 +49,54 @@ fn var_ref(name: &str, span: Span) -> Expr {
     }
 }
 
-/// The primitive variables inside the connector instance `key`: (suffix, var index).
-/// `names` is every variable name, sorted, with its index: a range query, not a scan.
+/// The primitive variables inside each connector instance in `keys`: (suffix, var
+/// index), sorted by suffix. A variable belongs to every instance its name is inside
+/// of (`a.p[1].v` to `a.p[1]`, `a.p` and `a`): one hash probe per boundary of its name,
+/// for the instances a `connect` names only.
 fn members<'n>(
-    names: &std::collections::BTreeMap<&'n str, usize>,
-    key: &str,
-) -> Vec<(&'n str, usize)> {
-    names
-        .range::<str, _>((std::ops::Bound::Included(key), std::ops::Bound::Unbounded))
-        .take_while(|(n, _)| n.starts_with(key))
-        .filter_map(|(n, &i)| {
-            let rest = &n[key.len()..];
-            (rest.is_empty() || rest.starts_with('.') || rest.starts_with('[')).then_some((rest, i))
-        })
-        .collect()
+    vars: &'n [crate::flat::FlatVar],
+    keys: &'n [(String, String)],
+) -> HashMap<&'n str, Vec<(&'n str, usize)>> {
+    let mut out: HashMap<&str, Vec<(&str, usize)>> = HashMap::default();
+    for (ka, kb) in keys {
+        out.entry(ka.as_str()).or_default();
+        out.entry(kb.as_str()).or_default();
+    }
+    for (i, v) in vars.iter().enumerate() {
+        let name = v.name.as_str();
+        let boundaries = name
+            .bytes()
+            .enumerate()
+            .filter(|(_, b)| *b == b'.' || *b == b'[')
+            .map(|(k, _)| k)
+            .chain(std::iter::once(name.len()));
+        for k in boundaries {
+            if let Some(list) = out.get_mut(&name[..k]) {
+                list.push((&name[k..], i));
+            }
+        }
+    }
+    for list in out.values_mut() {
+        list.sort_unstable_by(|a, b| a.0.cmp(b.0));
+    }
+    out
 }
 
 /// Adds the connection equations to `model`; returns diagnostics for mismatches.
 pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) -> Vec<Diagnostic> {
+    let (eqs, diags) = equations(model, connects, absent);
+    model.equations.extend(eqs);
+    diags
+}
+
+/// The connection equations of `model` (not added to it), and diagnostics for
+/// mismatches. Connected variables have the same flow prefix, size and type, so the
+/// equations are well-typed by construction.
+pub fn equations(
+    model: &FlatModel,
+    connects: &[Connect],
+    absent: &[String],
+) -> (Vec<Equation>, Vec<Diagnostic>) {
     let mut diags = Vec::new();
     let mut nodes: Vec<Node> = Vec::new();
     let mut index: HashMap<Node, usize> = HashMap::default();
@@ -79,14 +109,13 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
         })
     };
     let mut spans: HashMap<usize, Span> = HashMap::default();
-    let names: std::collections::BTreeMap<&str, usize> = model
-        .vars
+    let keys: Vec<(String, String)> = connects
         .iter()
-        .enumerate()
-        .map(|(i, v)| (v.name.as_str(), i))
+        .map(|c| (var_key_full(&c.a), var_key_full(&c.b)))
         .collect();
-    for c in connects {
-        let (ka, kb) = (var_key_full(&c.a), var_key_full(&c.b));
+    let members = members(&model.vars, &keys);
+    let none = Vec::new();
+    for (c, (ka, kb)) in connects.iter().zip(&keys) {
         // A connection to an absent conditional component is dropped (spec 4.4.5).
         if absent
             .iter()
@@ -94,9 +123,10 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
         {
             continue;
         }
-        let (ma, mb) = (members(&names, &ka), members(&names, &kb));
+        let ma = members.get(ka.as_str()).unwrap_or(&none);
+        let mb = members.get(kb.as_str()).unwrap_or(&none);
         if ma.is_empty() || mb.is_empty() {
-            let which = if ma.is_empty() { &ka } else { &kb };
+            let which = if ma.is_empty() { ka } else { kb };
             diags.push(
                 Diagnostic::error("E2006", format!("`{which}` is not a connector instance"))
                     .at(c.span, "in this connect"),
@@ -125,7 +155,7 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
             );
             continue;
         }
-        for ((_, va), (_, vb)) in ma.iter().zip(&mb) {
+        for ((_, va), (_, vb)) in ma.iter().zip(mb) {
             let (xa, xb) = (&model.vars[*va], &model.vars[*vb]);
             // Parameters and constants of connectors (a signal port's size `n`) are not
             // connected (spec 9.3).
@@ -138,14 +168,14 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
             if fixed(xa) || fixed(xb) {
                 continue;
             }
-            if xa.flow != xb.flow || xa.dims != xb.dims {
+            if xa.flow != xb.flow || xa.dims != xb.dims || !same_kind(&xa.ty, &xb.ty) {
                 diags.push(
                     Diagnostic::error(
                         "E2006",
                         format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
                     )
                     .at(c.span, "in this connect")
-                    .with_note("a flow variable connects only to a flow variable of the same size"),
+                    .with_note("a flow variable connects only to a flow variable, and only variables of the same size and type connect"),
                 );
                 continue;
             }
@@ -280,8 +310,20 @@ pub fn generate(model: &mut FlatModel, connects: &[Connect], absent: &[String]) 
             ));
         }
     }
-    model.equations.extend(new_eqs);
-    diags
+    (new_eqs, diags)
+}
+
+/// Whether two connected variables have compatible types: numbers with numbers
+/// (`Real` and `Integer`), Booleans with Booleans, Strings with Strings, an enumeration
+/// with the same enumeration.
+fn same_kind(a: &crate::flat::FlatType, b: &crate::flat::FlatType) -> bool {
+    use crate::flat::FlatType as T;
+    match (a, b) {
+        (T::Real | T::Integer, T::Real | T::Integer) => true,
+        (T::Boolean, T::Boolean) | (T::String, T::String) => true,
+        (T::Enumeration { name: x, .. }, T::Enumeration { name: y, .. }) => x == y,
+        _ => false,
+    }
 }
 
 fn var_key_full(r: &ComponentRef) -> String {

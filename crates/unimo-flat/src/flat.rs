@@ -51,7 +51,7 @@ pub struct FlatVar {
     pub flow: bool,
     /// Evaluated array dimensions (empty: scalar).
     pub dims: Vec<usize>,
-    pub binding: Option<Expr>,
+    pub binding: Option<Box<Expr>>,
     /// `start`, `fixed`, `nominal`, `min`, `max`, `unit`, `stateSelect`, ... in order
     /// of first appearance.
     pub attributes: Vec<(SmolStr, Expr)>,
@@ -549,7 +549,9 @@ struct Printer<'a> {
     records: std::collections::HashMap<&'a str, &'a crate::functions::FlatRecord>,
     instances: std::collections::HashMap<&'a str, &'a str>,
     enumerations: std::collections::HashSet<&'a str>,
-    variables: std::collections::HashSet<&'a str>,
+    /// Variable names; only filled when a record instance or an enumeration literal
+    /// could be mistaken for one (the only questions it answers).
+    variables: rustc_hash::FxHashSet<&'a str>,
     /// Records named by the printed text (their definitions are printed).
     used_records: std::cell::RefCell<std::collections::BTreeSet<String>>,
 }
@@ -570,7 +572,11 @@ impl<'a> Printer<'a> {
                 .map(|(k, r)| (k.as_str(), r.as_str()))
                 .collect(),
             enumerations: m.enumerations.iter().map(|(n, _)| n.as_str()).collect(),
-            variables: m.vars.iter().map(|v| v.name.as_str()).collect(),
+            variables: if m.record_instances.is_empty() && m.enumerations.is_empty() {
+                Default::default()
+            } else {
+                m.vars.iter().map(|v| v.name.as_str()).collect()
+            },
             used_records: Default::default(),
         }
     }
@@ -619,7 +625,7 @@ impl<'a> Printer<'a> {
                     ];
                 }
             }
-            ExprKind::Ref(r) if model && !r.global => {
+            ExprKind::Ref(r) if model && !r.global && !self.instances.is_empty() => {
                 let mut key = crate::eval::var_key(r);
                 if self.variables.contains(key.as_str()) {
                     return;
@@ -637,6 +643,9 @@ impl<'a> Printer<'a> {
 
     /// Whether `r` names a literal of one of the model's enumeration types.
     fn is_literal(&self, r: &ComponentRef) -> bool {
+        if self.enumerations.is_empty() {
+            return false;
+        }
         let n = r.parts.len();
         let ty = r.parts[..n - 1]
             .iter()
@@ -699,7 +708,8 @@ impl<'a> Printer<'a> {
     fn expr(&self, e: &Expr) -> String {
         let mut e = e.clone();
         self.standalone(&mut e, true);
-        print::expr(&printable(&e))
+        rewrite_refs(&mut e, &mut |r| *r = printable_ref(r));
+        print::expr(&e)
     }
 
     /// A function body's expression as text (its names are local, not flat).

@@ -263,7 +263,7 @@ impl Instantiator<'_, '_> {
         };
         let (mut base, mut record, mut short_dims) = (cc.type_name.to_dotted(), None, Vec::new());
         if let Some(found) = self.tree.lookup_dotted(start, &parts, false) {
-            if let Some((kind, _, sd)) = self.resolve_type_dims(found, &Mod::default()) {
+            if let Some((kind, _, sd)) = self.resolve_type_dims(found, Mod::default()) {
                 short_dims = sd;
                 match kind {
                     Kind::Builtin(FlatType::Enumeration { name, .. }) => base = name,
@@ -332,7 +332,7 @@ impl Instantiator<'_, '_> {
             };
             let scope = Scope {
                 class: c,
-                prefix: Vec::new(),
+                prefix: std::sync::Arc::from([]),
             };
             let mut names: Vec<String> = composition
                 .elements
@@ -400,7 +400,7 @@ impl Instantiator<'_, '_> {
         };
         let scope = Scope {
             class,
-            prefix: Vec::new(),
+            prefix: std::sync::Arc::from([]),
         };
         let mut f = FlatFunction {
             name: name.to_owned(),

@@ -47,15 +47,21 @@ pub struct Connect {
 pub(crate) struct Instantiator<'t, 'p> {
     pub tree: &'t mut ClassTree<'p>,
     pub model: FlatModel,
-    pub var_index: HashMap<String, VarId>,
+    /// Variables by name, built on demand (only parameter evaluation asks): the first
+    /// `indexed` variables are in it.
+    var_index: HashMap<String, VarId>,
+    indexed: usize,
     pub connects: Vec<Connect>,
     pub diags: Vec<Diagnostic>,
     values: HashMap<String, Value>,
     evaluating: HashSet<String>,
     /// Paths of conditional components that are absent.
     pub absent: Vec<String>,
-    /// Element names declared so far in each instance (by instance path), with where.
-    declared: HashMap<String, HashMap<SmolStr, Span>>,
+    /// Element names declared so far in the instances being instantiated (one level
+    /// per [`Self::class_body`], shared with its bases), with where; innermost last.
+    declared: Vec<HashMap<SmolStr, Span>>,
+    /// Emptied levels of `declared`, kept for reuse (no map allocated per instance).
+    declared_pool: Vec<HashMap<SmolStr, Span>>,
     /// `inner` components visible from the current instance, innermost last:
     /// (name, instance path of the inner component).
     inners: Vec<(SmolStr, Vec<RefPart>)>,
@@ -76,7 +82,7 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// that instance (`redeclare model Sensor = OffsetSensor`).
     pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
     /// Class paths looked up from a class (without redeclarations), by (class, path).
-    pub(crate) type_cache: HashMap<(ClassId, String), Option<Found>>,
+    pub(crate) type_cache: HashMap<(ClassId, SmolStr), Option<Found>>,
     /// Per class: declared `replaceable` in its parent, and its constraining clause.
     pub(crate) constraint_cache: HashMap<ClassId, Option<(bool, Option<ConstrainingClause>)>>,
 }
@@ -142,12 +148,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             tree,
             model: FlatModel::default(),
             var_index: HashMap::default(),
+            indexed: 0,
             connects: Vec::new(),
             diags: Vec::new(),
             values: HashMap::default(),
             evaluating: HashSet::default(),
             absent: Vec::new(),
-            declared: HashMap::default(),
+            declared: Vec::new(),
+            declared_pool: Vec::new(),
             inners: Vec::new(),
             call_depth: 0,
             inherited_causality: None,
@@ -160,6 +168,22 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             constraint_cache: HashMap::default(),
             depth: 0,
         }
+    }
+
+    /// The variable named `key` (a later declaration of the same name wins). The index
+    /// catches up with the variables created since the last question: each variable
+    /// is indexed once, and not at all in a model that evaluates no parameters.
+    fn var_id(&mut self, key: &str) -> Option<VarId> {
+        let n = self.model.vars.len();
+        if self.indexed < n {
+            self.var_index.reserve(n - self.indexed);
+            for (i, v) in self.model.vars[self.indexed..].iter().enumerate() {
+                self.var_index
+                    .insert(v.name.clone(), VarId((self.indexed + i) as u32));
+            }
+            self.indexed = n;
+        }
+        self.var_index.get(key).copied()
     }
 
     /// Spends `n` of the size budget; false (and `E2014` once) when it is exhausted.
@@ -246,7 +270,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
     /// Follows short class definitions to a long class or a predefined type,
     /// accumulating their modifiers (innermost last).
     fn resolve_type(&mut self, found: Found, m: &Mod) -> Option<(Kind, Mod)> {
-        self.resolve_type_dims(found, m).map(|(k, m, _)| (k, m))
+        self.resolve_type_dims(found, m.clone())
+            .map(|(k, m, _)| (k, m))
     }
 
     /// Like [`resolve_type`], also returning the array dimensions the short class
@@ -255,9 +280,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
     pub(crate) fn resolve_type_dims(
         &mut self,
         mut found: Found,
-        m: &Mod,
+        mut m: Mod,
     ) -> Option<(Kind, Mod, Vec<(Subscript, Scope)>)> {
-        let mut m = m.clone();
         let mut type_dims: Vec<(Subscript, Scope)> = Vec::new();
         for _ in 0..MAX_DEPTH {
             let c = match found {
@@ -289,13 +313,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     let parent = self.tree.get(c).parent;
                     let dim_scope = Scope {
                         class: parent.unwrap_or(c),
-                        prefix: Vec::new(),
+                        prefix: std::sync::Arc::from([]),
                     };
                     type_dims.extend(dims.iter().map(|d| (d.clone(), dim_scope.clone())));
                     if let Some(cm) = modification {
                         let scope = Scope {
                             class: parent.unwrap_or(c),
-                            prefix: Vec::new(),
+                            prefix: std::sync::Arc::from([]),
                         };
                         m = m.over(&Mod::from_class_mod(cm, &scope));
                     }
@@ -333,7 +357,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         variability: Option<Variability>,
         top: bool,
     ) {
+        let level = self.declared_pool.pop().unwrap_or_default();
+        self.declared.push(level);
         self.class_body_inner(class, prefix, m, variability, top, true);
+        if let Some(mut level) = self.declared.pop() {
+            level.clear();
+            self.declared_pool.push(level);
+        }
     }
 
     /// `check_mods`: whether modified names are checked here (not again in bases).
@@ -373,7 +403,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         };
         let scope = Scope {
             class,
-            prefix: prefix.to_vec(),
+            prefix: std::sync::Arc::from(prefix),
         };
         self.register_class_redeclares(class, composition, prefix, m);
         // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
@@ -523,7 +553,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             .rev()
             .find(|(n, path)| n == name && path.len() <= own)
             .map(|(_, p)| p.clone());
-        let mut key_path = scope.prefix.clone();
+        let mut key_path = scope.prefix.to_vec();
         key_path.push(part(name, d.name.span));
         let key = instance_key(&key_path);
         match found {
@@ -576,16 +606,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         top: bool,
     ) {
         let name = d.name.text.as_str();
-        let mut instance = eval::var_key_parts(&scope.prefix);
-        if let Some(last) = scope.prefix.last() {
-            instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
-        }
-        let seen = self.declared.entry(instance.clone()).or_default();
+        let Some(seen) = self.declared.last_mut() else {
+            return;
+        };
         if let Some(first) = seen.get(name).copied() {
-            let owner = if instance.is_empty() {
+            let owner = if scope.prefix.is_empty() {
                 self.model.name.clone()
             } else {
-                instance
+                instance_key(&scope.prefix)
             };
             self.diags.push(
                 Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
@@ -602,10 +630,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             .map(|dm| Mod::from_modification(dm, scope))
             .unwrap_or_default();
         let mut merged = match m.child(name) {
-            Some(outer) => outer.over(&decl_mod),
+            Some(outer) => outer.clone().over_into(decl_mod),
             None => decl_mod,
         };
-        let mut path = scope.prefix.clone();
+        let mut path = Vec::with_capacity(scope.prefix.len() + 1);
+        path.extend_from_slice(&scope.prefix);
         path.push(part(name, d.name.span));
         let key = eval::var_key_parts(&path);
         if let Some(cond) = &d.condition {
@@ -641,14 +670,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 // redeclared, a check that the new class fits).
                 if let Some(Found::Class(c)) = found {
                     if let Some(cmod) = self.class_constraint(scope, &parts, c, d.span) {
-                        merged = merged.over(&cmod);
+                        merged = merged.over_into(cmod);
                     }
                 }
                 found
             }
         };
         let Some(found) = found else { return }; // unknown type: reported by the name check
-        let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, &merged) else {
+        let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, merged) else {
             return;
         };
         let variability = match cc.prefix.variability {
@@ -701,8 +730,6 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         match kind {
             Kind::Builtin(ty) => {
                 let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
-                let id = VarId(self.model.vars.len() as u32);
-                self.var_index.insert(var.name.clone(), id);
                 self.model.vars.push(var);
             }
             Kind::Class(c) => {
@@ -828,7 +855,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             causality: cc.prefix.causality.or(self.inherited_causality),
             flow: cc.prefix.connection == Some(Connection::Flow),
             dims,
-            binding,
+            binding: binding.map(Box::new),
             attributes,
             each_attributes,
             description: d.comment.description.clone(),
@@ -1135,9 +1162,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         iters: &mut Vec<(String, Value)>,
         locals: &mut Vec<String>,
     ) -> ComponentRef {
-        let mut r = r.clone();
-        for p in &mut r.parts {
-            for s in &mut p.subscripts {
+        // The parts with their subscripts flattened, room left for the instance prefix.
+        let mut parts: Vec<RefPart> = Vec::with_capacity(scope.prefix.len() + r.parts.len());
+        for p in &r.parts {
+            let mut subscripts = p.subscripts.clone();
+            for s in &mut subscripts {
                 if let Subscript::Expr(e) = s {
                     *e = self.expr(e, scope, iters, locals);
                     // Constant subscripts are folded (`x[i + 1]` in an unrolled loop is
@@ -1150,23 +1179,32 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     }
                 }
             }
+            parts.push(RefPart {
+                name: p.name.clone(),
+                subscripts,
+            });
         }
-        let Some(first) = r.parts.first().map(|p| p.name.text.to_string()) else {
+        let r = ComponentRef {
+            global: r.global,
+            parts,
+            span: r.span,
+        };
+        let Some(first) = r.parts.first().map(|p| p.name.text.clone()) else {
             return r;
         };
-        if r.global || first == "time" || locals.contains(&first) {
+        if r.global || first == "time" || locals.iter().any(|l| *l == first) {
             return r;
         }
         if self.tree.has_component(scope.class, &first) {
-            let mut head = scope.prefix.clone();
-            head.push(r.parts[0].clone());
             // A reference through an `outer` component goes to its `inner`.
             let alias = if self.outer_alias.is_empty() {
                 None
             } else {
+                let mut head = scope.prefix.to_vec();
+                head.push(r.parts[0].clone());
                 self.outer_alias.get(&instance_key_no_subs(&head))
             };
-            let mut parts = match alias {
+            let parts = match alias {
                 Some(inner) => {
                     let mut p = inner.clone();
                     if let Some(last) = p.last_mut() {
@@ -1174,11 +1212,15 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                             last.subscripts = r.parts[0].subscripts.clone();
                         }
                     }
+                    p.extend(r.parts.into_iter().skip(1));
                     p
                 }
-                None => head,
+                None => {
+                    let mut p = r.parts;
+                    p.splice(0..0, scope.prefix.iter().cloned());
+                    p
+                }
             };
-            parts.extend(r.parts.into_iter().skip(1));
             return ComponentRef {
                 global: false,
                 parts,
@@ -1524,7 +1566,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         let def = self.tree.get(owner).def.clone();
         let here = Scope {
             class: owner,
-            prefix: Vec::new(),
+            prefix: std::sync::Arc::from([]),
         };
         let modified = |cm: &Option<ClassModification>| -> Option<Expr> {
             cm.iter().flat_map(|m| &m.args).find_map(|a| match a {
@@ -1542,7 +1584,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 if let Some(b) = modified(modification) {
                     let scope = Scope {
                         class: self.tree.get(owner).parent.unwrap_or(owner),
-                        prefix: Vec::new(),
+                        prefix: std::sync::Arc::from([]),
                     };
                     return Some((b, scope));
                 }
@@ -1665,7 +1707,7 @@ impl Instantiator<'_, '_> {
                     ExprKind::Ref(fr) => eval::var_key(fr),
                     _ => return None,
                 };
-                let id = *self.var_index.get(&key)?;
+                let id = self.var_id(&key)?;
                 if self.model.vars[id.0 as usize].dims.len() < index.len() {
                     return None;
                 }
@@ -1800,7 +1842,7 @@ impl Env for Instantiator<'_, '_> {
         if let Some(v) = self.values.get(key) {
             return Ok(v.clone());
         }
-        let Some(&id) = self.var_index.get(key) else {
+        let Some(id) = self.var_id(key) else {
             return Err(EvalError::NotConstant {
                 span,
                 what: format!("`{key}`"),
@@ -1818,7 +1860,8 @@ impl Env for Instantiator<'_, '_> {
         }
         let expr = var
             .binding
-            .clone()
+            .as_deref()
+            .cloned()
             .or_else(|| {
                 var.attributes
                     .iter()

@@ -79,7 +79,7 @@ impl Instantiator<'_, '_> {
         }
         let scope = Scope {
             class: f,
-            prefix: Vec::new(),
+            prefix: std::sync::Arc::from([]),
         };
         let mut locals: HashMap<String, Value> = HashMap::default();
         let mut inputs = Vec::new();

@@ -32,6 +32,11 @@ pub use provider::{LibFile, LibLocation, MemoryProvider, SourceProvider};
 pub use tree::{ClassId, ClassTree, LoadStats};
 use unimo_source::Diagnostic;
 
+/// Models with at least this many equations check sizes and types on a second thread
+/// while the connection equations are generated (below it a thread costs more than it
+/// saves).
+const PARALLEL_FROM: usize = 20_000;
+
 /// Instantiates `class` into a flat model, with connection equations. Returns the
 /// model and the diagnostics (errors mean the model is not usable).
 pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diagnostic>) {
@@ -43,22 +48,70 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     inst.collect_functions();
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
-    diags.extend(connect::generate(&mut model, &connects, &absent));
-    // Sizes and types, once the model is whole.
-    if diags.is_empty() {
-        diags.extend(typecheck::check(&model));
+    // Connection equations and the size/type check of the equations so far are
+    // independent: they run side by side. (Connected variables are checked against
+    // each other in `connect`, so the generated equations need no type check.)
+    let check_types = diags.is_empty();
+    let check = |model: &FlatModel| {
+        if check_types {
+            typecheck::check(model)
+        } else {
+            Vec::new()
+        }
+    };
+    let (conn_eqs, conn_diags, type_diags) = if model.equations.len() < PARALLEL_FROM {
+        let (eqs, d) = connect::equations(&model, &connects, &absent);
+        (eqs, d, check(&model))
+    } else {
+        std::thread::scope(|s| {
+            let model = &model;
+            let checker = std::thread::Builder::new()
+                // As deep as the caller's expressions may nest (the CLI's stack).
+                .stack_size(512 << 20)
+                .spawn_scoped(s, move || check(model));
+            let (eqs, d) = connect::equations(model, &connects, &absent);
+            let types = match checker {
+                Ok(handle) => handle
+                    .join()
+                    .unwrap_or_else(|p| std::panic::resume_unwind(p)),
+                // No thread to be had: check here.
+                Err(_) => check(model),
+            };
+            (eqs, d, types)
+        })
+    };
+    model.equations.extend(conn_eqs);
+    let connect_failed = !conn_diags.is_empty();
+    diags.extend(conn_diags);
+    // Sizes and types, once the connections are sound.
+    if !connect_failed {
+        diags.extend(type_diags);
     }
+
     // Canonical order: constants and parameters first, each group in declaration order
     // (so that flattening the printed model gives the same text).
     // (a stable partition: moving the large variable records once, not sorting them)
-    let (mut fixed, rest): (Vec<FlatVar>, Vec<FlatVar>) =
-        std::mem::take(&mut model.vars).into_iter().partition(|v| {
-            matches!(
-                v.variability,
-                flat::Variability::Constant | flat::Variability::Parameter
-            )
-        });
-    fixed.extend(rest);
-    model.vars = fixed;
+    let is_fixed = |v: &FlatVar| {
+        matches!(
+            v.variability,
+            flat::Variability::Constant | flat::Variability::Parameter
+        )
+    };
+    let first_free = model.vars.iter().position(|v| !is_fixed(v));
+    let partitioned = first_free.is_none_or(|k| !model.vars[k..].iter().any(is_fixed));
+    if !partitioned {
+        let n = model.vars.iter().filter(|v| is_fixed(v)).count();
+        let mut fixed = Vec::with_capacity(model.vars.len());
+        let mut rest = Vec::with_capacity(model.vars.len() - n);
+        for v in std::mem::take(&mut model.vars) {
+            if is_fixed(&v) {
+                fixed.push(v);
+            } else {
+                rest.push(v);
+            }
+        }
+        fixed.append(&mut rest);
+        model.vars = fixed;
+    }
     (model, diags)
 }

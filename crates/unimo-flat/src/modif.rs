@@ -9,11 +9,12 @@ use unimo_syntax::ast::{
 };
 
 /// Where an expression was written: the class (for name lookup) and the instance path
-/// of that class in the model (for prefixing its component references).
+/// of that class in the model (for prefixing its component references). Cloned into
+/// every binding it scopes: the path is shared, not copied.
 #[derive(Clone, Debug)]
 pub struct Scope {
     pub class: ClassId,
-    pub prefix: Vec<RefPart>,
+    pub prefix: std::sync::Arc<[RefPart]>,
 }
 
 /// A value with the scope it must be evaluated in.
@@ -76,6 +77,31 @@ impl Mod {
         out
     }
 
+    /// `self` over `inner` like [`Mod::over`], consuming both: nothing is copied.
+    pub fn over_into(self, mut inner: Mod) -> Mod {
+        if self.binding.is_some() {
+            inner.binding = self.binding;
+        }
+        if self.redeclare.is_some() {
+            inner.redeclare = self.redeclare;
+        }
+        if self.class_redeclare.is_some() {
+            inner.class_redeclare = self.class_redeclare;
+        }
+        inner.each |= self.each;
+        inner.is_final |= self.is_final;
+        for (name, m) in self.children {
+            match inner.children.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, existing)) => {
+                    let old = std::mem::take(existing);
+                    *existing = m.over_into(old);
+                }
+                None => inner.children.push((name, m)),
+            }
+        }
+        inner
+    }
+
     /// The modification a class modification writes, in `scope`.
     pub fn from_class_mod(cm: &ClassModification, scope: &Scope) -> Mod {
         let mut out = Mod::default();
@@ -106,7 +132,7 @@ impl Mod {
                             children: vec![(first.text.clone(), m)],
                             ..Mod::default()
                         }
-                        .over(&out);
+                        .over_into(out);
                     }
                 }
                 Argument::Redeclare { element, each, .. } => {
@@ -122,7 +148,7 @@ impl Mod {
                             children: vec![(cd.name.text.clone(), m)],
                             ..Mod::default()
                         }
-                        .over(&out);
+                        .over_into(out);
                     }
                     if let RedeclaredElement::Component(cc) = element {
                         for d in &cc.components {
@@ -137,7 +163,7 @@ impl Mod {
                                 children: vec![(d.name.text.clone(), m)],
                                 ..Mod::default()
                             }
-                            .over(&out);
+                            .over_into(out);
                         }
                     }
                 }

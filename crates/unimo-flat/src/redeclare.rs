@@ -113,13 +113,21 @@ impl Instantiator<'_, '_> {
                 return Some(found);
             }
         }
-        // The same type names are looked up from the same classes many times (a
-        // model of 10^5 components): cached per (class, dotted name).
-        let key = (scope.class, parts.join("."));
+        self.lookup_cached(scope.class, parts)
+    }
+
+    /// `lookup_dotted(Some(class), parts, false)`, cached: the same type names are
+    /// looked up from the same classes many times (a model of 10^5 components).
+    pub(crate) fn lookup_cached(&mut self, class: ClassId, parts: &[&str]) -> Option<Found> {
+        let name = match parts {
+            [one] => SmolStr::new(one),
+            _ => SmolStr::new(parts.join(".")),
+        };
+        let key = (class, name);
         if let Some(f) = self.type_cache.get(&key) {
             return *f;
         }
-        let found = self.tree.lookup_dotted(Some(scope.class), parts, false);
+        let found = self.tree.lookup_dotted(Some(class), parts, false);
         self.type_cache.insert(key, found);
         found
     }
@@ -282,7 +290,7 @@ impl Instantiator<'_, '_> {
             return None;
         }
         // The class as declared (not redeclared) tells the constraint.
-        let original = match self.tree.lookup_dotted(Some(scope.class), parts, false) {
+        let original = match self.lookup_cached(scope.class, parts) {
             Some(Found::Class(c)) => c,
             _ => return None,
         };
@@ -293,7 +301,7 @@ impl Instantiator<'_, '_> {
         let parent = self.tree.get(original).parent?;
         let decl_scope = Scope {
             class: parent,
-            prefix: Vec::new(),
+            prefix: std::sync::Arc::from([]),
         };
         if found != original {
             let constraint = match &constrainedby {

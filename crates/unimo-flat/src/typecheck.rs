@@ -52,68 +52,117 @@ impl Checker<'_> {
         self.vars.get(buf.as_str()).copied()
     }
 
+    /// The shape of a reference to a variable of dimensions `dims`, when certain.
+    fn ref_shape(r: &ComponentRef, dims: &[usize]) -> Option<Vec<usize>> {
+        let subs = r.parts.last().map_or(&[][..], |p| &p.subscripts[..]);
+        if subs.len() > dims.len() {
+            return None; // reported as E2017
+        }
+        let mut out = Vec::new();
+        for (k, n) in dims.iter().enumerate() {
+            match subs.get(k) {
+                None | Some(Subscript::Colon(_)) => out.push(*n),
+                Some(Subscript::Expr(x)) => match &x.kind {
+                    ExprKind::Integer(_) => {}
+                    ExprKind::Range {
+                        start,
+                        step: None,
+                        stop,
+                    } => match (&start.kind, &stop.kind) {
+                        (ExprKind::Integer(a), ExprKind::Integer(b)) => {
+                            out.push((b - a + 1).max(0) as usize)
+                        }
+                        _ => return None,
+                    },
+                    _ => return None,
+                },
+            }
+        }
+        Some(out)
+    }
+
     /// The shape of `e` when it is certain.
     fn shape(&self, e: &Expr) -> Option<Vec<usize>> {
+        self.info(e).0
+    }
+
+    /// The shape and the type of `e`, each when it is certain: one walk, one variable
+    /// lookup per reference (the lookups are most of this check's cost).
+    fn info(&self, e: &Expr) -> (Option<Vec<usize>>, Option<Ty>) {
         match &e.kind {
-            ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {
-                Some(Vec::new())
-            }
-            ExprKind::Ref(r) if !r.global => {
-                let (dims, _) = self.var(r)?;
-                let subs = r.parts.last().map_or(&[][..], |p| &p.subscripts[..]);
-                if subs.len() > dims.len() {
-                    return None; // reported as E2017
-                }
-                let mut out = Vec::new();
-                for (k, n) in dims.iter().enumerate() {
-                    match subs.get(k) {
-                        None | Some(Subscript::Colon(_)) => out.push(*n),
-                        Some(Subscript::Expr(x)) => match &x.kind {
-                            ExprKind::Integer(_) => {}
-                            ExprKind::Range {
-                                start,
-                                step: None,
-                                stop,
-                            } => match (&start.kind, &stop.kind) {
-                                (ExprKind::Integer(a), ExprKind::Integer(b)) => {
-                                    out.push((b - a + 1).max(0) as usize)
-                                }
-                                _ => return None,
-                            },
-                            _ => return None,
-                        },
-                    }
-                }
-                Some(out)
-            }
+            ExprKind::Integer(_) | ExprKind::Real(_) => (Some(Vec::new()), Some(Ty::Number)),
+            ExprKind::Bool(_) => (Some(Vec::new()), Some(Ty::Boolean)),
+            ExprKind::String(_) => (Some(Vec::new()), Some(Ty::Text)),
+            ExprKind::Ref(r) if !r.global => match self.var(r) {
+                Some((dims, ty)) => (Self::ref_shape(r, dims), Some(ty)),
+                None => (None, None),
+            },
             ExprKind::Array(items) => {
-                let first = self.shape(items.first()?)?;
-                for i in &items[1..] {
-                    if self.shape(i)? != first {
-                        return None;
+                let Some((first, rest)) = items.split_first() else {
+                    return (None, None);
+                };
+                let (s0, t0) = self.info(first);
+                let (mut shape, mut ty) = (s0, t0);
+                for i in rest {
+                    let (s, t) = self.info(i);
+                    if s != shape {
+                        shape = None;
+                    }
+                    if t != ty {
+                        ty = None;
                     }
                 }
-                let mut d = vec![items.len()];
-                d.extend(first);
-                Some(d)
+                let shape = shape.map(|first| {
+                    let mut d = vec![items.len()];
+                    d.extend(first);
+                    d
+                });
+                (shape, ty)
             }
-            ExprKind::Unary { operand, .. } => self.shape(operand),
+            ExprKind::Unary { op, operand } => {
+                let (s, t) = self.info(operand);
+                let t = match op {
+                    UnaryOp::Not => Some(Ty::Boolean),
+                    _ => t.filter(|t| *t == Ty::Number),
+                };
+                (s, t)
+            }
             ExprKind::Binary { op, lhs, rhs } => {
-                let (a, b) = (self.shape(lhs)?, self.shape(rhs)?);
-                match op {
-                    op if crate::lookup::is_elementwise(*op) => {
-                        if a == b || b.is_empty() {
-                            Some(a)
-                        } else if a.is_empty() {
-                            Some(b)
-                        } else {
-                            None
+                let ((sa, ta), (sb, tb)) = (self.info(lhs), self.info(rhs));
+                let shape = match (sa, sb) {
+                    (Some(a), Some(b)) => match op {
+                        op if crate::lookup::is_elementwise(*op) => {
+                            if a == b || b.is_empty() {
+                                Some(a)
+                            } else if a.is_empty() {
+                                Some(b)
+                            } else {
+                                None
+                            }
                         }
-                    }
-                    BinaryOp::Mul if a.is_empty() => Some(b),
-                    BinaryOp::Mul | BinaryOp::Div if b.is_empty() => Some(a),
+                        BinaryOp::Mul if a.is_empty() => Some(b),
+                        BinaryOp::Mul | BinaryOp::Div if b.is_empty() => Some(a),
+                        _ => None,
+                    },
                     _ => None,
-                }
+                };
+                let ty = match op {
+                    BinaryOp::Lt
+                    | BinaryOp::Le
+                    | BinaryOp::Gt
+                    | BinaryOp::Ge
+                    | BinaryOp::Eq
+                    | BinaryOp::Ne
+                    | BinaryOp::And
+                    | BinaryOp::Or => Some(Ty::Boolean),
+                    BinaryOp::Add => match (ta, tb) {
+                        (Some(Ty::Text), Some(Ty::Text)) => Some(Ty::Text),
+                        (Some(Ty::Number), Some(Ty::Number)) => Some(Ty::Number),
+                        _ => None,
+                    },
+                    _ => (ta == Some(Ty::Number) && tb == Some(Ty::Number)).then_some(Ty::Number),
+                };
+                (shape, ty)
             }
             ExprKind::Call { func, args }
                 if !func.global
@@ -123,48 +172,9 @@ impl Checker<'_> {
                     && args.positional.len() == 1
                     && args.iterators.is_empty() =>
             {
-                self.shape(&args.positional[0])
+                (self.info(&args.positional[0]).0, None)
             }
-            _ => None,
-        }
-    }
-
-    /// The type of `e` when it is certain.
-    fn ty(&self, e: &Expr) -> Option<Ty> {
-        match &e.kind {
-            ExprKind::Integer(_) | ExprKind::Real(_) => Some(Ty::Number),
-            ExprKind::Bool(_) => Some(Ty::Boolean),
-            ExprKind::String(_) => Some(Ty::Text),
-            ExprKind::Ref(r) if !r.global => self.var(r).map(|v| v.1),
-            ExprKind::Unary { op, operand } => match op {
-                UnaryOp::Not => Some(Ty::Boolean),
-                _ => self.ty(operand).filter(|t| *t == Ty::Number),
-            },
-            ExprKind::Binary { op, lhs, rhs } => match op {
-                BinaryOp::Lt
-                | BinaryOp::Le
-                | BinaryOp::Gt
-                | BinaryOp::Ge
-                | BinaryOp::Eq
-                | BinaryOp::Ne
-                | BinaryOp::And
-                | BinaryOp::Or => Some(Ty::Boolean),
-                BinaryOp::Add => match (self.ty(lhs)?, self.ty(rhs)?) {
-                    (Ty::Text, Ty::Text) => Some(Ty::Text),
-                    (Ty::Number, Ty::Number) => Some(Ty::Number),
-                    _ => None,
-                },
-                _ => (self.ty(lhs)? == Ty::Number && self.ty(rhs)? == Ty::Number)
-                    .then_some(Ty::Number),
-            },
-            ExprKind::Array(items) => {
-                let t = self.ty(items.first()?)?;
-                items[1..]
-                    .iter()
-                    .all(|i| self.ty(i) == Some(t))
-                    .then_some(t)
-            }
-            _ => None,
+            _ => (None, None),
         }
     }
 
@@ -201,7 +211,8 @@ impl Checker<'_> {
     fn sides(&mut self, lhs: &Expr, rhs: &Expr, span: Span) {
         self.subscripts(lhs);
         self.subscripts(rhs);
-        if let (Some(a), Some(b)) = (self.shape(lhs), self.shape(rhs)) {
+        let ((sa, ta), (sb, tb)) = (self.info(lhs), self.info(rhs));
+        if let (Some(a), Some(b)) = (sa, sb) {
             if a != b {
                 self.diags.push(
                     Diagnostic::error(
@@ -217,7 +228,7 @@ impl Checker<'_> {
                 return;
             }
         }
-        if let (Some(a), Some(b)) = (self.ty(lhs), self.ty(rhs)) {
+        if let (Some(a), Some(b)) = (ta, tb) {
             if a != b {
                 self.diags.push(
                     Diagnostic::error(
@@ -265,11 +276,16 @@ impl Checker<'_> {
 /// Checks the flat model's equations and bindings (`E2017`, `E2018`).
 pub fn check(model: &FlatModel) -> Vec<Diagnostic> {
     let mut c = Checker {
-        vars: model
-            .vars
-            .iter()
-            .map(|v| (v.name.as_str(), (v.dims.as_slice(), ty_of(&v.ty))))
-            .collect(),
+        vars: {
+            let mut m = HashMap::with_capacity_and_hasher(model.vars.len(), Default::default());
+            m.extend(
+                model
+                    .vars
+                    .iter()
+                    .map(|v| (v.name.as_str(), (v.dims.as_slice(), ty_of(&v.ty)))),
+            );
+            m
+        },
         diags: Vec::new(),
         key: String::new(),
         buf: Default::default(),
