@@ -175,7 +175,7 @@ pub fn equations(
                         format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
                     )
                     .at(c.span, "in this connect")
-                    .with_note("a flow variable connects only to a flow variable, and only variables of the same size and type connect"),
+                    .with_note(mismatch(xa, xb)),
                 );
                 continue;
             }
@@ -311,6 +311,38 @@ pub fn equations(
         }
     }
     (new_eqs, diags)
+}
+
+/// What differs between two variables that cannot be connected.
+fn mismatch(a: &crate::flat::FlatVar, b: &crate::flat::FlatVar) -> String {
+    let flow = |v: &crate::flat::FlatVar| {
+        if v.flow {
+            "a flow variable"
+        } else {
+            "not a flow variable"
+        }
+    };
+    if a.flow != b.flow {
+        format!(
+            "`{}` is {}, `{}` is {}: a flow variable connects only to a flow variable",
+            a.name,
+            flow(a),
+            b.name,
+            flow(b)
+        )
+    } else if a.dims != b.dims {
+        format!(
+            "sizes differ: {} and {}",
+            crate::flat::fmt_dims(&a.dims),
+            crate::flat::fmt_dims(&b.dims)
+        )
+    } else {
+        format!(
+            "types differ: {} and {}",
+            crate::flat::type_name(&a.ty),
+            crate::flat::type_name(&b.ty)
+        )
+    }
 }
 
 /// Whether two connected variables have compatible types: numbers with numbers
