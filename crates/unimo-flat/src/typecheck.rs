@@ -28,12 +28,20 @@ impl Ty {
 }
 
 struct Checker<'m> {
-    vars: HashMap<&'m str, (&'m [usize], Ty)>,
+    all: &'m [crate::flat::FlatVar],
+    /// Variable indices by name.
+    vars: HashMap<&'m str, u32>,
+    /// The variable found last: an equation's references are mostly to variables
+    /// declared next to each other, so the neighbours are tried before the map (whose
+    /// probes miss the cache in a large model).
+    hint: std::cell::Cell<usize>,
     diags: Vec<Diagnostic>,
-    /// Reused buffers for variable keys.
-    key: String,
+    /// A reused buffer for variable keys.
     buf: std::cell::RefCell<String>,
 }
+
+/// How many variables on each side of the last one found are tried first.
+const NEAR: usize = 12;
 
 fn ty_of(t: &FlatType) -> Ty {
     match t {
@@ -49,7 +57,16 @@ impl Checker<'_> {
     fn var(&self, r: &ComponentRef) -> Option<(&[usize], Ty)> {
         let mut buf = self.buf.borrow_mut();
         var_key_into(&mut buf, &r.parts);
-        self.vars.get(buf.as_str()).copied()
+        let key = buf.as_str();
+        let hint = self.hint.get();
+        let near = hint.saturating_sub(NEAR)..(hint + NEAR).min(self.all.len());
+        let i = match self.all[near.clone()].iter().position(|v| v.name == key) {
+            Some(k) => near.start + k,
+            None => *self.vars.get(key)? as usize,
+        };
+        self.hint.set(i);
+        let v = &self.all[i];
+        Some((v.dims.as_slice(), ty_of(&v.ty)))
     }
 
     /// The shape of a reference to a variable of dimensions `dims`, when certain.
@@ -180,20 +197,17 @@ impl Checker<'_> {
 
     fn subscripts(&mut self, e: &Expr) {
         let mut found = Vec::new();
-        let mut key = std::mem::take(&mut self.key);
         crate::flat::for_each_ref(e, &mut |r| {
             let n = r.parts.last().map_or(0, |p| p.subscripts.len());
             if r.global || n == 0 {
                 return;
             }
-            var_key_into(&mut key, &r.parts);
-            if let Some((dims, _)) = self.vars.get(key.as_str()) {
+            if let Some((dims, _)) = self.var(r) {
                 if n > dims.len() {
-                    found.push((key.clone(), n, dims.len(), r.span));
+                    found.push((crate::eval::var_key(r), n, dims.len(), r.span));
                 }
             }
         });
-        self.key = key;
         for (name, n, d, span) in found {
             self.diags.push(
                 Diagnostic::error(
@@ -276,18 +290,20 @@ impl Checker<'_> {
 /// Checks the flat model's equations and bindings (`E2017`, `E2018`).
 pub fn check(model: &FlatModel) -> Vec<Diagnostic> {
     let mut c = Checker {
+        all: &model.vars,
         vars: {
             let mut m = HashMap::with_capacity_and_hasher(model.vars.len(), Default::default());
             m.extend(
                 model
                     .vars
                     .iter()
-                    .map(|v| (v.name.as_str(), (v.dims.as_slice(), ty_of(&v.ty)))),
+                    .enumerate()
+                    .map(|(i, v)| (v.name.as_str(), i as u32)),
             );
             m
         },
+        hint: std::cell::Cell::new(0),
         diags: Vec::new(),
-        key: String::new(),
         buf: Default::default(),
     };
     c.equations(&model.equations);
