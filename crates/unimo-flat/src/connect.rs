@@ -99,16 +99,20 @@ pub fn equations(
 ) -> (Vec<Equation>, Vec<Diagnostic>) {
     let mut diags = Vec::new();
     let mut nodes: Vec<Node> = Vec::new();
-    let mut index: HashMap<Node, usize> = HashMap::default();
+    // Node of (variable, outside) at `2 * var + outside`; `usize::MAX`: none yet.
+    let mut index: Vec<usize> = vec![usize::MAX; 2 * model.vars.len()];
     let mut parent: Vec<usize> = Vec::new();
     let mut node = |n: Node, nodes: &mut Vec<Node>, parent: &mut Vec<usize>| -> usize {
-        *index.entry(n.clone()).or_insert_with(|| {
+        let slot = &mut index[2 * n.var + usize::from(n.outside)];
+        if *slot == usize::MAX {
             nodes.push(n);
             parent.push(parent.len());
-            parent.len() - 1
-        })
+            *slot = parent.len() - 1;
+        }
+        *slot
     };
-    let mut spans: HashMap<usize, Span> = HashMap::default();
+    // The first `connect` that named each node, by node.
+    let mut spans: Vec<Option<Span>> = Vec::new();
     let keys: Vec<(String, String)> = connects
         .iter()
         .map(|c| (var_key_full(&c.a), var_key_full(&c.b)))
@@ -133,9 +137,10 @@ pub fn equations(
             );
             continue;
         }
-        let sa: Vec<&str> = ma.iter().map(|(s, _)| *s).collect();
-        let sb: Vec<&str> = mb.iter().map(|(s, _)| *s).collect();
-        if sa != sb {
+        let same = ma.len() == mb.len() && ma.iter().zip(mb).all(|(a, b)| a.0 == b.0);
+        if !same {
+            let sa: Vec<&str> = ma.iter().map(|(s, _)| *s).collect();
+            let sb: Vec<&str> = mb.iter().map(|(s, _)| *s).collect();
             let missing: Vec<&str> = sa
                 .iter()
                 .filter(|s| !sb.contains(s))
@@ -216,19 +221,22 @@ pub fn equations(
             if ra != rb {
                 parent[ra] = rb;
             }
-            spans.entry(na).or_insert(c.span);
+            if spans.len() < nodes.len() {
+                spans.resize(nodes.len(), None);
+            }
+            spans[na].get_or_insert(c.span);
         }
     }
     // Group the nodes by set, in order of first appearance.
     let mut sets: Vec<Vec<usize>> = Vec::new();
-    let mut set_of_root: HashMap<usize, usize> = HashMap::default();
+    let mut set_of_root: Vec<usize> = vec![usize::MAX; nodes.len()];
     for n in 0..nodes.len() {
         let r = find(&mut parent, n);
-        let k = *set_of_root.entry(r).or_insert_with(|| {
+        if set_of_root[r] == usize::MAX {
             sets.push(Vec::new());
-            sets.len() - 1
-        });
-        sets[k].push(n);
+            set_of_root[r] = sets.len() - 1;
+        }
+        sets[set_of_root[r]].push(n);
     }
     let mut connected_inside = vec![false; model.vars.len()];
     for n in &nodes {
@@ -240,8 +248,7 @@ pub fn equations(
     for set in &sets {
         let span = set
             .iter()
-            .find_map(|n| spans.get(n))
-            .copied()
+            .find_map(|&n| spans.get(n).copied().flatten())
             .unwrap_or_default();
         let first = &nodes[set[0]];
         if model.vars[first.var].flow {

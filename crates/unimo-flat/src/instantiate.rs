@@ -59,7 +59,14 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub absent: Vec<String>,
     /// Element names declared so far in the instances being instantiated (one level
     /// per [`Self::class_body`], shared with its bases), with where; innermost last.
-    declared: Vec<HashMap<SmolStr, Span>>,
+    /// `None`: the class is known to declare no name twice (checked at its first
+    /// instance: which elements a class has, inherited ones included, does not depend
+    /// on the instance), so the level checks nothing.
+    declared: Vec<Option<HashMap<SmolStr, Span>>>,
+    /// Whether the innermost level found a duplicate.
+    duplicate_found: Vec<bool>,
+    /// Classes whose elements were checked and have no duplicate names.
+    duplicate_free: HashSet<ClassId>,
     /// Emptied levels of `declared`, kept for reuse (no map allocated per instance).
     declared_pool: Vec<HashMap<SmolStr, Span>>,
     /// `inner` components visible from the current instance, innermost last:
@@ -83,6 +90,11 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
     /// Class paths looked up from a class (without redeclarations), by (class, path).
     pub(crate) type_cache: HashMap<(ClassId, SmolStr), Option<Found>>,
+    /// The type of a component clause by (class, address of the clause's type name in
+    /// the class's syntax tree, which the tree keeps alive), and whether it has no
+    /// constraining modifiers: only filled and used while there are no class
+    /// redeclarations.
+    clause_types: HashMap<(ClassId, usize), (Option<Found>, bool)>,
     /// Per class: declared `replaceable` in its parent, and its constraining clause.
     pub(crate) constraint_cache: HashMap<ClassId, Option<(bool, Option<ConstrainingClause>)>>,
 }
@@ -156,6 +168,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             absent: Vec::new(),
             declared: Vec::new(),
             declared_pool: Vec::new(),
+            duplicate_found: Vec::new(),
+            duplicate_free: HashSet::default(),
             inners: Vec::new(),
             call_depth: 0,
             inherited_causality: None,
@@ -166,6 +180,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             class_redeclares: HashMap::default(),
             type_cache: HashMap::default(),
             constraint_cache: HashMap::default(),
+            clause_types: HashMap::default(),
             depth: 0,
         }
     }
@@ -357,12 +372,18 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         variability: Option<Variability>,
         top: bool,
     ) {
-        let level = self.declared_pool.pop().unwrap_or_default();
+        let check = !self.duplicate_free.contains(&class);
+        let level = check.then(|| self.declared_pool.pop().unwrap_or_default());
         self.declared.push(level);
+        self.duplicate_found.push(false);
         self.class_body_inner(class, prefix, m, variability, top, true);
-        if let Some(mut level) = self.declared.pop() {
+        let found = self.duplicate_found.pop().unwrap_or(true);
+        if let Some(Some(mut level)) = self.declared.pop() {
             level.clear();
             self.declared_pool.push(level);
+            if !found {
+                self.duplicate_free.insert(class);
+            }
         }
     }
 
@@ -606,24 +627,29 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         top: bool,
     ) {
         let name = d.name.text.as_str();
-        let Some(seen) = self.declared.last_mut() else {
+        let Some(level) = self.declared.last_mut() else {
             return;
         };
-        if let Some(first) = seen.get(name).copied() {
-            let owner = if scope.prefix.is_empty() {
-                self.model.name.clone()
-            } else {
-                instance_key(&scope.prefix)
-            };
-            self.diags.push(
+        if let Some(seen) = level {
+            if let Some(first) = seen.get(name).copied() {
+                let owner = if scope.prefix.is_empty() {
+                    self.model.name.clone()
+                } else {
+                    instance_key(&scope.prefix)
+                };
+                self.diags.push(
                 Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
                     .at(d.name.span, "second declaration")
                     .with_label(first, "first declared here (possibly in a base class)")
                     .with_help("rename one of them; an inherited element and a local one share one name space"),
             );
-            return;
+                if let Some(f) = self.duplicate_found.last_mut() {
+                    *f = true;
+                }
+                return;
+            }
+            seen.insert(d.name.text.clone(), d.name.span);
         }
-        seen.insert(d.name.text.clone(), d.name.span);
         let decl_mod = d
             .modification
             .as_ref()
@@ -664,16 +690,31 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 found
             }
             None => {
-                let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
-                let found = self.lookup_class_path(scope, &parts);
-                // A replaceable class's constraining modifiers (and, when it was
-                // redeclared, a check that the new class fits).
-                if let Some(Found::Class(c)) = found {
-                    if let Some(cmod) = self.class_constraint(scope, &parts, c, d.span) {
-                        merged = merged.over_into(cmod);
+                // Without class redeclarations a clause's type depends on its class
+                // only: cached by (class, clause).
+                let key = (scope.class, &cc.type_name as *const Name as usize);
+                let cacheable = self.class_redeclares.is_empty();
+                match self.clause_types.get(&key) {
+                    Some(&(found, true)) if cacheable => found,
+                    _ => {
+                        let parts: Vec<&str> =
+                            cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
+                        let found = self.lookup_class_path(scope, &parts);
+                        // A replaceable class's constraining modifiers (and, when it
+                        // was redeclared, a check that the new class fits).
+                        let mut unconstrained = true;
+                        if let Some(Found::Class(c)) = found {
+                            if let Some(cmod) = self.class_constraint(scope, &parts, c, d.span) {
+                                merged = merged.over_into(cmod);
+                                unconstrained = false;
+                            }
+                        }
+                        if cacheable {
+                            self.clause_types.insert(key, (found, unconstrained));
+                        }
+                        found
                     }
                 }
-                found
             }
         };
         let Some(found) = found else { return }; // unknown type: reported by the name check
@@ -1162,8 +1203,19 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         iters: &mut Vec<(String, Value)>,
         locals: &mut Vec<String>,
     ) -> ComponentRef {
-        // The parts with their subscripts flattened, room left for the instance prefix.
-        let mut parts: Vec<RefPart> = Vec::with_capacity(scope.prefix.len() + r.parts.len());
+        let Some(first) = r.parts.first().map(|p| p.name.text.clone()) else {
+            return r.clone();
+        };
+        let plain = r.global || first == "time" || locals.iter().any(|l| *l == first);
+        let component = !plain && self.tree.has_component(scope.class, &first);
+        // A component reference gets the instance prefix (unless it goes through an
+        // `outer`, below): the prefix is written first, then the parts as written.
+        let direct = component && self.outer_alias.is_empty();
+        let mut parts: Vec<RefPart> =
+            Vec::with_capacity(if direct { scope.prefix.len() } else { 0 } + r.parts.len());
+        if direct {
+            parts.extend_from_slice(&scope.prefix);
+        }
         for p in &r.parts {
             let mut subscripts = p.subscripts.clone();
             for s in &mut subscripts {
@@ -1189,22 +1241,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             parts,
             span: r.span,
         };
-        let Some(first) = r.parts.first().map(|p| p.name.text.clone()) else {
-            return r;
-        };
-        if r.global || first == "time" || locals.iter().any(|l| *l == first) {
+        if plain || direct {
             return r;
         }
-        if self.tree.has_component(scope.class, &first) {
+        if component {
             // A reference through an `outer` component goes to its `inner`.
-            let alias = if self.outer_alias.is_empty() {
-                None
-            } else {
-                let mut head = scope.prefix.to_vec();
-                head.push(r.parts[0].clone());
-                self.outer_alias.get(&instance_key_no_subs(&head))
-            };
-            let parts = match alias {
+            let mut head = scope.prefix.to_vec();
+            head.push(r.parts[0].clone());
+            let parts = match self.outer_alias.get(&instance_key_no_subs(&head)) {
                 Some(inner) => {
                     let mut p = inner.clone();
                     if let Some(last) = p.last_mut() {
@@ -1216,9 +1260,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     p
                 }
                 None => {
-                    let mut p = r.parts;
-                    p.splice(0..0, scope.prefix.iter().cloned());
-                    p
+                    head.extend(r.parts.into_iter().skip(1));
+                    head
                 }
             };
             return ComponentRef {
