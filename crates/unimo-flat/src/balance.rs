@@ -141,14 +141,7 @@ impl Shapes<'_> {
                         _ => vec![a[0], b[b.len() - 1]],
                     },
                     BinaryOp::Div => a,
-                    BinaryOp::Lt
-                    | BinaryOp::Le
-                    | BinaryOp::Gt
-                    | BinaryOp::Ge
-                    | BinaryOp::Eq
-                    | BinaryOp::Ne
-                    | BinaryOp::And
-                    | BinaryOp::Or => Vec::new(),
+                    op if crate::lookup::is_boolean(*op) => Vec::new(),
                     _ => {
                         if a.len() >= b.len() {
                             a

@@ -1806,16 +1806,8 @@ impl Instantiator<'_, '_> {
                         op: *op,
                         operand: Box::new(picked(self, operand)?),
                     },
-                    ExprKind::Call { func, args }
-                        if !func.global
-                            && func.parts.len() == 1
-                            && crate::lookup::ELEMENTWISE_FUNCTIONS
-                                .contains(&func.parts[0].text.as_str())
-                            && args.positional.len() == 1
-                            && args.named.is_empty()
-                            && args.iterators.is_empty() =>
-                    {
-                        let x = picked(self, &args.positional[0])?;
+                    ExprKind::Call { func, args } => {
+                        let x = picked(self, crate::lookup::elementwise_arg(func, args)?)?;
                         ExprKind::Call {
                             func: func.clone(),
                             args: Box::new(CallArgs {

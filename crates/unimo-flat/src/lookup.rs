@@ -31,6 +31,27 @@ pub fn is_elementwise(op: unimo_syntax::ast::BinaryOp) -> bool {
     )
 }
 
+/// Operators whose result is a Boolean (relations and `and`/`or`).
+pub fn is_boolean(op: unimo_syntax::ast::BinaryOp) -> bool {
+    use unimo_syntax::ast::BinaryOp::*;
+    matches!(op, Lt | Le | Gt | Ge | Eq | Ne | And | Or)
+}
+
+/// The argument of a call of an element-wise builtin with one positional argument
+/// (`der(x)`, `sin(v)`), whose result has the argument's shape.
+pub fn elementwise_arg<'e>(
+    func: &unimo_syntax::ast::Name,
+    args: &'e unimo_syntax::ast::CallArgs,
+) -> Option<&'e unimo_syntax::ast::Expr> {
+    (!func.global
+        && func.parts.len() == 1
+        && ELEMENTWISE_FUNCTIONS.contains(&func.parts[0].text.as_str())
+        && args.positional.len() == 1
+        && args.named.is_empty()
+        && args.iterators.is_empty())
+    .then(|| &args.positional[0])
+}
+
 pub const BUILTIN_FUNCTIONS: &[&str] = &[
     "abs",
     "acos",

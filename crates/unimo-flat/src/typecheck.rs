@@ -164,14 +164,7 @@ impl Checker<'_> {
                     _ => None,
                 };
                 let ty = match op {
-                    BinaryOp::Lt
-                    | BinaryOp::Le
-                    | BinaryOp::Gt
-                    | BinaryOp::Ge
-                    | BinaryOp::Eq
-                    | BinaryOp::Ne
-                    | BinaryOp::And
-                    | BinaryOp::Or => Some(Ty::Boolean),
+                    op if crate::lookup::is_boolean(*op) => Some(Ty::Boolean),
                     BinaryOp::Add => match (ta, tb) {
                         (Some(Ty::Text), Some(Ty::Text)) => Some(Ty::Text),
                         (Some(Ty::Number), Some(Ty::Number)) => Some(Ty::Number),
@@ -181,16 +174,10 @@ impl Checker<'_> {
                 };
                 (shape, ty)
             }
-            ExprKind::Call { func, args }
-                if !func.global
-                    && func.parts.len() == 1
-                    && crate::lookup::ELEMENTWISE_FUNCTIONS
-                        .contains(&func.parts[0].text.as_str())
-                    && args.positional.len() == 1
-                    && args.iterators.is_empty() =>
-            {
-                (self.info(&args.positional[0]).0, None)
-            }
+            ExprKind::Call { func, args } => match crate::lookup::elementwise_arg(func, args) {
+                Some(arg) => (self.info(arg).0, None),
+                None => (None, None),
+            },
             _ => (None, None),
         }
     }
