@@ -50,18 +50,24 @@ fn var_ref(name: &str, span: Span) -> Expr {
 }
 
 /// The primitive variables inside each connector instance in `keys`: (suffix, var
-/// index), sorted by suffix. A variable belongs to every instance its name is inside
-/// of (`a.p[1].v` to `a.p[1]`, `a.p` and `a`): one hash probe per boundary of its name,
-/// for the instances a `connect` names only.
+/// index), sorted by suffix, at the slot the returned map gives each key. A variable belongs to every instance its name is
+/// inside of (`a.p[1].v` to `a.p[1]`, `a.p` and `a`): one hash probe per boundary of
+/// its name, for the instances a `connect` names only; a prefix the previous variable
+/// shared (`s1.a` of `s1.a.s` and `s1.a.f`) is not probed again.
 fn members<'n>(
     vars: &'n [crate::flat::FlatVar],
     keys: &'n [(String, String)],
-) -> HashMap<&'n str, Vec<(&'n str, usize)>> {
-    let mut out: HashMap<&str, Vec<(&str, usize)>> = HashMap::default();
+) -> (HashMap<&'n str, usize>, Vec<Vec<(&'n str, usize)>>) {
+    let mut slot: HashMap<&str, usize> = HashMap::default();
     for (ka, kb) in keys {
-        out.entry(ka.as_str()).or_default();
-        out.entry(kb.as_str()).or_default();
+        for k in [ka, kb] {
+            let n = slot.len();
+            slot.entry(k.as_str()).or_insert(n);
+        }
     }
+    let mut lists: Vec<Vec<(&str, usize)>> = vec![Vec::new(); slot.len()];
+    // Per boundary depth: the previous variable's prefix there and its slot.
+    let mut last: Vec<(&str, Option<usize>)> = Vec::new();
     for (i, v) in vars.iter().enumerate() {
         let name = v.name.as_str();
         let boundaries = name
@@ -70,16 +76,29 @@ fn members<'n>(
             .filter(|(_, b)| *b == b'.' || *b == b'[')
             .map(|(k, _)| k)
             .chain(std::iter::once(name.len()));
-        for k in boundaries {
-            if let Some(list) = out.get_mut(&name[..k]) {
-                list.push((&name[k..], i));
+        for (depth, k) in boundaries.enumerate() {
+            let prefix = &name[..k];
+            let found = match last.get(depth) {
+                Some(&(p, found)) if p == prefix => found,
+                _ => {
+                    let found = slot.get(prefix).copied();
+                    if depth < last.len() {
+                        last[depth] = (prefix, found);
+                    } else {
+                        last.push((prefix, found));
+                    }
+                    found
+                }
+            };
+            if let Some(s) = found {
+                lists[s].push((&name[k..], i));
             }
         }
     }
-    for list in out.values_mut() {
+    for list in &mut lists {
         list.sort_unstable_by(|a, b| a.0.cmp(b.0));
     }
-    out
+    (slot, lists)
 }
 
 /// Adds the connection equations to `model`; returns diagnostics for mismatches.
@@ -117,7 +136,7 @@ pub fn equations(
         .iter()
         .map(|c| (var_key_full(&c.a), var_key_full(&c.b)))
         .collect();
-    let members = members(&model.vars, &keys);
+    let (slot, lists) = members(&model.vars, &keys);
     let none = Vec::new();
     for (c, (ka, kb)) in connects.iter().zip(&keys) {
         // A connection to an absent conditional component is dropped (spec 4.4.5).
@@ -127,8 +146,8 @@ pub fn equations(
         {
             continue;
         }
-        let ma = members.get(ka.as_str()).unwrap_or(&none);
-        let mb = members.get(kb.as_str()).unwrap_or(&none);
+        let ma = slot.get(ka.as_str()).map_or(&none, |&s| &lists[s]);
+        let mb = slot.get(kb.as_str()).map_or(&none, |&s| &lists[s]);
         if ma.is_empty() || mb.is_empty() {
             let which = if ma.is_empty() { ka } else { kb };
             diags.push(

@@ -426,6 +426,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             class,
             prefix: std::sync::Arc::from(prefix),
         };
+        let prefix_key = if prefix.is_empty() {
+            String::new()
+        } else {
+            instance_key(prefix)
+        };
         self.register_class_redeclares(class, composition, prefix, m);
         // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
         // it travels into the bases like an extends modifier (under the instance's).
@@ -527,10 +532,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
                         m2.children.retain(|(n, _)| *n != name);
                         m2.children.push((name, child));
-                        self.component(&scope, cc, d, &m2, variability, top);
+                        self.component(&scope, &prefix_key, cc, d, &m2, variability, top);
                         continue;
                     }
-                    self.component(&scope, cc, d, m, variability, top);
+                    self.component(&scope, &prefix_key, cc, d, m, variability, top);
                 }
             }
         }
@@ -617,9 +622,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn component(
         &mut self,
         scope: &Scope,
+        prefix_key: &str,
         cc: &ComponentClause,
         d: &ComponentDecl,
         m: &Mod,
@@ -659,10 +666,16 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             Some(outer) => outer.clone().over_into(decl_mod),
             None => decl_mod,
         };
-        let mut path = Vec::with_capacity(scope.prefix.len() + 1);
-        path.extend_from_slice(&scope.prefix);
-        path.push(part(name, d.name.span));
-        let key = eval::var_key_parts(&path);
+        // The full name (`s1.a.f`): the instance's key and the element's name.
+        let key = if prefix_key.is_empty() {
+            name.to_owned()
+        } else {
+            let mut k = String::with_capacity(prefix_key.len() + 1 + name.len());
+            k.push_str(prefix_key);
+            k.push('.');
+            k.push_str(name);
+            k
+        };
         if let Some(cond) = &d.condition {
             let flat = self.expr(cond, scope, &mut Vec::new(), &mut Vec::new());
             match eval::eval(&flat, self, &mut Vec::new()) {
@@ -774,6 +787,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 self.model.vars.push(var);
             }
             Kind::Class(c) => {
+                let mut path = Vec::with_capacity(scope.prefix.len() + 1);
+                path.extend_from_slice(&scope.prefix);
+                path.push(part(name, d.name.span));
                 let record = self.is_record(c);
                 // A record binding is split into field bindings where it can be
                 // (per element of an array of records).
