@@ -49,6 +49,10 @@ fn var_ref(name: &str, span: Span) -> Expr {
     }
 }
 
+/// A connector instance's primitive variables: (suffix after the instance's name, var
+/// index).
+type Members<'n> = Vec<(&'n str, usize)>;
+
 /// The primitive variables inside each connector instance in `keys`: (suffix, var
 /// index), sorted by suffix, at the slot the returned map gives each key. A variable belongs to every instance its name is
 /// inside of (`a.p[1].v` to `a.p[1]`, `a.p` and `a`): one hash probe per boundary of
@@ -57,7 +61,7 @@ fn var_ref(name: &str, span: Span) -> Expr {
 fn members<'n>(
     vars: &'n [crate::flat::FlatVar],
     keys: &'n [(String, String)],
-) -> (HashMap<&'n str, usize>, Vec<Vec<(&'n str, usize)>>) {
+) -> (HashMap<&'n str, usize>, Vec<Members<'n>>) {
     let mut slot: HashMap<&str, usize> = HashMap::default();
     for (ka, kb) in keys {
         for k in [ka, kb] {
@@ -65,7 +69,7 @@ fn members<'n>(
             slot.entry(k.as_str()).or_insert(n);
         }
     }
-    let mut lists: Vec<Vec<(&str, usize)>> = vec![Vec::new(); slot.len()];
+    let mut lists: Vec<Members> = vec![Vec::new(); slot.len()];
     // Per boundary depth: the previous variable's prefix there and its slot.
     let mut last: Vec<(&str, Option<usize>)> = Vec::new();
     for (i, v) in vars.iter().enumerate() {
