@@ -58,10 +58,15 @@ impl Checker<'_> {
         let mut buf = self.buf.borrow_mut();
         var_key_into(&mut buf, &r.parts);
         let key = buf.as_str();
-        let hint = self.hint.get();
-        let near = hint.saturating_sub(NEAR)..(hint + NEAR).min(self.all.len());
-        let i = match self.all[near.clone()].iter().position(|v| v.name == key) {
-            Some(k) => near.start + k,
+        // From the last one found onwards first (references mostly go forwards),
+        // then the ones before it.
+        let hint = self.hint.get().min(self.all.len());
+        let (lo, hi) = (hint.saturating_sub(NEAR), (hint + NEAR).min(self.all.len()));
+        let i = match (hint..hi)
+            .chain(lo..hint)
+            .find(|&k| self.all[k].name == key)
+        {
+            Some(k) => k,
             None => *self.vars.get(key)? as usize,
         };
         self.hint.set(i);
