@@ -136,6 +136,14 @@ fn instance_key_no_subs(path: &[RefPart]) -> String {
     eval::var_key_parts(path)
 }
 
+/// `E2005`: `name` declared twice in the instance `owner`.
+fn duplicate(name: &str, owner: &str, second: Span, first: Span) -> Diagnostic {
+    Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
+        .at(second, "second declaration")
+        .with_label(first, "first declared here (possibly in a base class)")
+        .with_help("rename one of them; an inherited element and a local one share one name space")
+}
+
 /// All index tuples of an array of the given dimensions, in row-major order.
 fn index_tuples(dims: &[usize]) -> Vec<Vec<i64>> {
     let mut out = vec![Vec::new()];
@@ -644,12 +652,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 } else {
                     instance_key(&scope.prefix)
                 };
-                self.diags.push(
-                Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
-                    .at(d.name.span, "second declaration")
-                    .with_label(first, "first declared here (possibly in a base class)")
-                    .with_help("rename one of them; an inherited element and a local one share one name space"),
-            );
+                self.diags.push(duplicate(name, &owner, d.name.span, first));
                 if let Some(f) = self.duplicate_found.last_mut() {
                     *f = true;
                 }

@@ -218,36 +218,22 @@ impl Checker<'_> {
         self.subscripts(lhs);
         self.subscripts(rhs);
         let ((sa, ta), (sb, tb)) = (self.info(lhs), self.info(rhs));
-        if let (Some(a), Some(b)) = (sa, sb) {
-            if a != b {
-                self.diags.push(
-                    Diagnostic::error(
-                        "E2018",
-                        format!(
-                            "the two sides have different sizes: {} and {}",
-                            crate::flat::fmt_dims(&a),
-                            crate::flat::fmt_dims(&b)
-                        ),
-                    )
-                    .at(span, "in this equation"),
-                );
-                return;
+        let differ = match (sa, sb, ta, tb) {
+            (Some(a), Some(b), _, _) if a != b => Some(format!(
+                "sizes: {} and {}",
+                crate::flat::fmt_dims(&a),
+                crate::flat::fmt_dims(&b)
+            )),
+            (_, _, Some(a), Some(b)) if a != b => {
+                Some(format!("types: {} and {}", a.name(), b.name()))
             }
-        }
-        if let (Some(a), Some(b)) = (ta, tb) {
-            if a != b {
-                self.diags.push(
-                    Diagnostic::error(
-                        "E2018",
-                        format!(
-                            "the two sides have different types: {} and {}",
-                            a.name(),
-                            b.name()
-                        ),
-                    )
+            _ => None,
+        };
+        if let Some(what) = differ {
+            self.diags.push(
+                Diagnostic::error("E2018", format!("the two sides have different {what}"))
                     .at(span, "in this equation"),
-                );
-            }
+            );
         }
     }
 
