@@ -174,3 +174,35 @@ fn fast_path_agrees_on_mutated_files() {
         })
         .unwrap();
 }
+
+/// The Modelica Standard Library beside the project (`../shared/msl`, test data, not
+/// part of the repository): the fast path answers on every one of its files, and where
+/// it answers it builds pest's tree.
+#[test]
+fn fast_path_answers_and_agrees_on_the_msl() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/msl");
+    assert!(
+        root.is_dir(),
+        "the MSL test data is missing: expected MSL 4.1.0 at {}",
+        root.display()
+    );
+    let mut files = Vec::new();
+    files_below(&root, &mut files);
+    assert!(files.len() > 2500, "only {} MSL files", files.len());
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let fast = fast_only(FileId(0), &text)
+            .unwrap_or_else(|| panic!("fast path declined {}", f.display()));
+        assert!(
+            fast.diagnostics.is_empty(),
+            "{}: {:?}",
+            f.display(),
+            fast.diagnostics
+        );
+        let pest = pest_only(FileId(0), &text);
+        if fast.ast != pest.ast {
+            let d = first_difference(&fast.ast, &pest.ast).unwrap_or_default();
+            panic!("{}: trees differ\n{d}", f.display());
+        }
+    }
+}

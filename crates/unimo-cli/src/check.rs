@@ -277,8 +277,8 @@ fn uses_of(def: &unimo_syntax::ast::ClassDef) -> Vec<String> {
     use unimo_syntax::ast::{ClassBody, ElementKind};
     let composition = match &def.body {
         ClassBody::Long { composition, .. } => composition,
-        // `model B = A(...)` uses `A`.
-        ClassBody::Short { base, .. } => {
+        // `model B = A(...)` uses `A`; `type D = der(f, x)` uses `f`.
+        ClassBody::Short { base, .. } | ClassBody::Der { base, .. } => {
             return base
                 .parts
                 .last()

@@ -365,7 +365,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         type_dims,
                     ));
                 }
-                ClassBody::Long { .. } => return Some((Kind::Class(c), m, type_dims)),
+                ClassBody::Long { .. } | ClassBody::Der { .. } => {
+                    return Some((Kind::Class(c), m, type_dims))
+                }
             }
         }
         None
@@ -454,6 +456,21 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     dm.redeclare = Some((cc.type_name.clone(), scope.clone()));
                     own_redeclares.children.push((d.name.text.clone(), dm));
                 }
+            }
+        }
+        // A class extension `model extends A(m)` first inherits the original `A`.
+        if let ClassBody::Long {
+            extends: Some(ext), ..
+        } = &def.body
+        {
+            if let Some(original) = self.tree.extended_original(class) {
+                let ext = ext
+                    .modification
+                    .as_ref()
+                    .map(|cm| Mod::from_class_mod(cm, &scope))
+                    .unwrap_or_default();
+                let base_mod = m.over(&own_redeclares.over(&ext));
+                self.class_body_inner(original, prefix, &base_mod, variability, top, false);
             }
         }
         // Inherited elements first, each base with the extends modifier under ours.
@@ -1653,7 +1670,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 let base = self.tree.bases(owner).first().copied()?;
                 self.class_constant(base, name, depth + 1)
             }
-            ClassBody::Long { composition, .. } => {
+            ClassBody::Long {
+                composition,
+                extends: class_extends,
+                ..
+            } => {
                 for e in &composition.elements {
                     if let ElementKind::Component(cc) = &e.kind {
                         if let Some(d) = cc.components.iter().find(|d| d.name.text == name) {
@@ -1667,13 +1688,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         }
                     }
                 }
-                let extends: Vec<Option<ClassModification>> = composition
-                    .elements
+                // The bases in `bases` order: a class extension's original first.
+                let extends: Vec<Option<ClassModification>> = class_extends
                     .iter()
-                    .filter_map(|e| match &e.kind {
+                    .map(|x| x.modification.clone())
+                    .chain(composition.elements.iter().filter_map(|e| match &e.kind {
                         ElementKind::Extends(x) => Some(x.modification.clone()),
                         _ => None,
-                    })
+                    }))
                     .collect();
                 let bases = self.tree.bases(owner);
                 for (base, m) in bases.into_iter().zip(extends) {
@@ -1687,7 +1709,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
                 None
             }
-            ClassBody::Enumeration { .. } => None,
+            ClassBody::Enumeration { .. } | ClassBody::Der { .. } => None,
         }
     }
 }

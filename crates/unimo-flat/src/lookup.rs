@@ -160,7 +160,8 @@ impl ClassTree<'_> {
                 })
                 .collect(),
             ClassBody::Short { base, .. } => vec![parts(base)],
-            ClassBody::Enumeration { .. } => Vec::new(),
+            // A function's derivative has its own interface: it inherits nothing.
+            ClassBody::Enumeration { .. } | ClassBody::Der { .. } => Vec::new(),
         };
         let mut out = Vec::new();
         for n in names {
@@ -176,7 +177,27 @@ impl ClassTree<'_> {
                 }
             }
         }
+        if let Some(original) = self.extended_original(class) {
+            out.insert(0, original);
+        }
         out
+    }
+
+    /// The class a class extension `model extends A(m) ... end A;` extends: the element
+    /// `A` its enclosing class inherits (spec 7.3.2).
+    pub fn extended_original(&mut self, class: ClassId) -> Option<ClassId> {
+        let def = self.get(class).def.clone();
+        let ClassBody::Long {
+            extends: Some(_), ..
+        } = &def.body
+        else {
+            return None;
+        };
+        let parent = self.get(class).parent?;
+        self.bases(parent)
+            .into_iter()
+            .find_map(|b| self.member_class(b, &def.name.text))
+            .filter(|&c| c != class)
     }
 
     /// A class member of `class`: declared, in its package folder, or inherited.

@@ -112,6 +112,13 @@ impl Checker<'_, '_> {
     fn class(&mut self, id: ClassId) {
         let def = self.tree.get(id).def.clone();
         match &def.body {
+            ClassBody::Der { base, .. } => {
+                let scope = self.tree.get(id).parent;
+                let refs: Vec<&str> = base.parts.iter().map(|p| p.text.as_str()).collect();
+                if self.tree.lookup_dotted(scope, &refs, false).is_none() {
+                    self.unknown(scope.unwrap_or(id), base, base.span, "function");
+                }
+            }
             ClassBody::Short {
                 base, modification, ..
             } => {

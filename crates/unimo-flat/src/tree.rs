@@ -120,7 +120,8 @@ impl ClassEntry {
                 unimo_syntax::ast::ClassBody::Enumeration { literals, .. } => {
                     literals.iter().map(|l| l.name.text.clone()).collect()
                 }
-                unimo_syntax::ast::ClassBody::Short { .. } => Default::default(),
+                unimo_syntax::ast::ClassBody::Short { .. }
+                | unimo_syntax::ast::ClassBody::Der { .. } => Default::default(),
             })
             .contains(name)
     }

@@ -57,6 +57,8 @@ pub enum ClassKind {
     Package,
     Function,
     Type,
+    /// `operator`: a package-like class holding the functions of one overloaded operator.
+    Operator,
 }
 
 impl ClassKind {
@@ -70,7 +72,43 @@ impl ClassKind {
             ClassKind::Package => "package",
             ClassKind::Function => "function",
             ClassKind::Type => "type",
+            ClassKind::Operator => "operator",
         }
+    }
+}
+
+/// `pure` or `impure` before `function`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Purity {
+    Pure,
+    Impure,
+}
+
+/// The prefixes that refine a class kind: `expandable connector`, `operator record`,
+/// `operator function`, `pure function`, `impure operator function`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct ClassPrefixes {
+    pub expandable: bool,
+    pub operator: bool,
+    pub purity: Option<Purity>,
+}
+
+impl ClassPrefixes {
+    /// The prefix words as written before the class keyword (empty when none).
+    pub fn keywords(self) -> String {
+        let mut s = String::new();
+        if self.expandable {
+            s.push_str("expandable ");
+        }
+        match self.purity {
+            Some(Purity::Pure) => s.push_str("pure "),
+            Some(Purity::Impure) => s.push_str("impure "),
+            None => {}
+        }
+        if self.operator {
+            s.push_str("operator ");
+        }
+        s
     }
 }
 
@@ -79,6 +117,7 @@ impl ClassKind {
 pub struct ClassDef {
     pub encapsulated: bool,
     pub partial: bool,
+    pub prefixes: ClassPrefixes,
     pub kind: ClassKind,
     pub name: Ident,
     pub body: ClassBody,
@@ -87,11 +126,19 @@ pub struct ClassDef {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum ClassBody {
-    /// `model A "doc" ... end A;`
+    /// `model A "doc" ... end A;`, or with `extends` set the class extension
+    /// `model extends A(m) "doc" ... end A;` of an inherited replaceable class.
     Long {
         description: Option<String>,
         composition: Composition,
         end_name: Ident,
+        extends: Option<Box<ClassExtends>>,
+    },
+    /// `type DerF = der(F, x, y) "doc";`: the partial derivative of a function.
+    Der {
+        base: Name,
+        with_respect_to: Vec<Ident>,
+        comment: Comment,
     },
     /// `type Length = Real(unit = "m") "doc";` and `connector RealInput = input Real;`
     Short {
@@ -110,6 +157,33 @@ pub enum ClassBody {
     },
 }
 
+/// The `extends` of a class extension `model extends A(m)`: the modification of the
+/// inherited class it extends.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClassExtends {
+    pub modification: Option<ClassModification>,
+    pub span: Span,
+}
+
+/// A function's `external "C" y = f(x) annotation(...);` clause.
+#[derive(Clone, Debug, PartialEq)]
+pub struct External {
+    /// The language string (`"C"`, `"FORTRAN 77"`, `"builtin"`), if written.
+    pub language: Option<String>,
+    /// The explicit call; `None` for the default call (same name, inputs in order).
+    pub call: Option<ExternalCall>,
+    pub annotation: Option<ClassModification>,
+    pub span: Span,
+}
+
+/// `y = f(a, size(b, 1))` in an external clause.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExternalCall {
+    pub output: Option<ComponentRef>,
+    pub function: Ident,
+    pub args: Vec<Expr>,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct EnumLiteral {
     pub name: Ident,
@@ -121,6 +195,8 @@ pub struct EnumLiteral {
 pub struct Composition {
     pub elements: Vec<Element>,
     pub sections: Vec<Section>,
+    /// A function's external clause (after the last section).
+    pub external: Option<External>,
     pub annotation: Option<ClassModification>,
 }
 

@@ -171,21 +171,13 @@ impl Builder<'_> {
     fn class_definition(&mut self, pair: Pair<'_, Rule>) -> ClassDef {
         let span = self.span(&pair);
         let mut encapsulated = false;
-        let mut partial = false;
-        let mut kind = ClassKind::Class;
+        let (mut partial, mut prefixes, mut kind) =
+            (false, ClassPrefixes::default(), ClassKind::Class);
         let mut spec = None;
         for p in kids(pair) {
             match p.as_rule() {
                 Rule::encapsulated_kw => encapsulated = true,
-                Rule::class_prefixes => {
-                    for q in p.into_inner() {
-                        match q.as_rule() {
-                            Rule::partial_kw => partial = true,
-                            Rule::class_kind => kind = class_kind(q.as_str()),
-                            _ => {}
-                        }
-                    }
-                }
+                Rule::class_prefixes => (partial, prefixes, kind) = class_prefixes(p),
                 Rule::class_specifier => spec = p.into_inner().next(),
                 _ => self.internal(&p),
             }
@@ -204,12 +196,14 @@ impl Builder<'_> {
                         text: SmolStr::default(),
                         span,
                     },
+                    extends: None,
                 },
             ),
         };
         ClassDef {
             encapsulated,
             partial,
+            prefixes,
             kind,
             name,
             body,
@@ -219,11 +213,24 @@ impl Builder<'_> {
 
     fn class_specifier(&mut self, pair: Pair<'_, Rule>) -> (Ident, ClassBody) {
         let rule = pair.as_rule();
-        let mut it = kids(pair);
-        let name = it.next().map(|p| self.ident(p)).unwrap_or_else(|| Ident {
-            text: SmolStr::default(),
-            span: Span::default(),
-        });
+        let mut it = kids(pair).peekable();
+        let mut extends = None;
+        if let Some(head) = it.next_if(|p| p.as_rule() == Rule::class_extends) {
+            extends = Some(self.class_extends(head));
+        }
+        let name = match extends.as_mut() {
+            Some((name, _)) => std::mem::replace(
+                name,
+                Ident {
+                    text: SmolStr::default(),
+                    span: Span::default(),
+                },
+            ),
+            None => it.next().map(|p| self.ident(p)).unwrap_or_else(|| Ident {
+                text: SmolStr::default(),
+                span: Span::default(),
+            }),
+        };
         let body = match rule {
             Rule::long_specifier => {
                 let mut description = None;
@@ -241,6 +248,30 @@ impl Builder<'_> {
                     description,
                     composition,
                     end_name,
+                    extends: extends.map(|(_, e)| Box::new(e)),
+                }
+            }
+            Rule::der_specifier => {
+                let mut base = None;
+                let mut with_respect_to = Vec::new();
+                let mut comment = Comment::default();
+                for p in it {
+                    match p.as_rule() {
+                        Rule::kw_der => {}
+                        Rule::type_specifier => base = Some(self.name(p)),
+                        Rule::ident => with_respect_to.push(self.ident(p)),
+                        Rule::comment => comment = self.comment(p),
+                        _ => self.internal(&p),
+                    }
+                }
+                ClassBody::Der {
+                    base: base.unwrap_or_else(|| Name {
+                        global: false,
+                        parts: Vec::new(),
+                        span: name.span,
+                    }),
+                    with_respect_to,
+                    comment,
                 }
             }
             Rule::short_specifier => {
@@ -305,10 +336,71 @@ impl Builder<'_> {
         (name, body)
     }
 
+    /// `extends A(m)` at the head of a class extension: the name and the modification.
+    fn class_extends(&mut self, pair: Pair<'_, Rule>) -> (Ident, ClassExtends) {
+        let span = self.span(&pair);
+        let mut name = None;
+        let mut modification = None;
+        for p in kids(pair) {
+            match p.as_rule() {
+                Rule::kw_extends => {}
+                Rule::ident => name = Some(self.ident(p)),
+                Rule::class_modification => modification = Some(self.class_modification(p)),
+                _ => self.internal(&p),
+            }
+        }
+        let name = name.unwrap_or(Ident {
+            text: SmolStr::default(),
+            span,
+        });
+        (name, ClassExtends { modification, span })
+    }
+
+    /// `external "C" y = f(x) annotation(...);`
+    fn external_clause(&mut self, pair: Pair<'_, Rule>) -> External {
+        let span = self.span(&pair);
+        let mut ext = External {
+            language: None,
+            call: None,
+            annotation: None,
+            span,
+        };
+        for p in kids(pair) {
+            match p.as_rule() {
+                Rule::kw_external | Rule::semi => {}
+                Rule::language_spec => {
+                    ext.language = p.into_inner().next().map(|s| self.string_value(&s))
+                }
+                Rule::external_call => {
+                    let mut output = None;
+                    let mut function = None;
+                    let mut args = Vec::new();
+                    for q in kids(p) {
+                        match q.as_rule() {
+                            Rule::component_reference => output = Some(self.component_reference(q)),
+                            Rule::ident => function = Some(self.ident(q)),
+                            Rule::expression => args.push(self.expression(q)),
+                            _ => self.internal(&q),
+                        }
+                    }
+                    ext.call = function.map(|function| ExternalCall {
+                        output,
+                        function,
+                        args,
+                    });
+                }
+                Rule::annotation_clause => ext.annotation = self.annotation(p),
+                _ => self.internal(&p),
+            }
+        }
+        ext
+    }
+
     fn composition(&mut self, pair: Pair<'_, Rule>) -> Composition {
         let mut c = Composition::default();
         for p in kids(pair) {
             match p.as_rule() {
+                Rule::external_clause => c.external = Some(self.external_clause(p)),
                 Rule::element_list => self.element_list(p, Visibility::Public, &mut c.elements),
                 Rule::public_section | Rule::protected_section => {
                     let vis = if p.as_rule() == Rule::public_section {
@@ -734,17 +826,10 @@ impl Builder<'_> {
                 span,
             };
             let mut body = None;
+            let mut prefixes = ClassPrefixes::default();
             for p in pair.into_inner() {
                 match p.as_rule() {
-                    Rule::class_prefixes => {
-                        for q in p.into_inner() {
-                            match q.as_rule() {
-                                Rule::partial_kw => partial = true,
-                                Rule::class_kind => kind = class_kind(q.as_str()),
-                                _ => {}
-                            }
-                        }
-                    }
+                    Rule::class_prefixes => (partial, prefixes, kind) = class_prefixes(p),
                     _ => {
                         let (n, b) = self.class_specifier(p);
                         name = n;
@@ -756,10 +841,12 @@ impl Builder<'_> {
                 description: None,
                 composition: Composition::default(),
                 end_name: name.clone(),
+                extends: None,
             });
             return RedeclaredElement::Class(Box::new(ClassDef {
                 encapsulated: false,
                 partial,
+                prefixes,
                 kind,
                 name,
                 body,
@@ -1412,6 +1499,28 @@ fn empty(span: Span) -> Expr {
     }
 }
 
+/// `partial`, the refining prefixes and the kind of a `class_prefixes` pair.
+fn class_prefixes(pair: Pair<'_, Rule>) -> (bool, ClassPrefixes, ClassKind) {
+    let (mut partial, mut prefixes, mut kind) = (false, ClassPrefixes::default(), ClassKind::Class);
+    for q in pair.into_inner() {
+        match q.as_rule() {
+            Rule::partial_kw => partial = true,
+            Rule::expandable_kw => prefixes.expandable = true,
+            Rule::operator_kw => prefixes.operator = true,
+            Rule::purity_kw => {
+                prefixes.purity = Some(if q.as_str() == "pure" {
+                    Purity::Pure
+                } else {
+                    Purity::Impure
+                })
+            }
+            Rule::class_kind => kind = class_kind(q.as_str()),
+            _ => {}
+        }
+    }
+    (partial, prefixes, kind)
+}
+
 fn class_kind(s: &str) -> ClassKind {
     match s {
         "model" => ClassKind::Model,
@@ -1421,6 +1530,7 @@ fn class_kind(s: &str) -> ClassKind {
         "package" => ClassKind::Package,
         "function" => ClassKind::Function,
         "type" => ClassKind::Type,
+        "operator" => ClassKind::Operator,
         _ => ClassKind::Class,
     }
 }

@@ -53,13 +53,24 @@ impl Dumper<'_> {
         if c.partial {
             head.push_str("partial ");
         }
-        let _ = write!(head, "{} {}", c.kind.keyword(), c.name.text);
+        head.push_str(&c.prefixes.keywords());
+        let _ = write!(head, "{} ", c.kind.keyword());
         match &c.body {
             ClassBody::Long {
                 description,
                 composition,
+                extends,
                 ..
             } => {
+                if let Some(ext) = extends {
+                    head.push_str("extends ");
+                    head.push_str(&c.name.text);
+                    if let Some(m) = &ext.modification {
+                        head.push_str(&print::class_modification(m));
+                    }
+                } else {
+                    head.push_str(&c.name.text);
+                }
                 if let Some(d) = description {
                     head.push(' ');
                     head.push_str(&print::string_lit(d));
@@ -103,6 +114,10 @@ impl Dumper<'_> {
                     }
                 }
             }
+        }
+        if let Some(ext) = &comp.external {
+            let text = print::external_clause(ext);
+            self.line(depth, &text, Some(ext.span));
         }
         if let Some(a) = &comp.annotation {
             let text = format!("annotation{}", print::class_modification(a));

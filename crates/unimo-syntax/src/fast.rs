@@ -73,6 +73,10 @@ fn is_class_kind(sym: Sym) -> bool {
             | Sym::KwType
             | Sym::KwPackage
             | Sym::KwFunction
+            | Sym::KwOperator
+            | Sym::KwExpandable
+            | Sym::KwPure
+            | Sym::KwImpure
     )
 }
 
@@ -215,8 +219,36 @@ impl<'a> P<'a, '_> {
 
     // ------------------------------------------------------------ classes
 
-    fn class_prefixes(&mut self) -> Option<(bool, ClassKind)> {
+    fn class_prefixes(&mut self) -> Option<(bool, ClassPrefixes, ClassKind)> {
         let partial = self.eat(Sym::KwPartial);
+        let mut prefixes = ClassPrefixes {
+            expandable: self.eat(Sym::KwExpandable),
+            ..ClassPrefixes::default()
+        };
+        if self.eat(Sym::KwPure) {
+            prefixes.purity = Some(Purity::Pure);
+        } else if self.eat(Sym::KwImpure) {
+            prefixes.purity = Some(Purity::Impure);
+        }
+        if self.at(Sym::KwOperator)
+            && self.tok(self.pos + 1).is_some_and(|t| {
+                matches!(
+                    t.sym,
+                    Sym::KwClass
+                        | Sym::KwModel
+                        | Sym::KwRecord
+                        | Sym::KwBlock
+                        | Sym::KwConnector
+                        | Sym::KwType
+                        | Sym::KwPackage
+                        | Sym::KwFunction
+                        | Sym::KwOperator
+                )
+            })
+        {
+            self.pos += 1;
+            prefixes.operator = true;
+        }
         let kind = match self.sym() {
             Sym::KwModel => ClassKind::Model,
             Sym::KwBlock => ClassKind::Block,
@@ -226,10 +258,11 @@ impl<'a> P<'a, '_> {
             Sym::KwFunction => ClassKind::Function,
             Sym::KwType => ClassKind::Type,
             Sym::KwClass => ClassKind::Class,
+            Sym::KwOperator => ClassKind::Operator,
             _ => return None,
         };
         self.pos += 1;
-        Some((partial, kind))
+        Some((partial, prefixes, kind))
     }
 
     fn at_class_start(&self) -> bool {
@@ -240,11 +273,12 @@ impl<'a> P<'a, '_> {
     fn class_definition(&mut self) -> Option<ClassDef> {
         let first = self.pos;
         let encapsulated = self.eat(Sym::KwEncapsulated);
-        let (partial, kind) = self.class_prefixes()?;
+        let (partial, prefixes, kind) = self.class_prefixes()?;
         let (name, body) = self.class_specifier(false)?;
         Some(ClassDef {
             encapsulated,
             partial,
+            prefixes,
             kind,
             name,
             body,
@@ -254,8 +288,47 @@ impl<'a> P<'a, '_> {
 
     /// `short_only`: inside a modification, only short and enumeration forms exist.
     fn class_specifier(&mut self, short_only: bool) -> Option<(Ident, ClassBody)> {
+        if self.at(Sym::KwExtends) {
+            if short_only {
+                return None;
+            }
+            let first = self.pos;
+            self.pos += 1;
+            let name = self.ident()?;
+            let modification = if self.at(Sym::LParen) {
+                Some(self.class_modification()?)
+            } else {
+                None
+            };
+            let extends = ClassExtends {
+                modification,
+                span: self.span_from(first),
+            };
+            return self.long_body(name, Some(Box::new(extends)));
+        }
         let name = self.ident()?;
         if self.eat(Sym::Equals) {
+            if self.eat(Sym::KwDer) {
+                self.expect(Sym::LParen)?;
+                let base = self.name()?;
+                let mut with_respect_to = Vec::new();
+                while self.eat(Sym::Comma) {
+                    with_respect_to.push(self.ident()?);
+                }
+                if with_respect_to.is_empty() {
+                    return None;
+                }
+                self.expect(Sym::RParen)?;
+                let comment = self.comment()?;
+                return Some((
+                    name,
+                    ClassBody::Der {
+                        base,
+                        with_respect_to,
+                        comment,
+                    },
+                ));
+            }
             if self.eat(Sym::KwEnumeration) {
                 self.expect(Sym::LParen)?;
                 let mut literals = Vec::new();
@@ -310,6 +383,15 @@ impl<'a> P<'a, '_> {
         if short_only {
             return None;
         }
+        self.long_body(name, None)
+    }
+
+    /// The rest of a long class specifier after its name (or class-extends head).
+    fn long_body(
+        &mut self,
+        name: Ident,
+        extends: Option<Box<ClassExtends>>,
+    ) -> Option<(Ident, ClassBody)> {
         let description = self.description();
         let composition = self.composition()?;
         self.expect(Sym::KwEnd)?;
@@ -320,8 +402,66 @@ impl<'a> P<'a, '_> {
                 description,
                 composition,
                 end_name,
+                extends,
             },
         ))
+    }
+
+    /// `external "C" y = f(x) annotation(...);`
+    fn external_clause(&mut self) -> Option<External> {
+        let first = self.pos;
+        self.expect(Sym::KwExternal)?;
+        let language = if self
+            .tok(self.pos)
+            .is_some_and(|t| t.kind == TokenKind::String)
+        {
+            let t = &self.toks[self.pos];
+            self.pos += 1;
+            Some(self.string_value(t))
+        } else {
+            None
+        };
+        let call = if self.at_ident() || self.at(Sym::Dot) {
+            let start = self.pos;
+            let target = self.component_reference()?;
+            let (output, function) = if self.eat(Sym::Equals) {
+                (Some(target), self.ident()?)
+            } else {
+                // A bare function name: read it again as an identifier.
+                self.pos = start;
+                (None, self.ident()?)
+            };
+            self.expect(Sym::LParen)?;
+            let mut args = Vec::new();
+            if !self.at(Sym::RParen) {
+                loop {
+                    args.push(self.expression()?);
+                    if !self.eat(Sym::Comma) {
+                        break;
+                    }
+                }
+            }
+            self.expect(Sym::RParen)?;
+            Some(ExternalCall {
+                output,
+                function,
+                args,
+            })
+        } else {
+            None
+        };
+        let annotation = if self.at(Sym::KwAnnotation) {
+            Some(self.annotation()?)
+        } else {
+            None
+        };
+        self.expect(Sym::Semi)?;
+        Some(External {
+            language,
+            call,
+            annotation,
+            span: self.span_from(first),
+        })
     }
 
     fn causality(&mut self) -> Option<Causality> {
@@ -378,6 +518,9 @@ impl<'a> P<'a, '_> {
                 break;
             }
         }
+        if self.at(Sym::KwExternal) {
+            c.external = Some(self.external_clause()?);
+        }
         if self.at(Sym::KwAnnotation) {
             c.annotation = Some(self.annotation()?);
             self.expect(Sym::Semi)?;
@@ -391,6 +534,7 @@ impl<'a> P<'a, '_> {
             || self.at(Sym::KwPublic)
             || self.at(Sym::KwProtected)
             || self.at(Sym::KwEnd)
+            || self.at(Sym::KwExternal)
             || (self.at(Sym::KwInitial)
                 && (self.sym_at(self.pos + 1, Sym::KwEquation)
                     || self.sym_at(self.pos + 1, Sym::KwAlgorithm)))
@@ -727,11 +871,12 @@ impl<'a> P<'a, '_> {
     fn redeclared(&mut self) -> Option<RedeclaredElement> {
         if self.at(Sym::KwPartial) || is_class_kind(self.sym()) {
             let first = self.pos;
-            let (partial, kind) = self.class_prefixes()?;
+            let (partial, prefixes, kind) = self.class_prefixes()?;
             let (name, body) = self.class_specifier(true)?;
             return Some(RedeclaredElement::Class(Box::new(ClassDef {
                 encapsulated: false,
                 partial,
+                prefixes,
                 kind,
                 name,
                 body,

@@ -16,7 +16,13 @@ pub fn describe(rule: Rule) -> Option<&'static str> {
         Rule::equation | Rule::simple_or_call_equation => "equation",
         Rule::statement | Rule::assign_or_call => "statement",
         Rule::element | Rule::element_body | Rule::component_clause => "declaration",
-        Rule::class_definition | Rule::class_prefixes | Rule::class_kind => "class definition",
+        Rule::class_definition
+        | Rule::class_prefixes
+        | Rule::class_kind
+        | Rule::expandable_kw
+        | Rule::purity_kw
+        | Rule::operator_kw => "class definition",
+        Rule::external_clause | Rule::kw_external => "`external`",
         Rule::string | Rule::description => "string",
         Rule::unsigned_integer | Rule::unsigned_real => "number",
         Rule::component_reference | Rule::ref_part => "component reference",

@@ -598,6 +598,10 @@ fn expected_set(err: &pest::error::Error<Rule>) -> Vec<String> {
             "`package`",
             "`partial`",
             "`record`",
+            "`expandable`",
+            "`pure`",
+            "`impure`",
+            "`operator`",
             "`type`",
         ];
         out.retain(|e| !starts.contains(&e.as_str()));

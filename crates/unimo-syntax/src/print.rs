@@ -404,14 +404,60 @@ pub fn comment(c: &Comment) -> String {
     out
 }
 
-/// A short class or enumeration definition, without the `;`.
+/// A function's external clause, with its `;`.
+pub fn external_clause(ext: &External) -> String {
+    let mut out = String::from("external");
+    if let Some(lang) = &ext.language {
+        out.push(' ');
+        out.push_str(&string_lit(lang));
+    }
+    if let Some(call) = &ext.call {
+        out.push(' ');
+        if let Some(target) = &call.output {
+            out.push_str(&cref(target));
+            out.push_str(" = ");
+        }
+        out.push_str(&call.function.text);
+        out.push('(');
+        for (i, a) in call.args.iter().enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            out.push_str(&expr(a));
+        }
+        out.push(')');
+    }
+    if let Some(a) = &ext.annotation {
+        out.push_str(" annotation");
+        out.push_str(&class_modification(a));
+    }
+    out.push(';');
+    out
+}
+
+/// A short class, enumeration or derivative definition, without the `;`.
 pub fn short_class(cd: &ClassDef) -> String {
     let mut out = String::new();
     if cd.partial {
         out.push_str("partial ");
     }
+    out.push_str(&cd.prefixes.keywords());
     let _ = write!(out, "{} {} = ", cd.kind.keyword(), cd.name.text);
     match &cd.body {
+        ClassBody::Der {
+            base,
+            with_respect_to,
+            comment: c,
+        } => {
+            out.push_str("der(");
+            out.push_str(&base.to_dotted());
+            for v in with_respect_to {
+                out.push_str(", ");
+                out.push_str(&v.text);
+            }
+            out.push(')');
+            out.push_str(&comment(c));
+        }
         ClassBody::Short {
             causality,
             base,

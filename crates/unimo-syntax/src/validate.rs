@@ -29,7 +29,9 @@ struct Ctx {
 fn operator_arity(name: &str) -> Option<(usize, usize)> {
     Some(match name {
         "der" | "pre" | "edge" | "change" | "noEvent" => (1, 1),
-        "reinit" | "smooth" | "sample" => (2, 2),
+        "reinit" | "smooth" => (2, 2),
+        // `sample(start, interval)`, and the clocked `sample(u)` / `sample(u, clock)`.
+        "sample" => (1, 2),
         "initial" | "terminal" => (0, 0),
         "assert" => (2, 3),
         "terminate" => (1, 1),
@@ -65,8 +67,48 @@ impl Validator<'_> {
         }
     }
 
+    /// `expandable` refines only `connector`; `operator` only `record` and `function`;
+    /// `pure`/`impure` only `function` (spec A.2.2, class-prefixes).
+    fn class_prefixes(&mut self, c: &ClassDef) {
+        let p = c.prefixes;
+        let misplaced = [
+            (
+                p.expandable && c.kind != ClassKind::Connector,
+                "expandable",
+                "connector",
+            ),
+            (
+                p.operator && !matches!(c.kind, ClassKind::Record | ClassKind::Function),
+                "operator",
+                "record` or `function",
+            ),
+            (
+                p.purity.is_some() && c.kind != ClassKind::Function,
+                "pure`/`impure",
+                "function",
+            ),
+        ];
+        for (bad, word, allowed) in misplaced {
+            if bad {
+                self.push(
+                    Diagnostic::error(
+                        "E1223",
+                        format!("`{word}` cannot prefix a {}", c.kind.keyword()),
+                    )
+                    .at(
+                        c.name.span,
+                        format!("declared as {} here", c.kind.keyword()),
+                    )
+                    .with_help(format!("`{word}` refines only `{allowed}`")),
+                );
+            }
+        }
+    }
+
     fn class(&mut self, c: &ClassDef) {
+        self.class_prefixes(c);
         match &c.body {
+            ClassBody::Der { comment, .. } => self.comment(comment),
             ClassBody::Long {
                 composition,
                 end_name,
@@ -146,6 +188,27 @@ impl Validator<'_> {
             _ => None,
         }));
         let in_function = c.kind == ClassKind::Function;
+        if let Some(ext) = &comp.external {
+            if !in_function {
+                self.push(
+                    Diagnostic::error(
+                        "E1226",
+                        format!("a {} cannot have an `external` clause", c.kind.keyword()),
+                    )
+                    .at(ext.span, "external clause not allowed here")
+                    .with_label(
+                        c.name.span,
+                        format!("in {} `{}`", c.kind.keyword(), c.name.text),
+                    )
+                    .with_help("only functions are implemented externally"),
+                );
+            }
+            if let Some(call) = &ext.call {
+                for a in &call.args {
+                    self.expr(a, Ctx::default());
+                }
+            }
+        }
         for s in &comp.sections {
             match s {
                 Section::Equation(es) => {
@@ -156,6 +219,7 @@ impl Validator<'_> {
                             | ClassKind::Connector
                             | ClassKind::Type
                             | ClassKind::Package
+                            | ClassKind::Operator
                     ) {
                         self.push(
                             Diagnostic::error(
@@ -187,6 +251,7 @@ impl Validator<'_> {
                             | ClassKind::Connector
                             | ClassKind::Type
                             | ClassKind::Package
+                            | ClassKind::Operator
                     ) {
                         self.push(
                             Diagnostic::error(

@@ -1,0 +1,6 @@
+model M
+  Real x;
+equation
+  x = 1;
+external "C";
+end M;
