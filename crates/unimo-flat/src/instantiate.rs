@@ -1378,9 +1378,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 ExprKind::Ref(fr)
             }
             ExprKind::Call { func, args } => {
-                let simple = !func.global && func.parts.len() == 1;
+                // `.asin(u)` names the built-in from the global scope.
+                let simple = func.parts.len() == 1;
                 let func = if simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()) {
-                    func.clone()
+                    Name {
+                        global: false,
+                        ..func.clone()
+                    }
                 } else {
                     let parts: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
                     let found = if func.global {
@@ -1391,9 +1395,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     match found {
                         Some(Found::Class(c)) => {
                             let c = self.real_class(c);
-                            let full = self.tree.full_name(c);
+                            let builtin = crate::external::builtin_alias(&self.tree.get(c).def);
+                            let full = match builtin {
+                                Some(b) => b.to_owned(),
+                                None => self.tree.full_name(c),
+                            };
                             Name {
-                                global: true,
+                                global: builtin.is_none(),
                                 parts: crate::flat::split_name(&full)
                                     .into_iter()
                                     .map(|p| Ident {

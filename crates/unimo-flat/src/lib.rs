@@ -13,6 +13,7 @@ pub mod balance;
 pub mod connect;
 pub mod error;
 pub mod eval;
+mod external;
 pub mod flat;
 pub mod functions;
 pub mod instantiate;

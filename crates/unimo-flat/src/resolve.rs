@@ -434,7 +434,8 @@ impl Checker<'_, '_> {
             | ExprKind::End => {}
             ExprKind::Ref(r) => self.cref(id, r),
             ExprKind::Call { func, args } => {
-                let simple = !func.global && func.parts.len() == 1;
+                // `.asin(u)` names the built-in from the global scope.
+                let simple = func.parts.len() == 1;
                 let builtin = simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str());
                 if !builtin {
                     let refs: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();

@@ -1,0 +1,53 @@
+//! External functions: a function whose body is `external "builtin"` is the built-in
+//! of that name (`Modelica.Math.sin` is `sin`), so calls to it become built-in calls.
+
+use crate::lookup::BUILTIN_FUNCTIONS;
+use unimo_syntax::ast::{Causality, ClassBody, ClassDef, ElementKind, ExprKind};
+
+/// The built-in function a function stands for: its external clause says
+/// `external "builtin"`, and its call (if written) passes the inputs in their declared
+/// order and assigns the only output. `None` for any other function.
+pub(crate) fn builtin_alias(def: &ClassDef) -> Option<&'static str> {
+    let ClassBody::Long { composition, .. } = &def.body else {
+        return None;
+    };
+    let ext = composition.external.as_ref()?;
+    if ext.language.as_deref() != Some("builtin") {
+        return None;
+    }
+    let mut inputs = Vec::new();
+    let mut outputs = Vec::new();
+    for e in &composition.elements {
+        if let ElementKind::Component(cc) = &e.kind {
+            for d in &cc.components {
+                match cc.prefix.causality {
+                    Some(Causality::Input) => inputs.push(d.name.text.as_str()),
+                    Some(Causality::Output) => outputs.push(d.name.text.as_str()),
+                    None => {}
+                }
+            }
+        }
+    }
+    let name = match &ext.call {
+        None => def.name.text.as_str(),
+        Some(call) => {
+            let args_are_inputs = call.args.len() == inputs.len()
+                && call.args.iter().zip(&inputs).all(|(a, i)| {
+                    matches!(&a.kind, ExprKind::Ref(r)
+                        if r.parts.len() == 1 && r.parts[0].subscripts.is_empty()
+                            && r.parts[0].name.text == *i)
+                });
+            let output_ok = match &call.output {
+                Some(r) => {
+                    outputs.len() == 1 && r.parts.len() == 1 && r.parts[0].name.text == outputs[0]
+                }
+                None => outputs.is_empty(),
+            };
+            if !(args_are_inputs && output_ok) {
+                return None;
+            }
+            call.function.text.as_str()
+        }
+    };
+    BUILTIN_FUNCTIONS.iter().copied().find(|b| *b == name)
+}
