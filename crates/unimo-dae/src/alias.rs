@@ -111,8 +111,22 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
                         eliminate(dae, &mut map, &mut members, elim, value, Some(rep));
                         *kept = false;
                         stats.aliases += 1;
-                        // The representative inherits a start value it lacks.
-                        if dae.scalar(rep).start.is_none() {
+                        // A fixed start of the alias fixes the representative (unless
+                        // it is fixed itself); otherwise the representative inherits a
+                        // start value it lacks.
+                        let elim_fixed = dae.scalar(elim).fixed == Some(true);
+                        let rep_fixed = dae.scalar(rep).fixed == Some(true);
+                        if let (true, false, Some(st)) =
+                            (elim_fixed, rep_fixed, dae.scalar(elim).start)
+                        {
+                            let st = if value == rep_var {
+                                st
+                            } else {
+                                dae.arena.neg(st)
+                            };
+                            dae.scalars[rep.index()].start = Some(st);
+                            dae.scalars[rep.index()].fixed = Some(true);
+                        } else if dae.scalar(rep).start.is_none() {
                             if let Some(st) = dae.scalar(elim).start {
                                 let st = if value == rep_var {
                                     st

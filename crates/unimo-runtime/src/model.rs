@@ -97,8 +97,12 @@ pub struct CompiledModel {
     /// The other parameters, computed again from the free ones.
     pub dependent_parameters: Tape,
     /// Initial equations as residual registers, computed by `initial_tape` after steps.
+    /// The tape also assigns the discrete variables an initial equation or initial
+    /// algorithm gives explicitly (`count = integer(...)`), in their order.
     pub initial_tape: Tape,
     pub initial_residuals: Vec<Reg>,
+    /// Discrete variables `initial_tape` assigns (register, name).
+    pub initial_assigned: Vec<(Reg, String)>,
     pub ops_total: usize,
     /// The collision world, when the model has collision bodies.
     pub collision: Option<CollisionModel>,
@@ -404,7 +408,23 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         }
     }
     let mut initial_regs = Vec::new();
+    let mut initial_assigned = Vec::new();
     for (l, r) in pairs.drain(..) {
+        // `d = expr` for a discrete `d` that `expr` does not mention is an assignment
+        // (what an initial algorithm's `d := expr` lowers to): executed, not solved.
+        if let unimo_dae::expr::Node::Var(d) = dae.arena.node(l) {
+            if dae.scalar(d).kind == ScalarKind::Discrete
+                && dae.scalar(d).alias.is_none()
+                && !dae.arena.vars(r).contains(&d)
+            {
+                let rr = c.expr(r, &mut initial_tape, &mut memo);
+                initial_tape.ops.push(crate::tape::Op::Copy(layout.var(d), rr));
+                initial_assigned.push((layout.var(d), dae.name(d)));
+                // Values computed before the assignment may have read the old value.
+                memo.clear();
+                continue;
+            }
+        }
         let lr = c.expr(l, &mut initial_tape, &mut memo);
         let rr = c.expr(r, &mut initial_tape, &mut memo);
         let d = c.temp_public();
@@ -488,6 +508,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         dependent_parameters,
         initial_tape,
         initial_residuals: initial_regs,
+        initial_assigned,
         ops_total: 0,
         collision,
     };

@@ -359,6 +359,15 @@ impl<'a> Simulator<'a> {
         self.ode.ev.event_mode = true;
         if !m.initial_residuals.is_empty() {
             self.solve_initial_equations()?;
+        } else if !m.initial_assigned.is_empty() {
+            self.eval_plan()?;
+            let m = self.m();
+            m.initial_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        }
+        // The discrete values the initial equations assigned are their `pre` values.
+        let m = self.m();
+        for &(r, _) in &m.initial_assigned {
+            self.ode.regs[(layout.pre_base + r) as usize] = self.ode.regs[r as usize];
         }
         // `when` conditions fire at initialization only through `initial()`: their
         // values with initial() false are the baseline the edges are taken against.
