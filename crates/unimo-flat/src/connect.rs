@@ -11,11 +11,69 @@ use unimo_syntax::ast::{
     BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart,
 };
 
-/// A node of the connection graph: a primitive variable seen from one side.
+/// A node of the connection graph: a primitive variable (or one element of an array
+/// variable, `elem` its row-major offset; [`WHOLE`] for the whole variable) seen from
+/// one side.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 struct Node {
     var: usize,
+    elem: u32,
     outside: bool,
+}
+
+/// `Node::elem` of a whole variable.
+const WHOLE: u32 = u32::MAX;
+
+/// An element `x[2, 1]` of an array variable named in a `connect`: the variable's index
+/// and the element's row-major offset. `None` unless `key` is a known array variable's
+/// name followed by integer subscripts within its sizes.
+fn element_of(
+    model: &FlatModel,
+    by_name: &HashMap<&str, usize>,
+    key: &str,
+) -> Option<(usize, u32)> {
+    let body = key.strip_suffix(']')?;
+    let open = body.rfind('[')?;
+    let var = *by_name.get(&body[..open])?;
+    let dims = &model.vars[var].dims;
+    let subs: Vec<usize> = body[open + 1..]
+        .split(',')
+        .map(|t| t.trim().parse::<usize>().ok())
+        .collect::<Option<_>>()?;
+    if subs.len() != dims.len() || subs.iter().zip(dims).any(|(&i, &n)| i == 0 || i > n) {
+        return None;
+    }
+    let offset = subs
+        .iter()
+        .zip(dims)
+        .fold(0, |acc, (&i, &n)| acc * n + (i - 1));
+    Some((var, u32::try_from(offset).ok()?))
+}
+
+/// A reference to a primitive: the variable, or its element at `elem`.
+fn prim_ref(model: &FlatModel, var: usize, elem: u32, span: Span) -> Expr {
+    let v = &model.vars[var];
+    let mut e = var_ref(&v.name, span);
+    if elem != WHOLE {
+        let mut rest = elem as usize;
+        let mut subs = vec![0usize; v.dims.len()];
+        for (k, &n) in v.dims.iter().enumerate().rev() {
+            subs[k] = rest % n + 1;
+            rest /= n;
+        }
+        if let ExprKind::Ref(r) = &mut e.kind {
+            r.parts[0].subscripts = subs
+                .into_iter()
+                .map(|i| {
+                    unimo_syntax::ast::Subscript::Expr(Expr {
+                        kind: ExprKind::Integer(i as i64),
+                        span,
+                    })
+                })
+                .collect();
+        }
+    }
+    e
 }
 
 fn find(parent: &mut [usize], x: usize) -> usize {
@@ -123,10 +181,18 @@ pub fn equations(
     let mut diags = Vec::new();
     let mut nodes: Vec<Node> = Vec::new();
     // Node of (variable, outside) at `2 * var + outside`; `usize::MAX`: none yet.
+    // Elements of array variables by (variable, element, outside).
     let mut index: Vec<usize> = vec![usize::MAX; 2 * model.vars.len()];
+    let mut element_index: HashMap<(usize, u32, bool), usize> = HashMap::default();
     let mut parent: Vec<usize> = Vec::new();
     let mut node = |n: Node, nodes: &mut Vec<Node>, parent: &mut Vec<usize>| -> usize {
-        let slot = &mut index[2 * n.var + usize::from(n.outside)];
+        let slot = if n.elem == WHOLE {
+            &mut index[2 * n.var + usize::from(n.outside)]
+        } else {
+            element_index
+                .entry((n.var, n.elem, n.outside))
+                .or_insert(usize::MAX)
+        };
         if *slot == usize::MAX {
             nodes.push(n);
             parent.push(parent.len());
@@ -141,8 +207,47 @@ pub fn equations(
         .map(|c| (var_key_full(&c.a), var_key_full(&c.b)))
         .collect();
     let (slot, lists) = members(&model.vars, &keys);
+    // Connected elements of array variables (`connect(a.y, sum.u[2])`): such a
+    // variable is connected element by element everywhere.
+    let has_members = |k: &str| slot.get(k).is_some_and(|&s| !lists[s].is_empty());
+    let unmatched = keys
+        .iter()
+        .flat_map(|(a, b)| [a, b])
+        .any(|k| !has_members(k));
+    let by_name: HashMap<&str, usize> = if unmatched {
+        model
+            .vars
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| !v.dims.is_empty())
+            .map(|(i, v)| (v.name.as_str(), i))
+            .collect()
+    } else {
+        HashMap::default()
+    };
+    let element = |k: &str| -> Option<(usize, u32)> {
+        if has_members(k) {
+            None
+        } else {
+            element_of(model, &by_name, k)
+        }
+    };
+    let mut split = vec![false; if unmatched { model.vars.len() } else { 0 }];
+    for (ka, kb) in &keys {
+        for (v, _) in [element(ka), element(kb)].into_iter().flatten() {
+            split[v] = true;
+        }
+    }
+    let is_split = |v: usize| split.get(v).copied().unwrap_or(false);
+    let element_members: Vec<(Members, Members)> = keys
+        .iter()
+        .map(|(ka, kb)| {
+            let one = |k: &str| element(k).map(|(v, _)| vec![("", v)]).unwrap_or_default();
+            (one(ka), one(kb))
+        })
+        .collect();
     let none = Vec::new();
-    for (c, (ka, kb)) in connects.iter().zip(&keys) {
+    for (k, (c, (ka, kb))) in connects.iter().zip(&keys).enumerate() {
         // A connection to an absent conditional component is dropped (spec 4.4.5).
         if absent
             .iter()
@@ -150,8 +255,17 @@ pub fn equations(
         {
             continue;
         }
-        let ma = slot.get(ka.as_str()).map_or(&none, |&s| &lists[s]);
-        let mb = slot.get(kb.as_str()).map_or(&none, |&s| &lists[s]);
+        let (ea, eb) = (element(ka), element(kb));
+        let ma = match (ea, slot.get(ka.as_str())) {
+            (Some(_), _) => &element_members[k].0,
+            (None, Some(&s)) => &lists[s],
+            (None, None) => &none,
+        };
+        let mb = match (eb, slot.get(kb.as_str())) {
+            (Some(_), _) => &element_members[k].1,
+            (None, Some(&s)) => &lists[s],
+            (None, None) => &none,
+        };
         if ma.is_empty() || mb.is_empty() {
             let which = if ma.is_empty() { ka } else { kb };
             diags.push(
@@ -196,7 +310,12 @@ pub fn equations(
             if fixed(xa) || fixed(xb) {
                 continue;
             }
-            if xa.flow != xb.flow || xa.dims != xb.dims || !same_kind(&xa.ty, &xb.ty) {
+            // The shape connected on each side: an element is a scalar.
+            let (da, db): (&[usize], &[usize]) = (
+                if ea.is_some() { &[] } else { &xa.dims },
+                if eb.is_some() { &[] } else { &xb.dims },
+            );
+            if xa.flow != xb.flow || da != db || !same_kind(&xa.ty, &xb.ty) {
                 diags.push(
                     Diagnostic::error(
                         "E2006",
@@ -224,30 +343,46 @@ pub fn equations(
                 );
                 continue;
             }
-            let na = node(
-                Node {
-                    var: *va,
-                    outside: c.a_outside,
-                },
-                &mut nodes,
-                &mut parent,
-            );
-            let nb = node(
-                Node {
-                    var: *vb,
-                    outside: c.b_outside,
-                },
-                &mut nodes,
-                &mut parent,
-            );
-            let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
-            if ra != rb {
-                parent[ra] = rb;
+            // Pairs of primitives: whole variables, one element each, or a split array
+            // variable element by element.
+            let n_elems: usize = da.iter().product();
+            let pairs: Vec<(u32, u32)> = match (ea, eb) {
+                (Some((_, a)), Some((_, b))) => vec![(a, b)],
+                (Some((_, a)), None) => vec![(a, WHOLE)],
+                (None, Some((_, b))) => vec![(WHOLE, b)],
+                (None, None) if !da.is_empty() && (is_split(*va) || is_split(*vb)) => {
+                    (0..n_elems as u32).map(|i| (i, i)).collect()
+                }
+                (None, None) => vec![(WHOLE, WHOLE)],
+            };
+            for (ia, ib) in pairs {
+                let na = node(
+                    Node {
+                        var: *va,
+                        elem: ia,
+                        outside: c.a_outside,
+                    },
+                    &mut nodes,
+                    &mut parent,
+                );
+                let nb = node(
+                    Node {
+                        var: *vb,
+                        elem: ib,
+                        outside: c.b_outside,
+                    },
+                    &mut nodes,
+                    &mut parent,
+                );
+                let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
+                if ra != rb {
+                    parent[ra] = rb;
+                }
+                if spans.len() < nodes.len() {
+                    spans.resize(nodes.len(), None);
+                }
+                spans[na].get_or_insert(c.span);
             }
-            if spans.len() < nodes.len() {
-                spans.resize(nodes.len(), None);
-            }
-            spans[na].get_or_insert(c.span);
         }
     }
     // Group the nodes by set, in order of first appearance.
@@ -262,9 +397,14 @@ pub fn equations(
         sets[set_of_root[r]].push(n);
     }
     let mut connected_inside = vec![false; model.vars.len()];
+    let mut elements_inside: HashMap<usize, Vec<u32>> = HashMap::default();
     for n in &nodes {
         if !n.outside {
-            connected_inside[n.var] = true;
+            if n.elem == WHOLE {
+                connected_inside[n.var] = true;
+            } else {
+                elements_inside.entry(n.var).or_default().push(n.elem);
+            }
         }
     }
     let mut new_eqs = Vec::new();
@@ -278,7 +418,7 @@ pub fn equations(
             // Sum of inside minus outside flows is zero.
             let mut sum: Option<Expr> = None;
             for &n in set {
-                let v = var_ref(&model.vars[nodes[n].var].name, span);
+                let v = prim_ref(model, nodes[n].var, nodes[n].elem, span);
                 sum = Some(match (sum, nodes[n].outside) {
                     (None, false) => v,
                     (None, true) => Expr {
@@ -313,22 +453,37 @@ pub fn equations(
                 ));
             }
         } else {
-            let mut seen = vec![first.var];
+            let mut seen = vec![(first.var, first.elem)];
             for &n in &set[1..] {
-                let v = nodes[n].var;
+                let v = (nodes[n].var, nodes[n].elem);
                 if seen.contains(&v) {
                     continue;
                 }
                 seen.push(v);
                 new_eqs.push(eq(
-                    var_ref(&model.vars[first.var].name, span),
-                    var_ref(&model.vars[v].name, span),
+                    prim_ref(model, first.var, first.elem, span),
+                    prim_ref(model, v.0, v.1, span),
                     span,
                 ));
             }
         }
     }
     for (i, v) in model.vars.iter().enumerate() {
+        if let (true, false, Some(done)) = (v.flow, connected_inside[i], elements_inside.get(&i)) {
+            // Some elements connected: the others are zero one by one.
+            let n: usize = v.dims.iter().product();
+            for k in (0..n as u32).filter(|k| !done.contains(k)) {
+                new_eqs.push(eq(
+                    prim_ref(model, i, k, v.origin),
+                    Expr {
+                        kind: ExprKind::Real(0.0),
+                        span: v.origin,
+                    },
+                    v.origin,
+                ));
+            }
+            continue;
+        }
         if v.flow && !connected_inside[i] {
             new_eqs.push(eq(
                 var_ref(&v.name, v.origin),

@@ -1911,6 +1911,31 @@ impl Instantiator<'_, '_> {
     }
 }
 
+impl Instantiator<'_, '_> {
+    /// The value of an enumeration literal named by its full path
+    /// (`Modelica.Blocks.Types.FilterType.LowPass`), following short classes.
+    fn enum_literal(&mut self, key: &str) -> Option<Value> {
+        let parts = crate::flat::split_name(key);
+        let (literal, path) = parts.split_last()?;
+        let mut class = match self.tree.lookup_dotted(None, path, false)? {
+            Found::Class(c) => c,
+            _ => return None,
+        };
+        for _ in 0..32 {
+            match &self.tree.get(class).def.body {
+                ClassBody::Enumeration { literals, .. } => {
+                    let k = literals.iter().position(|l| l.name.text == *literal)?;
+                    let name = format!("{}.{literal}", self.tree.full_name(class));
+                    return Some(Value::Enum(k as i64 + 1, name));
+                }
+                ClassBody::Short { .. } => class = *self.tree.bases(class).first()?,
+                _ => return None,
+            }
+        }
+        None
+    }
+}
+
 impl Env for Instantiator<'_, '_> {
     fn call(
         &mut self,
@@ -1927,6 +1952,9 @@ impl Env for Instantiator<'_, '_> {
             return Ok(v.clone());
         }
         let Some(id) = self.var_id(key) else {
+            if let Some(v) = self.enum_literal(key) {
+                return Ok(v);
+            }
             return Err(EvalError::NotConstant {
                 span,
                 what: format!("`{key}`"),

@@ -418,7 +418,9 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
                 && !dae.arena.vars(r).contains(&d)
             {
                 let rr = c.expr(r, &mut initial_tape, &mut memo);
-                initial_tape.ops.push(crate::tape::Op::Copy(layout.var(d), rr));
+                initial_tape
+                    .ops
+                    .push(crate::tape::Op::Copy(layout.var(d), rr));
                 initial_assigned.push((layout.var(d), dae.name(d)));
                 // Values computed before the assignment may have read the old value.
                 memo.clear();
