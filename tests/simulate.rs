@@ -288,6 +288,47 @@ fn pruning_keeps_what_initialization_reads() {
     assert!((y1 - 3.0 * (-1.0f64).exp()).abs() < 1e-6, "y(1) = {y1}");
 }
 
+/// Requesting only `s_rel` (the state index reduction chose) must keep the variable
+/// whose fixed start determines it. With x = s + 0.5: x'' = -x - d x', x(0) = 0.5,
+/// x'(0) = 0, so x = 0.5 e^(-dt/2) (cos wt + d/(2w) sin wt), w = sqrt(1 - d^2/4), and
+/// s_rel = 1 - s = 1.5 - x.
+#[test]
+fn pruning_keeps_fixed_starts_of_dummy_states() {
+    let m = load("tests/simulate/PruneKeepsFixedDummyState.mo");
+    let s_rel = m
+        .dae
+        .ids()
+        .find(|&s| m.dae.name(s) == "s_rel")
+        .expect("s_rel is a variable");
+    let mut plan = m.analysis.plan.clone();
+    let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &[s_rel]);
+    let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+    let o = SimOptions {
+        start: 0.0,
+        stop: 1.0,
+        rtol: 1e-9,
+        atol: 1e-11,
+        method: Method::Bdf,
+        interval: 0.5,
+        every_step: false,
+    };
+    let r = simulate(&compiled, &o);
+    assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
+    let k = r.names.iter().position(|n| n == "s_rel").unwrap();
+    let d = 0.1f64;
+    let w = (1.0 - d * d / 4.0).sqrt();
+    let exact =
+        |t: f64| 1.5 - 0.5 * (-d * t / 2.0).exp() * ((w * t).cos() + d / (2.0 * w) * (w * t).sin());
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        let got = row[k];
+        assert!(
+            (got - exact(*t)).abs() < 1e-6,
+            "s_rel({t}) = {got}, exact {}, pruned {pruned}",
+            exact(*t)
+        );
+    }
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

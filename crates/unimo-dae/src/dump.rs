@@ -35,7 +35,12 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
                 ScalarType::Integer => line.push_str(" : Integer"),
                 ScalarType::Boolean => line.push_str(" : Boolean"),
                 ScalarType::Enumeration(k) => {
-                    let _ = write!(line, " : {}", dae.enumerations[k as usize].0);
+                    // Predefined enumerations (StateSelect, AssertionLevel) have no entry.
+                    let name = dae
+                        .enumerations
+                        .get(k as usize)
+                        .map_or("enumeration", |e| &e.0);
+                    let _ = write!(line, " : {name}");
                 }
             }
             if let Some(b) = s.binding {

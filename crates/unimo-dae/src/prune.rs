@@ -57,6 +57,11 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
         if let Some(start) = dae.scalar(s).start {
             add(&mut needed, start);
         }
+        // `fixed = true` on a variable that is not a state is the initial equation
+        // `v = start`: `v` must be computed at the start.
+        if dae.scalar(s).fixed == Some(true) {
+            needed.insert(s);
+        }
     }
     // Discrete variables defined by equations take part in event iteration.
     for s in dae.ids() {
