@@ -55,6 +55,10 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub diags: Vec<Diagnostic>,
     values: HashMap<String, Value>,
     evaluating: HashSet<String>,
+    /// Instances whose bases are being instantiated: (instance key, class, modifier,
+    /// scope). A base's modifier or condition may read the instance's own parameters,
+    /// which are declared after its bases (`extends Port(use = useHeat)`).
+    pending_own: Vec<(String, ClassId, Mod, Scope)>,
     /// Paths of conditional components that are absent.
     pub absent: Vec<String>,
     /// Element names declared so far in the instances being instantiated (one level
@@ -173,6 +177,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             diags: Vec::new(),
             values: HashMap::default(),
             evaluating: HashSet::default(),
+            pending_own: Vec::new(),
             absent: Vec::new(),
             declared: Vec::new(),
             declared_pool: Vec::new(),
@@ -458,6 +463,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
         }
+        let has_bases = def_has_bases(&def);
+        if has_bases {
+            self.pending_own
+                .push((prefix_key.clone(), class, m.clone(), scope.clone()));
+        }
         // A class extension `model extends A(m)` first inherits the original `A`.
         if let ClassBody::Long {
             extends: Some(ext), ..
@@ -493,6 +503,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     _ => {} // reported by the name check
                 }
             }
+        }
+        if has_bases {
+            self.pending_own.pop();
         }
         if check_mods {
             self.check_modified_names(class, composition, m);
@@ -1911,7 +1924,76 @@ impl Instantiator<'_, '_> {
     }
 }
 
+/// Whether a long class inherits (an `extends` clause or a class extension).
+fn def_has_bases(def: &ClassDef) -> bool {
+    match &def.body {
+        ClassBody::Long {
+            composition,
+            extends,
+            ..
+        } => {
+            extends.is_some()
+                || composition
+                    .elements
+                    .iter()
+                    .any(|e| matches!(e.kind, ElementKind::Extends(_)))
+        }
+        _ => false,
+    }
+}
+
 impl Instantiator<'_, '_> {
+    /// The value of a parameter or constant of an instance whose bases are being
+    /// instantiated, before the instance declares it: its modifier's binding, else its
+    /// declaration's (evaluated in their scopes).
+    fn pending_own_value(&mut self, key: &str, span: Span) -> Option<Result<Value, EvalError>> {
+        let frame = self.pending_own.iter().rposition(|(p, ..)| {
+            key.len() > p.len()
+                && key.starts_with(p.as_str())
+                && (p.is_empty() || key.as_bytes()[p.len()] == b'.')
+        })?;
+        let (prefix_key, class, m, scope) = self.pending_own[frame].clone();
+        let name = key[prefix_key.len()..].trim_start_matches('.');
+        if name.contains(['.', '[']) {
+            return None;
+        }
+        let def = self.tree.get(class).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return None;
+        };
+        let (cc, d) = composition.elements.iter().find_map(|e| match &e.kind {
+            ElementKind::Component(cc) => cc
+                .components
+                .iter()
+                .find(|d| d.name.text == name)
+                .map(|d| (cc, d)),
+            _ => None,
+        })?;
+        if !matches!(
+            cc.prefix.variability,
+            Some(
+                unimo_syntax::ast::Variability::Parameter
+                    | unimo_syntax::ast::Variability::Constant
+            )
+        ) {
+            return None;
+        }
+        let (expr, expr_scope) = match m.child(name).and_then(|c| c.binding.as_ref()) {
+            Some(b) => (b.expr.clone(), b.scope.clone()),
+            None => (d.modification.as_ref()?.binding.clone()?, scope.clone()),
+        };
+        if !self.evaluating.insert(key.to_owned()) {
+            return Some(Err(EvalError::Cycle {
+                span,
+                name: key.to_owned(),
+            }));
+        }
+        let flat = self.expr(&expr, &expr_scope, &mut Vec::new(), &mut Vec::new());
+        let r = eval::eval(&flat, self, &mut Vec::new());
+        self.evaluating.remove(key);
+        Some(r)
+    }
+
     /// The value of an enumeration literal named by its full path
     /// (`Modelica.Blocks.Types.FilterType.LowPass`), following short classes.
     fn enum_literal(&mut self, key: &str) -> Option<Value> {
@@ -1954,6 +2036,9 @@ impl Env for Instantiator<'_, '_> {
         let Some(id) = self.var_id(key) else {
             if let Some(v) = self.enum_literal(key) {
                 return Ok(v);
+            }
+            if let Some(r) = self.pending_own_value(key, span) {
+                return r;
             }
             return Err(EvalError::NotConstant {
                 span,
