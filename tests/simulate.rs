@@ -329,6 +329,18 @@ fn pruning_keeps_fixed_starts_of_dummy_states() {
     }
 }
 
+/// A model without continuous states still has its events: the counter steps at
+/// t = -0.035 + 0.1 k, so at t = 0.3 it has stepped three times, last at t = 0.265.
+#[test]
+fn time_events_fire_in_models_without_states() {
+    let m = load("tests/simulate/StatelessTimeEvents.mo");
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.3, 3);
+    assert_eq!(value(&r, "count"), 3.0);
+    let t_start = value(&r, "T_start");
+    assert!((t_start - 0.265).abs() < 1e-9, "T_start = {t_start}");
+    assert_eq!(r.stats.events, 3, "{}", counters(&r));
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

@@ -164,8 +164,10 @@ impl Ode<'_> {
 }
 
 impl System for Ode<'_> {
+    /// A model without states is integrated as one constant phantom state, so that its
+    /// time events and relations of time are located like any other model's.
     fn len(&self) -> usize {
-        self.m.states.len()
+        self.m.states.len().max(1)
     }
 
     fn differential(&self) -> &[bool] {
@@ -174,6 +176,9 @@ impl System for Ode<'_> {
 
     fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
         self.load(t, x)?;
+        if self.m.states.is_empty() {
+            out[0] = 0.0;
+        }
         for (k, &reg) in self.m.derivatives.iter().enumerate() {
             let v = self.regs[reg as usize];
             if !v.is_finite() {
@@ -281,16 +286,20 @@ impl<'a> Simulator<'a> {
             regs: m.new_registers(),
             ev: m.new_event_state(),
             work: Workspace::default(),
-            differential: vec![true; m.states.len()],
+            differential: vec![true; m.states.len().max(1)],
             evaluations: 0,
             last_failure: None,
-            pattern: m.jacobian.as_ref().and_then(|(_, entries)| {
-                unimo_solve::SparsityPattern::from_entries(
-                    m.states.len(),
-                    entries.iter().map(|&(i, j, _)| (i, j)),
-                )
-                .ok()
-            }),
+            pattern: m
+                .jacobian
+                .as_ref()
+                .filter(|_| !m.states.is_empty())
+                .and_then(|(_, entries)| {
+                    unimo_solve::SparsityPattern::from_entries(
+                        m.states.len(),
+                        entries.iter().map(|&(i, j, _)| (i, j)),
+                    )
+                    .ok()
+                }),
         };
         Simulator {
             ode,
@@ -307,7 +316,12 @@ impl<'a> Simulator<'a> {
         self.ode.m
     }
 
+    /// The solver's state vector: the states, or the phantom state of a model
+    /// without states.
     fn states(&self) -> Vec<f64> {
+        if self.m().states.is_empty() {
+            return vec![0.0];
+        }
         self.m()
             .states
             .iter()
@@ -717,9 +731,6 @@ impl<'a> Simulator<'a> {
             );
         }
         options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
-        if m.states.is_empty() {
-            return self.run_without_states(o);
-        }
         let options_max_step = options.max_step;
         let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
             Ok(s) => s,
@@ -733,7 +744,7 @@ impl<'a> Simulator<'a> {
         }
         let mut next_output = 1usize;
         let grid = |k: usize| o.start + k as f64 * o.interval;
-        let mut buf = vec![0.0; m.states.len()];
+        let mut buf = vec![0.0; m.states.len().max(1)];
         let mut steps_taken: u64 = 0;
         loop {
             let t_event = self
@@ -857,19 +868,7 @@ impl<'a> Simulator<'a> {
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
         self.result.final_states = self.states();
-        self.result
-    }
-
-    fn run_without_states(mut self, o: &SimOptions) -> SimResult {
-        let n = ((o.stop - o.start) / o.interval).round().max(0.0) as usize;
-        for k in 1..=n {
-            let t = o.start + k as f64 * o.interval;
-            if let Err(e) = self.load_state(t, &[]) {
-                self.result.error = Some(e);
-                break;
-            }
-            self.record(t);
-        }
+        self.result.final_states.truncate(self.m().states.len());
         self.result
     }
 
@@ -971,7 +970,9 @@ impl<'a> Simulator<'a> {
             .map(|&r| self.ode.regs[r as usize])
             .collect();
         let delta = 1e-8 * t.abs().max(1.0);
-        let x1: Vec<f64> = (0..n).map(|i| x[i] + delta * dx[i]).collect();
+        let x1: Vec<f64> = (0..n)
+            .map(|i| x[i] + delta * dx.get(i).copied().unwrap_or(0.0))
+            .collect();
         let Some(g1) = g(self, t + delta, &x1) else {
             return;
         };
