@@ -76,6 +76,13 @@ fn prim_ref(model: &FlatModel, var: usize, elem: u32, span: Span) -> Expr {
     e
 }
 
+/// Whether the connector `key` is the instance `absent` or inside it (`a.V` is inside
+/// `a`, but `a.V_internal` is not inside `a.V`).
+fn inside(key: &str, absent: &str) -> bool {
+    key.strip_prefix(absent)
+        .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+}
+
 fn find(parent: &mut [usize], x: usize) -> usize {
     let mut r = x;
     while parent[r] != r {
@@ -249,10 +256,7 @@ pub fn equations(
     let none = Vec::new();
     for (k, (c, (ka, kb))) in connects.iter().zip(&keys).enumerate() {
         // A connection to an absent conditional component is dropped (spec 4.4.5).
-        if absent
-            .iter()
-            .any(|a| ka.starts_with(a.as_str()) || kb.starts_with(a.as_str()))
-        {
+        if absent.iter().any(|a| inside(ka, a) || inside(kb, a)) {
             continue;
         }
         let (ea, eb) = (element(ka), element(kb));
