@@ -341,6 +341,17 @@ fn time_events_fire_in_models_without_states() {
     assert_eq!(r.stats.events, 3, "{}", counters(&r));
 }
 
+/// `initial equation pre(y) = true` sets the hysteresis's state before the start:
+/// x = t up to t = 1, then x = 2 - t (with pre(y) = false it would fall from the start).
+#[test]
+fn initial_equations_of_pre_values_set_the_state_before_the_start() {
+    let m = load("tests/simulate/PreInitialEquation.mo");
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.6, 4);
+    let x = value(&r, "x");
+    assert!((x - 0.4).abs() < 1e-6, "x(1.6) = {x}");
+    assert_eq!(r.stats.events, 1, "{}", counters(&r));
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

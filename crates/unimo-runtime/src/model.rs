@@ -103,6 +103,8 @@ pub struct CompiledModel {
     pub initial_residuals: Vec<Reg>,
     /// Discrete variables `initial_tape` assigns (register, name).
     pub initial_assigned: Vec<(Reg, String)>,
+    /// Whether `initial_tape` sets `pre` values (`initial equation pre(y) = y0`).
+    pub initial_pre_assigned: bool,
     pub ops_total: usize,
     /// The collision world, when the model has collision bodies.
     pub collision: Option<CollisionModel>,
@@ -409,19 +411,34 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     }
     let mut initial_regs = Vec::new();
     let mut initial_assigned = Vec::new();
+    let mut initial_pre_assigned = false;
     for (l, r) in pairs.drain(..) {
         // `d = expr` for a discrete `d` that `expr` does not mention is an assignment
         // (what an initial algorithm's `d := expr` lowers to): executed, not solved.
-        if let unimo_dae::expr::Node::Var(d) = dae.arena.node(l) {
+        // `pre(d) = expr` (`initial equation pre(y) = y_start`) sets the value `d` has
+        // before the initial event.
+        let (target, pre) = match dae.arena.node(l) {
+            unimo_dae::expr::Node::Var(d) => (Some(d), false),
+            unimo_dae::expr::Node::Pre(d) => (Some(d), true),
+            _ => (None, false),
+        };
+        if let Some(d) = target {
             if dae.scalar(d).kind == ScalarKind::Discrete
                 && dae.scalar(d).alias.is_none()
                 && !dae.arena.vars(r).contains(&d)
             {
                 let rr = c.expr(r, &mut initial_tape, &mut memo);
-                initial_tape
-                    .ops
-                    .push(crate::tape::Op::Copy(layout.var(d), rr));
-                initial_assigned.push((layout.var(d), dae.name(d)));
+                let reg = if pre {
+                    layout.pre_base + layout.var(d)
+                } else {
+                    layout.var(d)
+                };
+                initial_tape.ops.push(crate::tape::Op::Copy(reg, rr));
+                if pre {
+                    initial_pre_assigned = true;
+                } else {
+                    initial_assigned.push((layout.var(d), dae.name(d)));
+                }
                 // Values computed before the assignment may have read the old value.
                 memo.clear();
                 continue;
@@ -511,6 +528,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_tape,
         initial_residuals: initial_regs,
         initial_assigned,
+        initial_pre_assigned,
         ops_total: 0,
         collision,
     };

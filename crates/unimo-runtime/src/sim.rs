@@ -373,7 +373,7 @@ impl<'a> Simulator<'a> {
         self.ode.ev.event_mode = true;
         if !m.initial_residuals.is_empty() {
             self.solve_initial_equations()?;
-        } else if !m.initial_assigned.is_empty() {
+        } else if !m.initial_assigned.is_empty() || m.initial_pre_assigned {
             self.eval_plan()?;
             let m = self.m();
             m.initial_tape.run(&mut self.ode.regs, &mut self.ode.ev);
