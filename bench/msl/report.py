@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Turns msl-check's results CSV into docs/results/msl.md (stdout): a table per package
+of how far each example gets (parses, flattens, balanced, translates, initializes,
+simulates, matches the reference), every failing example with its reason, and the
+whole-process time per example."""
+import csv, re, statistics, subprocess, sys, datetime
+
+STAGES = ["parses", "flattens", "balanced", "translates", "initializes", "simulates", "matches"]
+FIVE = ["Modelica.Blocks", "Modelica.Electrical.Analog", "Modelica.Mechanics.Rotational",
+        "Modelica.Mechanics.Translational", "Modelica.Thermal.HeatTransfer"]
+
+
+def reached(row):
+    """The number of stages an example passed (7 = matches the reference)."""
+    out, detail = row["outcome"], row["detail"]
+    if out == "pass":
+        return 7
+    if out in ("mismatch",):
+        return 6
+    code = re.search(r"error\[(E\d+)\]", detail)
+    code = code.group(1) if code else ""
+    if code.startswith("E1"):
+        return 0
+    if code == "E2010":
+        return 2
+    if code.startswith("E2"):
+        return 1
+    if code.startswith("E3"):
+        return 3
+    if code == "E4001":
+        return 4
+    return 5  # failed while simulating (E4002, E4003, ...), timeout
+
+
+def package(model):
+    for p in FIVE + ["Modelica.Mechanics.MultiBody"]:
+        if model.startswith(p + "."):
+            return p
+    return model.rsplit(".", 2)[0]
+
+
+def main(path):
+    rows = [r for r in csv.DictReader(open(path)) if r["outcome"] != "no-reference"]
+    absent = [r for r in csv.DictReader(open(path)) if r["outcome"] == "no-reference"]
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    print("# MSL 4.1.0: examples against the reference results\n")
+    print(f"Measured {datetime.date.today()} on commit `{commit}` with `bash bench/msl/run.sh` "
+          "(release build, this machine: 2 cores, shared). The criterion is "
+          "`../shared/tools/msl-check`'s: every compared signal within 0.2 % of its "
+          "range at the reference's time points, rows next to jumps left out; the "
+          "experiment annotation of each example drives the run. Times are the whole "
+          "process (load, translate, simulate, write).\n")
+    by_pkg = {}
+    for r in rows:
+        by_pkg.setdefault(package(r["model"]), []).append(r)
+    print("| package | examples | " + " | ".join(STAGES) + " |")
+    print("|---|---|" + "---|" * len(STAGES))
+    tot = [0] * len(STAGES)
+    n_five = 0
+    pass_five = 0
+    for p in sorted(by_pkg):
+        rs = by_pkg[p]
+        counts = [sum(1 for r in rs if reached(r) > k) for k in range(len(STAGES))]
+        if p in FIVE:
+            n_five += len(rs)
+            pass_five += counts[-1]
+        tot = [a + b for a, b in zip(tot, counts)]
+        print(f"| {p} | {len(rs)} | " + " | ".join(map(str, counts)) + " |")
+    print(f"| **all** | {len(rows)} | " + " | ".join(map(str, tot)) + " |\n")
+    print(f"The five packages of the acceptance (Blocks, Electrical.Analog, Rotational, "
+          f"Translational, HeatTransfer): **{pass_five} of {n_five}** match the reference "
+          f"({100.0 * pass_five / max(n_five, 1):.0f} %).\n")
+    times = [float(r["seconds"]) for r in rows if r["outcome"] == "pass"]
+    if times:
+        print(f"Whole-process time of the passing examples: median {statistics.median(times)*1000:.0f} ms, "
+              f"largest {max(times)*1000:.0f} ms.\n")
+    if absent:
+        print("Without a reference CSV in the test data (not counted): " +
+              ", ".join(f"`{r['model']}`" for r in absent) + ".\n")
+    unreadable = [r for r in rows if "unreadable: 'time'" in r["detail"]]
+    if unreadable:
+        print("msl-check reads the column `time`; the reference CSVs of " +
+              ", ".join(f"`{r['model'][9:]}`" for r in unreadable) +
+              " name it `Time`, so msl-check cannot compare them and counts them as "
+              "mismatches (`tests/msl.rs` reads either name).\n")
+    print("## Every example\n")
+    print("| example | outcome | seconds | reason or worst signal |")
+    print("|---|---|---|---|")
+    for r in sorted(rows, key=lambda r: r["model"]):
+        detail = r["detail"].replace("|", "\\|").replace("\n", " ")[:220]
+        stage = STAGES[reached(r)] if reached(r) < 7 else "matches"
+        outcome = "pass" if r["outcome"] == "pass" else f"fails: {stage}"
+        print(f"| `{r['model'][9:]}` | {outcome} | {r['seconds']} | {detail} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

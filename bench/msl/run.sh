@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Runs every MSL example that has reference results through `unimo simulate` (with
+# ../shared/tools/msl-check, the criterion in its header) and rewrites
+# docs/results/msl.md. Needs ../shared/msl and ../shared/msl-reference beside the
+# project (test data, not part of it). Usage: bash bench/msl/run.sh [--filter REGEX]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+shared="$(cd .. && pwd)/shared"
+for d in "$shared/msl" "$shared/msl-reference" "$shared/tools/msl-check"; do
+  [ -e "$d" ] || { echo "missing $d: the MSL test data must be beside the project" >&2; exit 2; }
+done
+cargo build --release --quiet
+results="$(mktemp -d)/results.csv"
+python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
+  --ref "$shared/msl-reference" --results "$results" "$@" | tee "${results%.csv}.txt"
+python3 bench/msl/report.py "$results" > docs/results/msl.md
+echo "wrote docs/results/msl.md"

@@ -1,0 +1,249 @@
+//! The Modelica Standard Library (MSL 4.1.0, test data beside the project in
+//! `../shared/msl`, never copied into it) against the Modelica Association's reference
+//! results (`../shared/msl-reference`): the examples listed here simulate with `unimo
+//! simulate` and every compared signal stays in the reference's tube. The criterion is
+//! `../shared/tools/msl-check`'s, written again here: at the reference's time points,
+//! `max |y - y_ref| <= 2e-3 * max(range(y_ref), max|y_ref| * 1e-3, 1e-9)`, leaving out
+//! the rows next to a jump of the reference (a change between neighbouring rows larger
+//! than 5 % of that scale) and rows repeated at one instant. `bench/msl/run.sh` runs
+//! every example and rewrites `docs/results/msl.md`.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The examples that pass today, every package represented: a regression guard.
+const EXAMPLES: &[&str] = &[
+    "Modelica.Blocks.Examples.CompareSincExpSine",
+    "Modelica.Blocks.Examples.InverseModel",
+    "Modelica.Blocks.Examples.SlewRateLimiter",
+    "Modelica.Blocks.Examples.TotalHarmonicDistortion",
+    "Modelica.Electrical.Analog.Examples.CauerLowPassAnalog",
+    "Modelica.Electrical.Analog.Examples.CauerLowPassOPV",
+    "Modelica.Electrical.Analog.Examples.CharacteristicIdealDiodes",
+    "Modelica.Electrical.Analog.Examples.IdealTriacCircuit",
+    "Modelica.Electrical.Analog.Examples.InvertingAmp",
+    "Modelica.Electrical.Analog.Examples.OpAmps.Adder",
+    "Modelica.Electrical.Analog.Examples.OpAmps.HighPass",
+    "Modelica.Electrical.Analog.Examples.OpAmps.Integrator",
+    "Modelica.Electrical.Analog.Examples.OpAmps.LowPass",
+    "Modelica.Electrical.Analog.Examples.OpAmps.VoltageFollower",
+    "Modelica.Electrical.Analog.Examples.Resistor",
+    "Modelica.Electrical.Analog.Examples.SeriesResonance",
+    "Modelica.Electrical.Analog.Examples.SwitchWithArc",
+    "Modelica.Mechanics.Rotational.Examples.First",
+    "Modelica.Mechanics.Rotational.Examples.FirstGrounded",
+    "Modelica.Mechanics.Rotational.Examples.RollingWheel",
+    "Modelica.Mechanics.Translational.Examples.Accelerate",
+    "Modelica.Mechanics.Translational.Examples.Damper",
+    "Modelica.Mechanics.Translational.Examples.ElastoGap",
+    "Modelica.Mechanics.Translational.Examples.InitialConditions",
+    "Modelica.Mechanics.Translational.Examples.Oscillator",
+    "Modelica.Mechanics.Translational.Examples.SignConvention",
+    "Modelica.Thermal.HeatTransfer.Examples.ControlledTemperature",
+    "Modelica.Thermal.HeatTransfer.Examples.TwoMasses",
+];
+
+fn shared(dir: &str) -> PathBuf {
+    let path = common::root().join("..").join("shared").join(dir);
+    assert!(
+        path.is_dir(),
+        "the MSL test data is missing: expected {} (MSL 4.1.0 and its reference results \
+         beside the project, as `../shared/msl` and `../shared/msl-reference`)",
+        path.display()
+    );
+    path
+}
+
+/// A CSV file as its header and columns (unparsable cells are NaN).
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    let mut lines = text.lines();
+    let head: Vec<String> = lines
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(|h| h.trim().trim_matches('"').to_owned())
+        .collect();
+    let mut cols = vec![Vec::new(); head.len()];
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        if cells.len() != head.len() {
+            continue;
+        }
+        for (col, cell) in cols.iter_mut().zip(cells) {
+            col.push(cell.trim().parse().unwrap_or(f64::NAN));
+        }
+    }
+    (head, cols)
+}
+
+fn column<'c>(head: &[String], cols: &'c [Vec<f64>], name: &str) -> Option<&'c [f64]> {
+    head.iter()
+        .position(|h| h == name || (name == "time" && h.eq_ignore_ascii_case("time")))
+        .map(|k| cols[k].as_slice())
+}
+
+/// `y` at `t` by linear interpolation; at a repeated instant the last row (the value
+/// after an event), as the reference does.
+fn interpolate(ts: &[f64], ys: &[f64], t: f64) -> f64 {
+    let mut i = ts.partition_point(|&x| x < t);
+    if i < ts.len() && ts[i] == t {
+        while i + 1 < ts.len() && ts[i + 1] == t {
+            i += 1;
+        }
+        return ys[i];
+    }
+    if i == 0 {
+        return ys[0];
+    }
+    if i >= ts.len() {
+        return ys[ts.len() - 1];
+    }
+    let (t0, t1) = (ts[i - 1], ts[i]);
+    let w = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
+    ys[i - 1] + w * (ys[i] - ys[i - 1])
+}
+
+/// `Err` with the first signal outside its tube.
+fn compare(reference: &Path, result: &Path, signals: &[String]) -> Result<(), String> {
+    let (rh, rc) = read_csv(reference);
+    let (sh, sc) = read_csv(result);
+    let tr = column(&rh, &rc, "time").ok_or("no time column in the reference")?;
+    let ts = column(&sh, &sc, "time").ok_or("no time column in the result")?;
+    let end = *tr.last().ok_or("an empty reference")?;
+    if ts.last().copied().unwrap_or(f64::NEG_INFINITY) < end - 1e-9 * end.abs().max(1.0) {
+        return Err(format!("the result ends before t = {end}"));
+    }
+    for s in signals {
+        let Some(yr) = column(&rh, &rc, s) else {
+            continue;
+        };
+        let y = column(&sh, &sc, s).ok_or_else(|| format!("signal {s} missing"))?;
+        let (lo, hi) = yr
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        let big = yr.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let scale = (hi - lo).max(big * 1e-3).max(1e-9);
+        let tol = 2e-3 * scale;
+        let jump: Vec<bool> = yr
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs() > 0.05 * scale)
+            .collect();
+        for (i, &t) in tr.iter().enumerate() {
+            if (i > 0 && jump[i - 1]) || (i < jump.len() && jump[i]) {
+                continue;
+            }
+            if i + 1 < tr.len() && tr[i + 1] == t {
+                continue;
+            }
+            let v = interpolate(ts, y, t);
+            let err = (v - yr[i]).abs();
+            if err.is_nan() || err > tol {
+                return Err(format!("{s}: error {err:.3e} at t = {t} > {tol:.3e}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn msl_examples_match_the_reference_results() {
+    let msl = shared("msl");
+    let refs = shared("msl-reference");
+    let tmp = std::env::temp_dir().join(format!("unimo-msl-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut failures = Vec::new();
+    for model in EXAMPLES {
+        let folder = model.split('.').fold(refs.clone(), |p, part| p.join(part));
+        let name = model.rsplit('.').next().unwrap();
+        let signals: Vec<String> = std::fs::read_to_string(folder.join("comparisonSignals.txt"))
+            .unwrap_or_else(|e| panic!("{model}: no comparisonSignals.txt: {e}"))
+            .lines()
+            .map(|l| l.trim().to_owned())
+            .filter(|l| !l.is_empty() && l != "time")
+            .collect();
+        let out = tmp.join(format!("{name}.csv"));
+        let run = Command::new(env!("CARGO_BIN_EXE_unimo"))
+            .arg("simulate")
+            .arg(msl.join("Modelica/package.mo"))
+            .args(["--model", model, "--lib"])
+            .arg(&msl)
+            .args(["--vars", &signals.join(","), "--output"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        if !run.status.success() {
+            let err = String::from_utf8_lossy(&run.stderr);
+            let first = err.lines().find(|l| l.starts_with("error")).unwrap_or("");
+            failures.push(format!("{model}: exit {:?} {first}", run.status.code()));
+            continue;
+        }
+        if let Err(e) = compare(&folder.join(format!("{name}.csv")), &out, &signals) {
+            failures.push(format!("{model}: {e}"));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+    assert!(
+        failures.is_empty(),
+        "{} of {} MSL examples fail:\n{}",
+        failures.len(),
+        EXAMPLES.len(),
+        failures.join("\n")
+    );
+}
+
+/// The comparison itself: a result inside the tube passes, one shifted by 1 % of the
+/// range fails, a jump of the reference is left out.
+#[test]
+fn the_comparison_applies_the_tube() {
+    let dir = std::env::temp_dir().join(format!("unimo-msl-cmp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, rows: &[(f64, f64)]| {
+        let mut s = String::from("\"Time\",\"y\"\n");
+        for (t, y) in rows {
+            s.push_str(&format!("{t},{y}\n"));
+        }
+        std::fs::write(dir.join(name), s).unwrap();
+        dir.join(name)
+    };
+    let reference: Vec<(f64, f64)> = (0..=100)
+        .map(|k| (k as f64 / 100.0, (k as f64 / 100.0).sin()))
+        .collect();
+    let r = write("ref.csv", &reference);
+    let good = write(
+        "good.csv",
+        &(0..=1000)
+            .map(|k| (k as f64 / 1000.0, (k as f64 / 1000.0).sin()))
+            .collect::<Vec<_>>(),
+    );
+    let bad = write(
+        "bad.csv",
+        &(0..=1000)
+            .map(|k| (k as f64 / 1000.0, (k as f64 / 1000.0).sin() + 0.01))
+            .collect::<Vec<_>>(),
+    );
+    let y = vec!["y".to_owned()];
+    assert_eq!(compare(&r, &good, &y), Ok(()));
+    assert!(compare(&r, &bad, &y).is_err());
+    // A step at t = 0.5 in the reference, half a row later in the result: left out.
+    let step = |t: f64, at: f64| if t < at { 0.0 } else { 1.0 };
+    let r2 = write(
+        "ref2.csv",
+        &(0..=100)
+            .map(|k| (k as f64 / 100.0, step(k as f64 / 100.0, 0.5)))
+            .collect::<Vec<_>>(),
+    );
+    let late = write(
+        "late.csv",
+        &(0..=1000)
+            .map(|k| (k as f64 / 1000.0, step(k as f64 / 1000.0, 0.505)))
+            .collect::<Vec<_>>(),
+    );
+    assert_eq!(compare(&r2, &late, &y), Ok(()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
