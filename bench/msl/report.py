@@ -83,7 +83,7 @@ def main(path):
         print("msl-check reads the column `time`; the reference CSVs of " +
               ", ".join(f"`{r['model'][9:]}`" for r in unreadable) +
               " name it `Time`, so msl-check cannot compare them and counts them as "
-              "mismatches (`tests/msl.rs` reads either name).\n")
+              "mismatches; `tests/msl.rs` reads either name and they match there.\n")
     print("## Every example\n")
     print("| example | outcome | seconds | reason or worst signal |")
     print("|---|---|---|---|")
