@@ -249,3 +249,47 @@ fn the_comparison_applies_the_tube() {
     assert_eq!(compare(&r2, &late, &y), Ok(()));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A library model needs no file: `--lib DIR` or the standard `MODELICAPATH` finds it,
+/// and both give the same result (the user's MSL, not the bundled subset).
+#[test]
+fn a_library_model_runs_without_a_file() {
+    let msl = shared("msl");
+    let tmp = std::env::temp_dir().join(format!("unimo-msl-lib-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let model = "Modelica.Mechanics.Rotational.Examples.First";
+    let with_lib = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["simulate", "--model", model, "--lib"])
+        .arg(&msl)
+        .arg("--output")
+        .arg(tmp.join("lib.csv"))
+        .output()
+        .unwrap();
+    assert!(
+        with_lib.status.success(),
+        "{}",
+        String::from_utf8_lossy(&with_lib.stderr)
+    );
+    let with_path = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["simulate", "--model", model, "--output"])
+        .arg(tmp.join("path.csv"))
+        .env("MODELICAPATH", &msl)
+        .output()
+        .unwrap();
+    assert!(
+        with_path.status.success(),
+        "{}",
+        String::from_utf8_lossy(&with_path.stderr)
+    );
+    let a = std::fs::read_to_string(tmp.join("lib.csv")).unwrap();
+    let b = std::fs::read_to_string(tmp.join("path.csv")).unwrap();
+    assert!(a.starts_with("time,") && a.lines().count() > 100);
+    assert_eq!(a, b);
+    // Without a file, without --model: a usage error.
+    let none = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .arg("simulate")
+        .output()
+        .unwrap();
+    assert_eq!(none.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&tmp);
+}

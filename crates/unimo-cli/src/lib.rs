@@ -71,7 +71,7 @@ enum Command {
         /// classes loaded (the library is loaded lazily: only what the files use), time.
         #[arg(long)]
         stats: bool,
-        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
         /// Skip flattening and the balance check: syntax and names only.
@@ -88,14 +88,15 @@ enum Command {
     /// merged, `for` equations unrolled and connections turned into equations. The
     /// output parses back with unimo.
     Flatten {
-        /// The Modelica file with the model, then any other files it uses.
-        #[arg(required = true, value_name = "FILE")]
+        /// The Modelica file with the model, then any other files it uses (none when
+        /// --model names a class of a library: --lib, MODELICAPATH).
+        #[arg(required_unless_present = "model", value_name = "FILE")]
         files: Vec<PathBuf>,
         /// The model to flatten (full dotted name); may be omitted when the file has
         /// exactly one non-partial model.
         #[arg(long, value_name = "NAME")]
         model: Option<String>,
-        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
         /// Print equation and unknown counts to stderr.
@@ -140,13 +141,14 @@ enum Command {
         /// Which stage to print.
         #[arg(long, value_enum, default_value_t = Stage::Ast)]
         stage: Stage,
-        /// The Modelica file with the model, then any other files it uses.
-        #[arg(required = true, value_name = "FILE")]
+        /// The Modelica file with the model, then any other files it uses (none when
+        /// --model names a class of a library: --lib, MODELICAPATH).
+        #[arg(required_unless_present = "model", value_name = "FILE")]
         files: Vec<PathBuf>,
         /// The model (full dotted name); may be omitted when the file has one.
         #[arg(long, value_name = "NAME")]
         model: Option<String>,
-        /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+        /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
     },
@@ -154,13 +156,14 @@ enum Command {
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SimulateArgs {
-    /// The Modelica file with the model, then any other files it uses.
-    #[arg(required = true, value_name = "FILE")]
+    /// The Modelica file with the model, then any other files it uses (none when
+    /// --model names a class of a library: --lib, MODELICAPATH).
+    #[arg(required_unless_present = "model", value_name = "FILE")]
     pub files: Vec<PathBuf>,
     /// The model (full dotted name); may be omitted when the file has one.
     #[arg(long, value_name = "NAME")]
     pub model: Option<String>,
-    /// Add a library folder (searched before UNIMO_PATH and the bundled library).
+    /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
     #[arg(long = "lib", value_name = "DIR")]
     pub libs: Vec<PathBuf>,
     /// Start time [default: experiment StartTime, else 0].
@@ -306,7 +309,13 @@ fn run_on_this_thread() -> i32 {
             model,
             libs,
         } => match stage {
-            Stage::Ast => check::emit_ast(&files[0], color),
+            Stage::Ast => match files.first() {
+                Some(file) => check::emit_ast(file, color),
+                None => {
+                    eprintln!("error: `emit --stage ast` prints the tree of a file: give the file");
+                    EXIT_USAGE
+                }
+            },
             Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
             Stage::Dae => stages::emit_dae(&files, model.as_deref(), &libs, color),
             Stage::Structure => stages::emit_structure(&files, model.as_deref(), &libs, color),

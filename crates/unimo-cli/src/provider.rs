@@ -1,5 +1,8 @@
-//! Library roots for the flattener: `--lib` folders, then `UNIMO_PATH` folders, then
-//! the standard library embedded in the binary.
+//! Library roots for the flattener: `--lib` folders, then the folders of the standard
+//! `MODELICAPATH` variable, then `UNIMO_PATH` folders, then the standard library
+//! embedded in the binary. A top-level package is taken whole from the first root that
+//! has it, so a user's `Modelica` library always wins over the bundled subset, and the
+//! two never mix.
 
 use std::path::{Path, PathBuf};
 use unimo_flat::{LibFile, LibLocation, MemoryProvider, SourceProvider};
@@ -11,11 +14,14 @@ pub struct CliProvider {
 }
 
 impl CliProvider {
-    /// `--lib` folders first, then `UNIMO_PATH` (separated like `PATH`).
+    /// `--lib` folders first, then `MODELICAPATH` and `UNIMO_PATH` (each separated like
+    /// `PATH`).
     pub fn new(libs: &[PathBuf]) -> CliProvider {
         let mut disk: Vec<PathBuf> = libs.to_vec();
-        if let Some(p) = std::env::var_os("UNIMO_PATH") {
-            disk.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
+        for var in ["MODELICAPATH", "UNIMO_PATH"] {
+            if let Some(p) = std::env::var_os(var) {
+                disk.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
+            }
         }
         let embedded = MemoryProvider::new().with_root(
             "<stdlib>",
