@@ -395,13 +395,9 @@ impl Instantiator<'_, '_> {
 
     fn flat_function(&mut self, class: ClassId, name: &str) -> Option<FlatFunction> {
         let def = self.tree.get(class).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
+        if !matches!(def.body, ClassBody::Long { .. }) {
             return None;
-        };
-        let scope = Scope {
-            class,
-            prefix: std::sync::Arc::from([]),
-        };
+        }
         let mut f = FlatFunction {
             name: name.to_owned(),
             inputs: Vec::new(),
@@ -411,35 +407,63 @@ impl Instantiator<'_, '_> {
             external: false,
             origin: def.name.span,
         };
+        // The function and the classes it extends (`function quantile extends
+        // partialQuantile`: the inputs and outputs declared there), bases first; an
+        // element declared again further down replaces the inherited one.
+        let mut classes = Vec::new();
+        self.record_classes(class, &mut classes, 0);
+        let compositions: Vec<(ClassId, std::sync::Arc<ClassDef>)> = classes
+            .iter()
+            .map(|&c| (c, self.tree.get(c).def.clone()))
+            .collect();
         let mut local_names: Vec<String> = Vec::new();
-        for e in &composition.elements {
-            if let ElementKind::Component(cc) = &e.kind {
-                local_names.extend(cc.components.iter().map(|d| d.name.text.to_string()));
+        for (_, d) in &compositions {
+            if let ClassBody::Long { composition, .. } = &d.body {
+                for e in &composition.elements {
+                    if let ElementKind::Component(cc) = &e.kind {
+                        local_names.extend(cc.components.iter().map(|d| d.name.text.to_string()));
+                    }
+                }
             }
         }
-        for e in &composition.elements {
-            let ElementKind::Component(cc) = &e.kind else {
+        let mut has_sections = false;
+        for (c, d) in &compositions {
+            let ClassBody::Long { composition, .. } = &d.body else {
                 continue;
             };
-            for d in &cc.components {
-                let var = self.func_var(cc, d, &scope, &mut local_names);
-                match cc.prefix.causality {
-                    Some(Causality::Input) => f.inputs.push(var),
-                    Some(Causality::Output) => f.outputs.push(var),
-                    None => f.locals.push(var),
+            let scope = Scope {
+                class: *c,
+                prefix: std::sync::Arc::from([]),
+            };
+            for e in &composition.elements {
+                let ElementKind::Component(cc) = &e.kind else {
+                    continue;
+                };
+                for d in &cc.components {
+                    let var = self.func_var(cc, d, &scope, &mut local_names);
+                    for list in [&mut f.inputs, &mut f.outputs, &mut f.locals] {
+                        list.retain(|v| v.name != var.name);
+                    }
+                    match cc.prefix.causality {
+                        Some(Causality::Input) => f.inputs.push(var),
+                        Some(Causality::Output) => f.outputs.push(var),
+                        None => f.locals.push(var),
+                    }
+                }
+            }
+            has_sections |= !composition.sections.is_empty();
+            for s in &composition.sections {
+                if let Section::Algorithm(a) = s {
+                    for st in &a.statements {
+                        let st = self.function_statement(st, &scope, &mut local_names);
+                        f.algorithm.push(st);
+                    }
                 }
             }
         }
-        for s in &composition.sections {
-            if let Section::Algorithm(a) = s {
-                for st in &a.statements {
-                    let st = self.function_statement(st, &scope, &mut local_names);
-                    f.algorithm.push(st);
-                }
-            }
-        }
+        let composition_sections_empty = !has_sections;
         // No body: no algorithm and no output computed by its binding.
-        f.external = composition.sections.is_empty()
+        f.external = composition_sections_empty
             && f.algorithm.is_empty()
             && f.outputs.iter().all(|o| o.default.is_none());
         Some(f)
