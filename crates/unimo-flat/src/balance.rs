@@ -181,6 +181,20 @@ impl Shapes<'_> {
         match &e.kind {
             // The left side decides; the right side when the left is a plain scalar
             // expression whose shape is unknown here (`zeros(3) = v` has its own shape).
+            // `(a, b) = f(x)`: one equation per scalar of each target (an empty slot
+            // `(a, , c)` discards that output).
+            EquationKind::Simple {
+                lhs:
+                    Expr {
+                        kind: ExprKind::Tuple(targets),
+                        ..
+                    },
+                ..
+            } => targets
+                .iter()
+                .flatten()
+                .map(|t| self.size(t))
+                .fold(0, usize::saturating_add),
             EquationKind::Simple { lhs, rhs } => {
                 let l = self.of(lhs);
                 if l.is_empty() && !is_scalar_for_sure(lhs) {
