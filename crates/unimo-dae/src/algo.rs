@@ -486,10 +486,13 @@ impl Lowerer<'_> {
                 span,
             ));
         }
-        if f.external {
+        if f.external && f.external_call.is_none() {
             return Err(unsupported(format!("external function `{}`", f.name), span));
         }
         let mut given: Vec<Option<Tensor>> = vec![None; f.inputs.len()];
+        // An external function's String inputs (a table's file name) have no value
+        // here: unimo's implementations do not read them.
+        let skip = |k: usize| f.external_call.is_some() && f.inputs[k].base == "String";
         for (k, a) in args.positional.iter().enumerate() {
             if k >= given.len() {
                 return Err(DaeError::new(
@@ -497,6 +500,10 @@ impl Lowerer<'_> {
                     format!("too many arguments for `{}`", f.name),
                     a.span,
                 ));
+            }
+            if skip(k) {
+                given[k] = Some(Tensor::default());
+                continue;
             }
             given[k] = Some(self.expr(a)?);
         }
@@ -508,7 +515,11 @@ impl Lowerer<'_> {
                     a.name.span,
                 ));
             };
-            given[k] = Some(self.expr(&a.value)?);
+            given[k] = Some(if skip(k) {
+                Tensor::default()
+            } else {
+                self.expr(&a.value)?
+            });
         }
         let saved_locals = std::mem::take(&mut self.locals);
         let saved_assigned = self.assigned.take();
@@ -537,6 +548,7 @@ impl Lowerer<'_> {
         for (input, value) in f.inputs.iter().zip(given) {
             let value = match value {
                 Some(v) => v,
+                None if f.external_call.is_some() && input.base == "String" => Tensor::default(),
                 None => match &input.default {
                     Some(d) => self.expr(d)?,
                     None => {
@@ -582,7 +594,12 @@ impl Lowerer<'_> {
                 record: v.record.clone(),
             });
         }
-        self.exec_block(&f.algorithm)?;
+        match &f.external_call {
+            Some(ext) if f.external => self.external_body(f, ext, span)?,
+            _ => {
+                self.exec_block(&f.algorithm)?;
+            }
+        }
         let mut outs = Vec::new();
         for o in &f.outputs {
             let v = self

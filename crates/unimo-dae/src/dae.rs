@@ -176,6 +176,9 @@ pub struct Dae {
     pub collision: Vec<CollisionSite>,
     /// The collision world's settings (`collisionGaps(margin, tolerance, broadphase, sweep)`).
     pub collision_world: Option<CollisionSite>,
+    /// External objects (the MSL's tables), made after the parameters: the handle of
+    /// object `k` is the constant `k` (`crate::external`).
+    pub external_objects: Vec<crate::external::ExternalObjectSite>,
 }
 
 /// One collision body: the arguments of its `collisionBody(...)` call, flattened.

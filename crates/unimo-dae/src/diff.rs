@@ -60,6 +60,34 @@ fn derivative_node(
                 a.constant(f64::NAN)
             }
         }
+        // A table's value: its slope times the derivative of its input (the last
+        // operand); the handle and column are constants. Piecewise constant functions
+        // (bounds, next event) have derivative zero.
+        Node::Ext(f, object, x, y) => {
+            let input = if f.arity() == 2 { y } else { x };
+            match f.slope() {
+                Some(slope) if f.arity() == 2 => {
+                    let dinput = d(a, input, seed);
+                    let s = a.intern(Node::Ext(slope, object, x, y));
+                    a.mul(s, dinput)
+                }
+                // The slope of a slope is not provided: an index reduction that needs
+                // it evaluates to NaN and fails visibly.
+                _ if matches!(
+                    f,
+                    crate::external::ExtFn::Table1DSlope | crate::external::ExtFn::TimeTableSlope
+                ) =>
+                {
+                    let dinput = d(a, input, seed);
+                    if a.as_const(dinput) == Some(0.0) {
+                        a.zero()
+                    } else {
+                        a.constant(f64::NAN)
+                    }
+                }
+                _ => a.zero(),
+            }
+        }
         Node::Add(x, y) => {
             let dx = d(a, x, seed);
             let dy = d(a, y, seed);

@@ -236,6 +236,9 @@ pub enum Node {
     /// torque, or the collision world's gaps): computed by the runtime from states and
     /// parameters before each pass of the plan; a leaf for the symbolic layer.
     External(u32, u32),
+    /// An external object's function (a table lookup, [`crate::external::ExtFn`]) of
+    /// the object handle and up to two operands (unused ones are 0).
+    Ext(crate::external::ExtFn, ExprId, ExprId, ExprId),
 }
 
 /// The arena. Nodes are immutable; constructors simplify and share.
@@ -272,7 +275,7 @@ impl ExprArena {
         self.nodes[id.index()]
     }
 
-    fn intern(&mut self, node: Node) -> ExprId {
+    pub(crate) fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
@@ -537,7 +540,7 @@ impl ExprArena {
             | Node::And(x, y)
             | Node::Or(x, y)
             | Node::Sample(x, y) => (Some(x), Some(y), None),
-            Node::If(c, x, y) => (Some(c), Some(x), Some(y)),
+            Node::If(c, x, y) | Node::Ext(_, c, x, y) => (Some(c), Some(x), Some(y)),
         };
         a.into_iter().chain(b).chain(c)
     }
@@ -623,6 +626,7 @@ impl ExprArena {
             Node::If(..) => self.if_(k[0], k[1], k[2]),
             Node::NoEvent(_) => self.no_event(k[0]),
             Node::Sample(..) => self.sample(k[0], k[1]),
+            Node::Ext(f, ..) => self.intern(Node::Ext(f, k[0], k[1], k[2])),
         }
     }
 
@@ -658,7 +662,7 @@ impl ExprArena {
             Node::NoEvent(a) => e(a),
             Node::Sample(..) => 0.0,
             // Not known to the symbolic layer (computed by the runtime).
-            Node::External(..) => f64::NAN,
+            Node::External(..) | Node::Ext(..) => f64::NAN,
         }
     }
 
@@ -795,6 +799,15 @@ impl ExprArena {
                 w(a, 0, out)?;
                 out.push_str(", ");
                 w(b, 0, out)?;
+                out.push(')');
+            }
+            Node::Ext(f, a, b, c) => {
+                write!(out, "{}(", f.name())?;
+                w(a, 0, out)?;
+                for x in [b, c].into_iter().take(f.arity()) {
+                    out.push_str(", ");
+                    w(x, 0, out)?;
+                }
                 out.push(')');
             }
         }

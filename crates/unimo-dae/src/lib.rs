@@ -15,6 +15,7 @@ pub mod equations;
 pub mod error;
 pub mod events;
 pub mod expr;
+pub mod external;
 pub mod lower;
 pub mod plan;
 pub mod prune;

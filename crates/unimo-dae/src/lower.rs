@@ -177,6 +177,8 @@ impl<'m> Lowerer<'m> {
                 FlatType::Integer => ScalarType::Integer,
                 FlatType::Boolean => ScalarType::Boolean,
                 FlatType::String => continue,
+                // A handle: the index of its object in `Dae::external_objects`.
+                FlatType::ExternalObject { .. } => ScalarType::Integer,
                 FlatType::Enumeration { name, .. } => {
                     let k = self
                         .dae

@@ -6,7 +6,7 @@ use crate::expr::{ExprArena, ExprId};
 use unimo_source::Span;
 
 /// A scalar (no dims) or an array of scalar expressions, row-major.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Default)]
 pub struct Tensor {
     pub dims: Vec<usize>,
     pub data: Vec<ExprId>,

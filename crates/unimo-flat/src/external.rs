@@ -1,8 +1,21 @@
-//! External functions: a function whose body is `external "builtin"` is the built-in
-//! of that name (`Modelica.Math.sin` is `sin`), so calls to it become built-in calls.
+//! External functions and objects: a function whose body is `external "builtin"` is
+//! the built-in of that name (`Modelica.Math.sin` is `sin`), so calls to it become
+//! built-in calls; a class that `extends ExternalObject` (spec 12.9.7) is the type of
+//! opaque handles made by its `constructor` function (the MSL's tables).
 
 use crate::lookup::BUILTIN_FUNCTIONS;
 use unimo_syntax::ast::{Causality, ClassBody, ClassDef, ElementKind, ExprKind};
+
+/// Whether `def` is an external object class: a class extending `ExternalObject`.
+pub(crate) fn is_external_object(def: &ClassDef) -> bool {
+    let ClassBody::Long { composition, .. } = &def.body else {
+        return false;
+    };
+    composition.elements.iter().any(|e| {
+        matches!(&e.kind, ElementKind::Extends(x)
+            if x.base.parts.len() == 1 && x.base.parts[0].text == "ExternalObject")
+    })
+}
 
 /// The built-in function a function stands for: its external clause says
 /// `external "builtin"`, and its call (if written) passes the inputs in their declared

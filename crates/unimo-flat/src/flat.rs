@@ -31,6 +31,11 @@ pub enum FlatType {
         name: String,
         literals: Vec<String>,
     },
+    /// An external object class (`extends ExternalObject`): its full name. Values are
+    /// handles its `constructor` function makes.
+    ExternalObject {
+        name: String,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -360,7 +365,7 @@ pub(crate) fn type_name(t: &FlatType) -> String {
             name.clone()
         }
         // Other enumerations are printed as types before the model.
-        FlatType::Enumeration { name, .. } => quote(name),
+        FlatType::Enumeration { name, .. } | FlatType::ExternalObject { name } => quote(name),
     }
 }
 

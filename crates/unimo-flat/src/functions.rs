@@ -49,7 +49,21 @@ pub struct FlatFunction {
     /// A function without a body (no algorithm, no output binding): the back end
     /// cannot inline it.
     pub external: bool,
+    /// Its `external "C" y = f(a, b)` clause, when it has one: the back end calls its
+    /// own implementation of `f` (see `unimo_dae::external`).
+    pub external_call: Option<ExternalCall>,
     pub origin: Span,
+}
+
+/// A function's external clause, flattened: the language, the foreign function's
+/// name, its arguments (expressions of the function's inputs and outputs, in the
+/// function's scope) and the output it assigns.
+#[derive(Clone, Debug)]
+pub struct ExternalCall {
+    pub language: String,
+    pub function: String,
+    pub args: Vec<Expr>,
+    pub output: Option<String>,
 }
 
 /// Global names of user functions called in `e`.
@@ -382,6 +396,36 @@ impl Instantiator<'_, '_> {
         }
     }
 
+    /// An external clause in terms of the function's inputs and outputs; without an
+    /// explicit call, the function's own name with its inputs then outputs.
+    fn external_call(
+        &mut self,
+        ext: &External,
+        def: &ClassDef,
+        scope: &Scope,
+        local_names: &mut Vec<String>,
+    ) -> ExternalCall {
+        let language = ext.language.clone().unwrap_or_else(|| "C".to_owned());
+        match &ext.call {
+            Some(call) => ExternalCall {
+                language,
+                function: call.function.text.to_string(),
+                args: call
+                    .args
+                    .iter()
+                    .map(|a| self.function_expr(a, scope, local_names))
+                    .collect(),
+                output: call.output.as_ref().map(|o| o.to_dotted()),
+            },
+            None => ExternalCall {
+                language,
+                function: def.name.text.to_string(),
+                args: Vec::new(),
+                output: None,
+            },
+        }
+    }
+
     /// `class` and its bases, bases first.
     fn record_classes(&mut self, class: ClassId, out: &mut Vec<ClassId>, depth: usize) {
         if depth > 32 {
@@ -405,6 +449,7 @@ impl Instantiator<'_, '_> {
             locals: Vec::new(),
             algorithm: Vec::new(),
             external: false,
+            external_call: None,
             origin: def.name.span,
         };
         // The function and the classes it extends (`function quantile extends
@@ -452,6 +497,9 @@ impl Instantiator<'_, '_> {
                 }
             }
             has_sections |= !composition.sections.is_empty();
+            if let Some(ext) = &composition.external {
+                f.external_call = Some(self.external_call(ext, d, &scope, &mut local_names));
+            }
             for s in &composition.sections {
                 if let Section::Algorithm(a) = s {
                     for st in &a.statements {

@@ -331,6 +331,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 Found::Class(c) => c,
             };
             let def = self.tree.get(c).def.clone();
+            if crate::external::is_external_object(&def) {
+                let name = self.tree.full_name(c);
+                return Some((
+                    Kind::Builtin(FlatType::ExternalObject { name }),
+                    m,
+                    type_dims,
+                ));
+            }
             match &def.body {
                 ClassBody::Short {
                     base,
@@ -497,6 +505,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         let base_mod = m.over(&own_redeclares.over(&ext));
                         self.class_body_inner(b, prefix, &base_mod, variability, top, false);
                     }
+                    Some(Found::Builtin("ExternalObject")) => {} // an external object class
                     Some(Found::Builtin(_)) => {
                         self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
                     }
@@ -1408,9 +1417,15 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     match found {
                         Some(Found::Class(c)) => {
                             let c = self.real_class(c);
-                            let builtin = crate::external::builtin_alias(&self.tree.get(c).def);
+                            let def = self.tree.get(c).def.clone();
+                            let builtin = crate::external::builtin_alias(&def);
                             let full = match builtin {
                                 Some(b) => b.to_owned(),
+                                // `Table(...)` of an external object class calls its
+                                // constructor.
+                                None if crate::external::is_external_object(&def) => {
+                                    format!("{}.constructor", self.tree.full_name(c))
+                                }
                                 None => self.tree.full_name(c),
                             };
                             Name {

@@ -13,6 +13,8 @@ pub const BUILTIN_TYPES: &[&str] = &[
     "String",
     "StateSelect",
     "AssertionLevel",
+    // The base class of external object classes (spec 12.9.7), not a type of its own.
+    "ExternalObject",
 ];
 
 /// Builtin functions and operators usable in expressions (spec 3.7).

@@ -48,7 +48,11 @@ fn ty_of(t: &FlatType) -> Ty {
         FlatType::Boolean => Ty::Boolean,
         FlatType::String => Ty::Text,
         // Enumerations compare with each other like numbers here.
-        FlatType::Real | FlatType::Integer | FlatType::Enumeration { .. } => Ty::Number,
+        // An external object's handle is an opaque value passed to its functions.
+        FlatType::Real
+        | FlatType::Integer
+        | FlatType::Enumeration { .. }
+        | FlatType::ExternalObject { .. } => Ty::Number,
     }
 }
 

@@ -274,7 +274,8 @@ impl<'m> RhsEvaluator<'m> {
     pub fn new(model: &'m CompiledModel) -> RhsEvaluator<'m> {
         let mut registers = model.new_registers();
         let mut events = model.new_event_state();
-        model.parameters.run(&mut registers, &mut events);
+        // A table that cannot be built leaves its lookups NaN (the simulator reports it).
+        let _ = model.run_parameters(&mut registers, &mut events);
         model.starts.run(&mut registers, &mut events);
         RhsEvaluator {
             model,

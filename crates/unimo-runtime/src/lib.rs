@@ -3,4 +3,5 @@ pub mod collision;
 pub mod eval;
 pub mod model;
 pub mod sim;
+pub mod tables;
 pub mod tape;

@@ -108,6 +108,10 @@ pub struct CompiledModel {
     pub ops_total: usize,
     /// The collision world, when the model has collision bodies.
     pub collision: Option<CollisionModel>,
+    /// External objects (tables): the tape computing their constructors' arguments
+    /// from the parameters, and where each object's arguments are.
+    pub objects_tape: Tape,
+    pub objects: Vec<ObjectSite>,
 }
 
 impl CompiledModel {
@@ -140,7 +144,92 @@ impl CompiledModel {
             sticky: false,
             samples: vec![0.0; self.samples.len()],
             collision: self.collision.as_ref().map(|_| Box::default()),
+            objects: Vec::new(),
         }
+    }
+}
+
+/// An external object's constructor arguments, in registers (see
+/// `unimo_dae::external::ExternalObjectSite`).
+#[derive(Clone, Debug)]
+pub struct ObjectSite {
+    pub kind: unimo_dae::external::ObjectKind,
+    pub table: Vec<Reg>,
+    pub rows: usize,
+    pub cols: usize,
+    pub columns: Vec<Reg>,
+    /// Smoothness, extrapolation, start time, shift time, time events.
+    pub settings: [Reg; 5],
+}
+
+fn compile_objects(dae: &Dae, c: &mut Compiler<'_>) -> (Tape, Vec<ObjectSite>) {
+    let mut tape = Tape::default();
+    let mut memo = HashMap::default();
+    let sites = dae
+        .external_objects
+        .iter()
+        .map(|o| {
+            let mut regs = |es: &[ExprId], tape: &mut Tape| -> Vec<Reg> {
+                es.iter().map(|&e| c.expr(e, tape, &mut memo)).collect()
+            };
+            let table = regs(&o.table, &mut tape);
+            let columns = regs(&o.columns, &mut tape);
+            let s = regs(
+                &[
+                    o.smoothness,
+                    o.extrapolation,
+                    o.start_time,
+                    o.shift_time,
+                    o.time_events,
+                ],
+                &mut tape,
+            );
+            ObjectSite {
+                kind: o.kind,
+                table,
+                rows: o.rows,
+                cols: o.cols,
+                columns,
+                settings: [s[0], s[1], s[2], s[3], s[4]],
+            }
+        })
+        .collect();
+    (tape, sites)
+}
+
+impl CompiledModel {
+    /// Runs the parameters' tape; with external objects, builds them from the
+    /// parameters and runs it again (parameters may read the objects: a friction
+    /// table's value at zero speed).
+    pub fn run_parameters(&self, regs: &mut [f64], ev: &mut EventState) -> Result<(), String> {
+        self.parameters.run(regs, ev);
+        if self.objects.is_empty() {
+            return Ok(());
+        }
+        self.objects_tape.run(regs, ev);
+        let values = |rs: &[Reg]| -> Vec<f64> { rs.iter().map(|&r| regs[r as usize]).collect() };
+        let mut objects = Vec::with_capacity(self.objects.len());
+        for site in &self.objects {
+            let data = values(&site.table);
+            let columns = values(&site.columns);
+            let s = values(&site.settings);
+            let object = crate::tables::TableObject::new(&crate::tables::TableArgs {
+                kind: site.kind,
+                data: &data,
+                rows: site.rows,
+                cols: site.cols,
+                columns: &columns,
+                smoothness: s[0],
+                extrapolation: s[1],
+                start_time: s[2],
+                shift_time: s[3],
+                time_events: s[4],
+            })?;
+            objects.push(object);
+        }
+        ev.objects = objects;
+        self.parameters.run(regs, ev);
+        Ok(())
     }
 }
 
@@ -240,6 +329,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         dependent_parameters = Tape::default();
     }
     let collision = compile_collision(dae, plan, &mut c, body_outputs, gaps);
+    let (objects_tape, objects) = compile_objects(dae, &mut c);
     let mut starts = Tape::default();
     let mut memo = HashMap::default();
     for s in dae.ids() {
@@ -531,6 +621,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_pre_assigned,
         ops_total: 0,
         collision,
+        objects_tape,
+        objects,
     };
     m.ops_total = m
         .steps

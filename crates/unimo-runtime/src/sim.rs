@@ -364,7 +364,12 @@ impl<'a> Simulator<'a> {
         let layout = m.layout;
         self.ode.regs[layout.time as usize] = t0;
         self.ode.regs[layout.initial as usize] = 1.0;
-        m.parameters.run(&mut self.ode.regs, &mut self.ode.ev);
+        if let Err(message) = m.run_parameters(&mut self.ode.regs, &mut self.ode.ev) {
+            return Err(SimError::Init {
+                message,
+                culprits: Vec::new(),
+            });
+        }
         m.starts.run(&mut self.ode.regs, &mut self.ode.ev);
         // pre(v) starts at the start value.
         for s in 0..layout.n_scalars {

@@ -9,6 +9,7 @@
 
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
+use unimo_dae::external::ExtFn;
 
 /// A register index.
 pub type Reg = u32;
@@ -38,6 +39,9 @@ pub enum Op {
     Select(Reg, Reg, Reg, Reg),
     /// `dst = sample state k` (true only during the event at a sample instant).
     Sample(Reg, u32),
+    /// `dst = f(object, a, b)`: a function of the external object whose handle is in
+    /// the first register (a table lookup, `crate::tables`).
+    Ext(ExtFn, Reg, [Reg; 3]),
 }
 
 /// Where special values live in the register file.
@@ -87,6 +91,8 @@ pub struct EventState {
     pub samples: Vec<f64>,
     /// The collision world's mutable side (contact set, sweep origin, broadphase).
     pub collision: Option<Box<crate::collision::CollisionState>>,
+    /// External objects (tables), built after the parameters; handle `k` is object `k`.
+    pub objects: Vec<crate::tables::TableObject>,
 }
 
 /// Relative size below which the operands of a relation count as equal at an event
@@ -151,6 +157,13 @@ impl Tape {
                     }
                 }
                 Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
+                Op::Ext(f, d, [o, a, b]) => {
+                    let object = r[o as usize];
+                    r[d as usize] = match ev.objects.get(object as usize) {
+                        Some(t) if object >= 0.0 => t.eval(f, r[a as usize], r[b as usize]),
+                        _ => f64::NAN,
+                    };
+                }
             }
         }
     }
@@ -333,6 +346,7 @@ impl<'a> Compiler<'a> {
                     Node::Or(a, b) => Ok(Op::Or(0, g(a), g(b))),
                     Node::Not(a) => Ok(Op::Not(0, g(a))),
                     Node::If(c, a, b) => Ok(Op::Select(0, g(c), g(a), g(b))),
+                    Node::Ext(f, o, a, b) => Ok(Op::Ext(f, 0, [g(o), g(a), g(b)])),
                     Node::Sample(..) => Ok(Op::Sample(
                         0,
                         self.sample_index.get(&x).copied().unwrap_or(0),
@@ -397,6 +411,7 @@ fn with_dst(op: Op, d: Reg) -> Op {
         Op::Not(_, a) => Op::Not(d, a),
         Op::Select(_, c, a, b) => Op::Select(d, c, a, b),
         Op::Sample(_, k) => Op::Sample(d, k),
+        Op::Ext(f, _, args) => Op::Ext(f, d, args),
         Op::Const(_, x) => Op::Const(d, x),
         Op::Copy(_, a) => Op::Copy(d, a),
     }

@@ -1,0 +1,291 @@
+//! External functions and objects that unimo implements itself: the Modelica Standard
+//! Library's tables (`ModelicaStandardTables`, written in C by the MSL and in Rust by
+//! us). Lowering turns the MSL's `external "C"` calls into [`Node::Ext`] nodes and the
+//! table constructors into [`ExternalObjectSite`]s; the runtime builds the objects
+//! after the parameters and evaluates the nodes (`unimo_runtime::tables`). An external
+//! function unimo does not provide is a coded error naming it.
+
+use crate::error::DaeError;
+use crate::expr::{ExprId, Node};
+use crate::lower::Local;
+use crate::lower::Lowerer;
+use crate::tensor::Tensor;
+use unimo_flat::functions::{ExternalCall, FlatFunction};
+use unimo_source::Span;
+
+/// A function of an external object, evaluated by the runtime: `Ext(f, object, a, b)`.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum ExtFn {
+    /// 1-D table: value of column `icol` at abscissa `u`: `(table, icol, u)`.
+    Table1D,
+    /// Its derivative with respect to `u`.
+    Table1DSlope,
+    /// Smallest and largest abscissa: `(table)`.
+    Table1DMin,
+    Table1DMax,
+    /// Time table: value of column `icol` at time `t`: `(table, icol, t)`.
+    TimeTable,
+    /// Its derivative with respect to `t`.
+    TimeTableSlope,
+    /// First and last time of the table: `(table)`.
+    TimeTableMin,
+    TimeTableMax,
+    /// The next time event after `t`: `(table, t)`.
+    TimeTableNextEvent,
+}
+
+impl ExtFn {
+    pub fn name(self) -> &'static str {
+        match self {
+            ExtFn::Table1D => "table1D",
+            ExtFn::Table1DSlope => "table1DSlope",
+            ExtFn::Table1DMin => "table1DMin",
+            ExtFn::Table1DMax => "table1DMax",
+            ExtFn::TimeTable => "timeTable",
+            ExtFn::TimeTableSlope => "timeTableSlope",
+            ExtFn::TimeTableMin => "timeTableMin",
+            ExtFn::TimeTableMax => "timeTableMax",
+            ExtFn::TimeTableNextEvent => "timeTableNextEvent",
+        }
+    }
+
+    /// How many operands after the object handle it reads.
+    pub fn arity(self) -> usize {
+        match self {
+            ExtFn::Table1DMin | ExtFn::Table1DMax | ExtFn::TimeTableMin | ExtFn::TimeTableMax => 0,
+            ExtFn::TimeTableNextEvent => 1,
+            _ => 2,
+        }
+    }
+
+    /// The derivative with respect to the last operand, where the value is smooth in
+    /// it (`None`: piecewise constant, derivative zero).
+    pub fn slope(self) -> Option<ExtFn> {
+        match self {
+            ExtFn::Table1D => Some(ExtFn::Table1DSlope),
+            ExtFn::TimeTable => Some(ExtFn::TimeTableSlope),
+            _ => None,
+        }
+    }
+}
+
+/// The kind of an external object.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum ObjectKind {
+    /// `ModelicaStandardTables_CombiTable1D_init*`: a table of functions of one input.
+    Table1D,
+    /// `ModelicaStandardTables_CombiTimeTable_init*`: a table of functions of time.
+    TimeTable,
+}
+
+/// An external object made once, after the parameters: its kind and the expressions
+/// of its constructor's arguments (parameters), scalarized.
+#[derive(Clone, Debug)]
+pub struct ExternalObjectSite {
+    pub kind: ObjectKind,
+    /// The table, row by row.
+    pub table: Vec<ExprId>,
+    pub rows: usize,
+    pub cols: usize,
+    /// The table columns the outputs read (1-based, column 1 is the abscissa).
+    pub columns: Vec<ExprId>,
+    /// `Modelica.Blocks.Types.Smoothness` and `Extrapolation` ordinals.
+    pub smoothness: ExprId,
+    pub extrapolation: ExprId,
+    /// Time tables: start time, shift time and `TimeEvents` ordinal (zero otherwise).
+    pub start_time: ExprId,
+    pub shift_time: ExprId,
+    pub time_events: ExprId,
+    pub span: Span,
+}
+
+/// What an external C function is to unimo.
+enum Foreign {
+    /// Makes an object: the positions of (table, columns, smoothness, extrapolation)
+    /// and, for time tables, (start time, shift time, time events) in its arguments.
+    Constructor(ObjectKind, [usize; 4], Option<[usize; 3]>),
+    /// Reads an object: the function and the positions of its operands.
+    Getter(ExtFn, &'static [usize]),
+    /// The derivative of a getter times the derivative of its input (last position).
+    Derivative(ExtFn, &'static [usize], usize),
+    /// Releases an object: nothing to do.
+    Destructor,
+}
+
+fn foreign(name: &str) -> Option<Foreign> {
+    use Foreign::*;
+    Some(match name {
+        "ModelicaStandardTables_CombiTable1D_init2"
+        | "ModelicaStandardTables_CombiTable1D_init3" => {
+            Constructor(ObjectKind::Table1D, [2, 5, 7, 8], None)
+        }
+        "ModelicaStandardTables_CombiTimeTable_init2"
+        | "ModelicaStandardTables_CombiTimeTable_init3" => {
+            Constructor(ObjectKind::TimeTable, [2, 6, 8, 9], Some([5, 10, 11]))
+        }
+        "ModelicaStandardTables_CombiTable1D_getValue" => Getter(ExtFn::Table1D, &[0, 1, 2]),
+        "ModelicaStandardTables_CombiTable1D_getDerValue" => {
+            Derivative(ExtFn::Table1DSlope, &[0, 1, 2], 3)
+        }
+        "ModelicaStandardTables_CombiTable1D_minimumAbscissa" => Getter(ExtFn::Table1DMin, &[0]),
+        "ModelicaStandardTables_CombiTable1D_maximumAbscissa" => Getter(ExtFn::Table1DMax, &[0]),
+        "ModelicaStandardTables_CombiTimeTable_getValue" => Getter(ExtFn::TimeTable, &[0, 1, 2]),
+        "ModelicaStandardTables_CombiTimeTable_getDerValue" => {
+            Derivative(ExtFn::TimeTableSlope, &[0, 1, 2], 5)
+        }
+        "ModelicaStandardTables_CombiTimeTable_minimumTime" => Getter(ExtFn::TimeTableMin, &[0]),
+        "ModelicaStandardTables_CombiTimeTable_maximumTime" => Getter(ExtFn::TimeTableMax, &[0]),
+        "ModelicaStandardTables_CombiTimeTable_nextTimeEvent" => {
+            Getter(ExtFn::TimeTableNextEvent, &[0, 1])
+        }
+        "ModelicaStandardTables_CombiTable1D_close"
+        | "ModelicaStandardTables_CombiTimeTable_close" => Destructor,
+        _ => return None,
+    })
+}
+
+impl Lowerer<'_> {
+    /// The body of an external function: its inputs are bound as locals; the outputs
+    /// are set here from unimo's implementation of the foreign function.
+    pub(crate) fn external_body(
+        &mut self,
+        f: &FlatFunction,
+        ext: &ExternalCall,
+        span: Span,
+    ) -> Result<(), DaeError> {
+        let Some(kind) = foreign(&ext.function) else {
+            return Err(DaeError::new(
+                "E3020",
+                format!(
+                    "external function `{}` (`{}`) is not provided by unimo",
+                    f.name, ext.function
+                ),
+                span,
+            )
+            .help(
+                "unimo implements the MSL's tables in Rust; other external C code cannot be linked",
+            ));
+        };
+        let value = match kind {
+            Foreign::Destructor => return Ok(()),
+            Foreign::Getter(func, at) => {
+                let args = self.scalar_args(ext, at, span)?;
+                self.ext_node(func, &args)
+            }
+            Foreign::Derivative(func, at, der_at) => {
+                let args = self.scalar_args(ext, at, span)?;
+                let slope = self.ext_node(func, &args);
+                let du = self.scalar_args(ext, &[der_at], span)?[0];
+                self.dae.arena.mul(slope, du)
+            }
+            Foreign::Constructor(kind, at, time) => self.construct(kind, ext, at, time, span)?,
+        };
+        let output = ext
+            .output
+            .clone()
+            .or_else(|| f.outputs.first().map(|o| o.name.clone()))
+            .unwrap_or_default();
+        self.locals.push(Local {
+            name: output,
+            value: Some(Tensor::scalar(value)),
+            record: None,
+        });
+        Ok(())
+    }
+
+    fn ext_node(&mut self, func: ExtFn, args: &[ExprId]) -> ExprId {
+        let zero = self.dae.arena.zero();
+        let get = |k: usize| args.get(k).copied().unwrap_or(zero);
+        self.dae
+            .arena
+            .intern(Node::Ext(func, get(0), get(1), get(2)))
+    }
+
+    /// The scalar arguments at positions `at` of the external call.
+    fn scalar_args(
+        &mut self,
+        ext: &ExternalCall,
+        at: &[usize],
+        span: Span,
+    ) -> Result<Vec<ExprId>, DaeError> {
+        at.iter()
+            .map(|&k| {
+                let a = ext.args.get(k).ok_or_else(|| {
+                    DaeError::new(
+                        "E3020",
+                        format!("`{}` is called with too few arguments", ext.function),
+                        span,
+                    )
+                })?;
+                let t = self.expr(a)?;
+                t.data.first().copied().ok_or_else(|| {
+                    DaeError::new(
+                        "E3020",
+                        format!("an empty argument of `{}`", ext.function),
+                        span,
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// A table constructor: the object's site; its value is the site's index.
+    fn construct(
+        &mut self,
+        kind: ObjectKind,
+        ext: &ExternalCall,
+        at: [usize; 4],
+        time: Option<[usize; 3]>,
+        span: Span,
+    ) -> Result<ExprId, DaeError> {
+        let arg = |me: &mut Self, k: usize| -> Result<Tensor, DaeError> {
+            let a = ext.args.get(k).ok_or_else(|| {
+                DaeError::new(
+                    "E3020",
+                    format!("`{}` is called with too few arguments", ext.function),
+                    span,
+                )
+            })?;
+            me.expr(a)
+        };
+        let table = arg(self, at[0])?;
+        let (rows, cols) = match table.dims.as_slice() {
+            [r, c] => (*r, *c),
+            _ => (0, 0),
+        };
+        if rows == 0 || cols == 0 {
+            return Err(DaeError::new(
+                "E3021",
+                "the table is empty: tables read from files (`tableOnFile = true`) are not supported yet; give the table as a matrix".to_owned(),
+                span,
+            ));
+        }
+        let columns = arg(self, at[1])?.data;
+        let smoothness = arg(self, at[2])?.data[0];
+        let extrapolation = arg(self, at[3])?.data[0];
+        let zero = self.dae.arena.zero();
+        let (start_time, shift_time, time_events) = match time {
+            Some([s, h, e]) => (
+                arg(self, s)?.data[0],
+                arg(self, h)?.data[0],
+                arg(self, e)?.data[0],
+            ),
+            None => (zero, zero, zero),
+        };
+        let index = self.dae.external_objects.len();
+        self.dae.external_objects.push(ExternalObjectSite {
+            kind,
+            table: table.data,
+            rows,
+            cols,
+            columns,
+            smoothness,
+            extrapolation,
+            start_time,
+            shift_time,
+            time_events,
+            span,
+        });
+        Ok(self.dae.arena.constant(index as f64))
+    }
+}
