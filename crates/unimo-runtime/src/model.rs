@@ -65,8 +65,14 @@ pub struct CompiledModel {
     /// Zero-crossing functions: `g_k = reg_a - reg_b` of relation k.
     pub roots_tape: Tape,
     pub roots: Vec<(Reg, Reg)>,
-    /// The relation each root belongs to (its kind decides the post-crossing value).
+    /// The relation each of the first `root_ops.len()` roots belongs to (its kind
+    /// decides the post-crossing value). The roots after them come in pairs, the lower
+    /// and upper bound of held rounding `j` (roots `n + 2j`, `n + 2j + 1`).
     pub root_ops: Vec<unimo_dae::expr::RelOp>,
+    /// Every root in Modelica syntax (for messages), e.g. `h <= 0` or `floor(time / 0.1)`.
+    pub root_names: Vec<String>,
+    /// Number of held roundings (`floor`, `integer`, `mod`, ... with events).
+    pub n_held: usize,
     /// `sample(start, interval)`: registers of start and interval.
     pub samples: Vec<(Reg, Reg)>,
     /// Conditions and action values of every `when`, computed in event mode.
@@ -129,8 +135,10 @@ impl CompiledModel {
     pub fn new_event_state(&self) -> EventState {
         EventState {
             event_mode: false,
-            relations: vec![0.0; self.roots.len()],
-            forced: vec![None; self.roots.len()],
+            relations: vec![0.0; self.root_ops.len()],
+            forced: vec![None; self.root_ops.len()],
+            held: vec![0.0; self.n_held],
+            held_forced: vec![None; self.n_held],
             sticky: false,
             samples: vec![0.0; self.samples.len()],
             collision: self.collision.as_ref().map(|_| Box::default()),
@@ -195,7 +203,14 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .enumerate()
         .map(|(k, &e)| (e, k as u32))
         .collect();
+    let held_index: HashMap<ExprId, u32> = zc
+        .held
+        .iter()
+        .enumerate()
+        .map(|(k, &e)| (e, k as u32))
+        .collect();
     let mut c = Compiler::new(&dae.arena, layout, &relation_index, &sample_index);
+    c.held_index = Some(&held_index);
     // Output registers of the collision world, known to every tape.
     let external = |c: &mut Compiler<'_>, site: u32, out: u32| -> Reg {
         let reg = c.temp_public();
@@ -305,6 +320,22 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         let rb = c.expr(b, &mut roots_tape, &mut memo);
         roots.push((ra, rb));
         root_ops.push(op);
+    }
+    for (k, &h) in zc.held.iter().enumerate() {
+        let (argument, lo, hi) = c.held_crossings(h, k as u32, &mut roots_tape, &mut memo);
+        roots.push((argument, lo));
+        roots.push((argument, hi));
+    }
+    let show = |e: ExprId| {
+        let mut text = String::new();
+        let _ = dae.arena.write(e, &|s| dae.name(s), &mut text);
+        text
+    };
+    let mut root_names: Vec<String> = zc.relations.iter().map(|&r| show(r)).collect();
+    for &h in &zc.held {
+        let text = show(h);
+        root_names.push(format!("{text} (its lower bound)"));
+        root_names.push(format!("{text} (its upper bound)"));
     }
     let mut samples = Vec::new();
     let mut sample_memo = HashMap::default();
@@ -469,6 +500,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         roots_tape,
         roots,
         root_ops,
+        root_names,
+        n_held: zc.held.len(),
         samples,
         when_tape,
         whens,
@@ -540,6 +573,7 @@ fn symbolic_jacobian(dae: &Dae, plan: &Plan, c: &mut Compiler<'_>) -> Option<Sym
         }
     }
     let mut compiler = Compiler::new(&arena, c.layout, c.relation_index, c.sample_index);
+    compiler.held_index = c.held_index;
     compiler.continue_from(c);
     let mut tape = Tape::default();
     let mut memo = HashMap::default();

@@ -652,6 +652,11 @@ impl<'a> Simulator<'a> {
         }
         self.ode.ev.event_mode = false;
         self.ode.ev.sticky = false;
+        // A rounding whose bound was crossed keeps its new value through every pass of
+        // the event (its argument may sit a rounding error before the bound).
+        for f in self.ode.ev.held_forced.iter_mut() {
+            *f = None;
+        }
         Ok(())
     }
 
@@ -909,11 +914,10 @@ impl<'a> Simulator<'a> {
         components: &[(usize, Direction)],
         solver: &mut Solver,
     ) -> Result<(), SimError> {
-        let m = self.m();
         self.load_state(t, x)?;
         self.record(t);
         for &(k, dir) in components {
-            self.ode.ev.forced[k] = after_crossing(m.root_ops[k], dir);
+            self.force_crossing(k, dir);
         }
         let what = components
             .iter()
@@ -932,6 +936,28 @@ impl<'a> Simulator<'a> {
         self.after_event(t, what, components.first().map(|c| c.0), solver)?;
         self.settle_relations(t, components);
         Ok(())
+    }
+
+    /// The outcome of root `k` just after it crossed in `dir`, used by the first pass
+    /// of the event iteration: a relation's value, or a held rounding one step up or
+    /// down (its argument crossed the upper or lower bound).
+    fn force_crossing(&mut self, k: usize, dir: Direction) {
+        let m = self.m();
+        let n_relations = m.root_ops.len();
+        if k < n_relations {
+            self.ode.ev.forced[k] = after_crossing(m.root_ops[k], dir);
+            return;
+        }
+        let held = (k - n_relations) / 2;
+        let upper = (k - n_relations) % 2 == 1;
+        let before = self.ode.ev.held[held];
+        let after = match (upper, dir) {
+            (true, Direction::Rising) => before + 1.0,
+            (false, Direction::Falling) => before - 1.0,
+            // Back into the interval (its value came out a rounding error outside it).
+            _ => return,
+        };
+        self.ode.ev.held_forced[held] = Some((before, after));
     }
 
     /// After an event the solver does not report the crossings it just reported again,
@@ -968,6 +994,9 @@ impl<'a> Simulator<'a> {
         };
         let mut changed = false;
         for &(k, _) in components {
+            if k >= m.root_ops.len() {
+                continue;
+            }
             let slope = (g1[k] - g0[k]) / delta;
             let near_zero = g0[k].abs()
                 <= 1e-10 * (1.0 + g0[k].abs())
@@ -1048,7 +1077,7 @@ impl<'a> Simulator<'a> {
         if self.chatter.0 >= CHATTER_COUNT {
             let m = self.m();
             let crossing = crossing
-                .map(|k| format!("z{k} ({} relation)", m.root_ops[k].symbol()))
+                .map(|k| format!("z{k}: {}", m.root_names[k]))
                 .unwrap_or_else(|| "a time event".into());
             return Err(SimError::Chattering {
                 time: t,
