@@ -73,6 +73,9 @@ pub struct CompiledModel {
     pub root_names: Vec<String>,
     /// Number of held roundings (`floor`, `integer`, `mod`, ... with events).
     pub n_held: usize,
+    /// The equation that computes each scalar's register (explicit assignments, and
+    /// a block's first equation for its unknowns), for errors naming the culprit.
+    pub definitions: HashMap<Reg, unimo_dae::dae::EqId>,
     /// `sample(start, interval)`: registers of start and interval.
     pub samples: Vec<(Reg, Reg)>,
     /// Conditions and action values of every `when`, computed in event mode.
@@ -262,7 +265,24 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     }
 
     let mut steps: Vec<CompiledStep> = Vec::new();
+    let mut definitions = HashMap::default();
     for step in &plan.steps {
+        match step {
+            PlanStep::Assign { var, eq, .. } => {
+                definitions.insert(layout.var(*var), *eq);
+            }
+            PlanStep::Block(b) => {
+                if let Some(&eq) = b.equations.first() {
+                    for &v in b
+                        .iteration_vars
+                        .iter()
+                        .chain(b.inner.iter().map(|(v, _)| v))
+                    {
+                        definitions.insert(layout.var(v), eq);
+                    }
+                }
+            }
+        }
         match step {
             PlanStep::Assign { var, value, .. } => {
                 // Consecutive assignments share one tape (one dispatch loop).
@@ -502,6 +522,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         root_ops,
         root_names,
         n_held: zc.held.len(),
+        definitions,
         samples,
         when_tape,
         whens,

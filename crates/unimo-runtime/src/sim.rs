@@ -61,6 +61,16 @@ pub enum SimError {
         crossing: String,
         events: usize,
     },
+    /// A result value became NaN or infinite.
+    NonFinite {
+        time: f64,
+        step: Option<f64>,
+        variable: String,
+        value: f64,
+        /// The equation computing it (a state: its derivative's), for the caller to
+        /// show with its source.
+        equation: Option<unimo_dae::dae::EqId>,
+    },
 }
 
 impl SimError {
@@ -72,6 +82,7 @@ impl SimError {
             SimError::Assert { .. } => "E4004",
             SimError::EventIteration { .. } => "E4005",
             SimError::Chattering { .. } => "E4006",
+            SimError::NonFinite { .. } => "E4007",
         }
     }
 
@@ -95,6 +106,13 @@ impl SimError {
             SimError::EventIteration { time, culprits } => format!(
                 "event iteration did not converge at t = {time} after {MAX_EVENT_ITERATIONS} iterations; still changing: {}",
                 culprits.join(", ")
+            ),
+            SimError::NonFinite { time, step, variable, value, equation } => format!(
+                "`{variable}` is {value} at t = {time}{}{}",
+                step.map(|h| format!(", step size {h:e}")).unwrap_or_default(),
+                equation
+                    .map(|e| format!(", computed by equation #{}", e.0))
+                    .unwrap_or_default()
             ),
             SimError::Chattering { time, crossing, events } => format!(
                 "chattering at t = {time}: {events} events in a row less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`"
@@ -272,6 +290,8 @@ pub struct Simulator<'a> {
     sample_next: Vec<f64>,
     chatter: (usize, f64),
     terminate: Option<String>,
+    /// A row with a NaN or infinite value was about to be written (it is not).
+    non_finite: Option<SimError>,
 }
 
 impl<'a> Simulator<'a> {
@@ -300,6 +320,7 @@ impl<'a> Simulator<'a> {
             sample_next: Vec::new(),
             chatter: (0, f64::NEG_INFINITY),
             terminate: None,
+            non_finite: None,
         }
     }
 
@@ -316,15 +337,43 @@ impl<'a> Simulator<'a> {
     }
 
     fn record(&mut self, t: f64) {
+        if self.non_finite.is_some() {
+            return;
+        }
         let m = self.m();
         m.alias_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-        let row = m
+        let row: Vec<f64> = m
             .outputs
             .iter()
             .map(|&(_, r)| self.ode.regs[r as usize])
             .collect();
+        if let Some(k) = row.iter().position(|v| !v.is_finite()) {
+            let (name, reg) = &m.outputs[k];
+            let defining = match m.states.iter().position(|s| s == reg) {
+                Some(state) => m.derivatives[state],
+                None => *reg,
+            };
+            self.non_finite = Some(SimError::NonFinite {
+                time: t,
+                step: None,
+                variable: name.clone(),
+                value: row[k],
+                equation: m.definitions.get(&defining).copied(),
+            });
+            return;
+        }
         self.result.times.push(t);
         self.result.rows.push(row);
+    }
+
+    /// The error of a NaN or infinite value recorded since the last call, with the
+    /// step size that produced it.
+    fn take_non_finite(&mut self, step: Option<f64>) -> Option<SimError> {
+        let mut e = self.non_finite.take()?;
+        if let SimError::NonFinite { step: s, .. } = &mut e {
+            *s = step;
+        }
+        Some(e)
     }
 
     fn eval_plan(&mut self) -> Result<(), SimError> {
@@ -705,6 +754,15 @@ impl<'a> Simulator<'a> {
             return self.result;
         }
         self.record(o.start);
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error = Some(e);
+            return self.result;
+        }
+        if o.stop == o.start {
+            // A zero-length interval: the consistent initial values are the result.
+            self.result.final_states = self.states();
+            return self.result;
+        }
         let x0 = self.states();
         let mut options = Options::with_tolerances(o.rtol, o.atol);
         if !m.states.is_empty() {
@@ -781,6 +839,10 @@ impl<'a> Simulator<'a> {
                 }
                 next_output += 1;
             }
+            if let Some(e) = self.take_non_finite(Some(now - prev)) {
+                self.result.error = Some(e);
+                break;
+            }
             match reason {
                 StopReason::InternalStep => {
                     if o.every_step {
@@ -844,11 +906,18 @@ impl<'a> Simulator<'a> {
                     }
                 }
             }
+            if let Some(e) = self.take_non_finite(Some(now - prev)) {
+                self.result.error = Some(e);
+                break;
+            }
         }
         self.finish(&solver)
     }
 
     fn finish(mut self, solver: &Solver) -> SimResult {
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error.get_or_insert(e);
+        }
         self.result.stats.solver = solver.stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
@@ -865,6 +934,10 @@ impl<'a> Simulator<'a> {
                 break;
             }
             self.record(t);
+            if let Some(e) = self.take_non_finite(Some(o.interval)) {
+                self.result.error = Some(e);
+                break;
+            }
         }
         self.result
     }
