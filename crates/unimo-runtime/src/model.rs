@@ -109,6 +109,9 @@ pub struct CompiledModel {
     pub initial_tape: Tape,
     pub initial_residuals: Vec<Reg>,
     pub ops_total: usize,
+    /// Relations whose value some tape holds between events (a relation that only an
+    /// assertion reads is compared literally and never held).
+    pub relation_held: Vec<bool>,
     /// The collision world, when the model has collision bodies.
     pub collision: Option<CollisionModel>,
 }
@@ -543,8 +546,10 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_tape,
         initial_residuals: initial_regs,
         ops_total: 0,
+        relation_held: Vec::new(),
         collision,
     };
+    m.relation_held = held_relations(&m);
     m.ops_total = m
         .steps
         .iter()
@@ -554,6 +559,35 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         })
         .sum();
     m
+}
+
+/// Which relations are compiled with event semantics in some tape the runtime runs.
+fn held_relations(m: &CompiledModel) -> Vec<bool> {
+    let mut held = vec![false; m.root_ops.len()];
+    let mut tapes: Vec<&Tape> = vec![
+        &m.when_tape,
+        &m.alias_tape,
+        &m.initial_tape,
+        &m.starts,
+        &m.parameters,
+    ];
+    for step in &m.steps {
+        match step {
+            CompiledStep::Explicit(t) => tapes.push(t),
+            CompiledStep::Block(b) => tapes.extend([&b.residual_tape, &b.jacobian_tape]),
+        }
+    }
+    if let Some((t, _)) = &m.jacobian {
+        tapes.push(t);
+    }
+    for tape in tapes {
+        for op in &tape.ops {
+            if let Op::RelEvent(.., k) = op {
+                held[*k as usize] = true;
+            }
+        }
+    }
+    held
 }
 
 /// d der(x_i) / d x_j symbolically, when every step of the plan is an explicit

@@ -804,7 +804,21 @@ impl<'a> Simulator<'a> {
                     break;
                 }
             };
-            let now = solver.current_time();
+            let mut now = solver.current_time();
+            let mut reason = reason;
+            if !matches!(reason, StopReason::Root { .. }) {
+                match self.missed_crossing(&solver, prev, now) {
+                    Ok(Some((t, components))) => {
+                        now = t;
+                        reason = StopReason::Root { t, components };
+                    }
+                    Ok(None) => {}
+                    Err(e) => {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                }
+            }
             steps_taken += 1;
             if !matches!(reason, StopReason::Root { .. }) {
                 let x = solver.state().to_vec();
@@ -877,7 +891,11 @@ impl<'a> Simulator<'a> {
                     }
                 }
                 StopReason::Root { t, components } => {
-                    let x = solver.state().to_vec();
+                    let mut x = solver.state().to_vec();
+                    if t != solver.current_time() {
+                        // A crossing the driver found inside the step.
+                        let _ = solver.interpolate(t, &mut x);
+                    }
                     if let Err(e) = self.state_event(t, &x, &components, &mut solver) {
                         self.result.error = Some(e);
                         break;
@@ -1097,6 +1115,91 @@ impl<'a> Simulator<'a> {
                 self.cond_prev[c as usize] = self.ode.regs[c as usize];
             }
         }
+    }
+
+    /// Which roots disagree, beyond rounding noise, with the value their relation (or
+    /// held rounding) holds, at `(t, x)`: a crossing the root search could not see
+    /// (its function sat in the noise band at zero and left it on the other side).
+    fn disagreeing(&mut self, t: f64, x: &[f64]) -> Result<Vec<(usize, Direction)>, SimError> {
+        let m = self.m();
+        self.load_state(t, x)?;
+        m.roots_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        let n_relations = m.root_ops.len();
+        let mut out = Vec::new();
+        for (k, &(a, b)) in m.roots.iter().enumerate() {
+            let (a, b) = (self.ode.regs[a as usize], self.ode.regs[b as usize]);
+            let g = a - b;
+            if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) || g.is_nan() {
+                continue;
+            }
+            let rising = g > 0.0;
+            let missed = if k < n_relations {
+                if !m.relation_held[k] {
+                    continue;
+                }
+                let held = self.ode.ev.relations[k] != 0.0;
+                match m.root_ops[k] {
+                    RelOp::Lt | RelOp::Le => held == rising,
+                    RelOp::Gt | RelOp::Ge => held != rising,
+                    RelOp::Eq | RelOp::Ne => false,
+                }
+            } else {
+                // Held rounding: inside its interval lower root >= 0, upper root <= 0.
+                let upper = (k - n_relations) % 2 == 1;
+                upper == rising
+            };
+            if missed {
+                let dir = if rising {
+                    Direction::Rising
+                } else {
+                    Direction::Falling
+                };
+                out.push((k, dir));
+            }
+        }
+        Ok(out)
+    }
+
+    /// A crossing in `(t_left, t_right]` that the solver did not report: a relation
+    /// whose value disagrees with its operands at `t_right` (see `disagreeing`). Located
+    /// by bisection on the dense output to the root tolerance; `None` when every
+    /// relation agrees.
+    fn missed_crossing(
+        &mut self,
+        solver: &Solver,
+        t_left: f64,
+        t_right: f64,
+    ) -> Result<Option<(f64, Vec<(usize, Direction)>)>, SimError> {
+        if self.m().roots.is_empty() || t_right <= t_left {
+            return Ok(None);
+        }
+        let n = self.m().states.len();
+        let mut x = vec![0.0; n];
+        x.copy_from_slice(solver.state());
+        let mut found = self.disagreeing(t_right, &x)?;
+        if found.is_empty() {
+            return Ok(None);
+        }
+        let (mut low, mut high) = (t_left, t_right);
+        let tolerance = 4.0 * f64::EPSILON * t_right.abs().max(1.0);
+        while high - low > tolerance {
+            let middle = 0.5 * (low + high);
+            if middle <= low || middle >= high || solver.interpolate(middle, &mut x).is_err() {
+                break;
+            }
+            let here = self.disagreeing(middle, &x)?;
+            if here.is_empty() {
+                low = middle;
+            } else {
+                high = middle;
+                found = here;
+            }
+        }
+        // Leave the registers at the state the solver holds (the caller records from
+        // them); the event itself loads its own state.
+        let _ = solver.interpolate(high, &mut x);
+        self.load_state(high, &x)?;
+        Ok(Some((high, found)))
     }
 
     fn sample_event(&mut self, t: f64, solver: &mut Solver) -> Result<(), SimError> {
