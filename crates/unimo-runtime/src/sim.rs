@@ -60,6 +60,9 @@ pub enum SimError {
         time: f64,
         crossing: String,
         events: usize,
+        /// The events were a sliding mode (the flow drives the crossing function back
+        /// across zero from both sides), not close in time.
+        sliding: bool,
     },
     /// A result value became NaN or infinite.
     NonFinite {
@@ -114,8 +117,11 @@ impl SimError {
                     .map(|e| format!(", computed by equation #{}", e.0))
                     .unwrap_or_default()
             ),
-            SimError::Chattering { time, crossing, events } => format!(
+            SimError::Chattering { time, crossing, events, sliding: false } => format!(
                 "chattering at t = {time}: {events} events in a row less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`"
+            ),
+            SimError::Chattering { time, crossing, events, sliding: true } => format!(
+                "chattering at t = {time}: {events} events in a row where the flow drives the zero crossing `{crossing}` back across zero from both sides (a sliding mode)"
             ),
         }
     }
@@ -292,6 +298,8 @@ pub struct Simulator<'a> {
     terminate: Option<String>,
     /// A row with a NaN or infinite value was about to be written (it is not).
     non_finite: Option<SimError>,
+    /// Consecutive state events that ended in a sliding mode.
+    sliding_events: usize,
 }
 
 impl<'a> Simulator<'a> {
@@ -321,6 +329,7 @@ impl<'a> Simulator<'a> {
             chatter: (0, f64::NEG_INFINITY),
             terminate: None,
             non_finite: None,
+            sliding_events: 0,
         }
     }
 
@@ -879,6 +888,13 @@ impl<'a> Simulator<'a> {
                         break;
                     }
                     if now >= o.stop {
+                        // A sample instant at the stop time is an event like any other.
+                        if t_event <= now {
+                            if let Err(e) = self.sample_event(now, &mut solver) {
+                                self.result.error = Some(e);
+                                break;
+                            }
+                        }
                         if self.result.times.last() != Some(&now) {
                             self.record(now);
                         }
@@ -1025,7 +1041,20 @@ impl<'a> Simulator<'a> {
             .collect::<Vec<_>>()
             .join(", ");
         self.after_event(t, what, components.first().map(|c| c.0), solver)?;
-        self.settle_relations(t, components);
+        if self.settle_relations(t, components) {
+            self.sliding_events += 1;
+        } else {
+            self.sliding_events = 0;
+        }
+        if self.sliding_events >= CHATTER_COUNT {
+            let k = components[0].0;
+            return Err(SimError::Chattering {
+                time: t,
+                crossing: format!("z{k}: {}", self.m().root_names[k]),
+                events: self.sliding_events,
+                sliding: true,
+            });
+        }
         Ok(())
     }
 
@@ -1053,13 +1082,64 @@ impl<'a> Simulator<'a> {
 
     /// After an event the solver does not report the crossings it just reported again,
     /// so a relation whose function is still (numerically) zero takes the value it
-    /// will have just after `t`: the side `g` moves to along the flow.
-    fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) {
+    /// will have just after `t`: the side `g` moves to along the flow. Returns whether
+    /// the flow with the settled values drives some of these functions back across
+    /// zero (a sliding mode: the flow points at the surface from both sides).
+    fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) -> bool {
         let m = self.m();
         if components.is_empty() {
-            return;
+            return false;
         }
         let x = self.states();
+        let Some(sides) = self.flow_sides(t, &x, components) else {
+            return false;
+        };
+        let mut changed = Vec::new();
+        for (&(k, _), side) in components.iter().zip(sides) {
+            if let Some(v) = side {
+                if self.ode.ev.relations[k] != v {
+                    self.ode.ev.relations[k] = v;
+                    changed.push((k, v));
+                }
+            }
+        }
+        let mut sliding = false;
+        if !changed.is_empty() {
+            let settled: Vec<(usize, Direction)> = changed
+                .iter()
+                .map(|&(k, _)| (k, Direction::Rising))
+                .collect();
+            // The registers (the warm start of Newton blocks) as without this check.
+            let registers = self.ode.regs.clone();
+            if let Some(again) = self.flow_sides(t, &x, &settled) {
+                sliding = changed
+                    .iter()
+                    .zip(again)
+                    .any(|(&(_, v), side)| side.is_some_and(|w| w != v));
+            }
+            self.ode.regs.copy_from_slice(&registers);
+        }
+        // Restore the registers to the state at t with the settled relations.
+        let _ = self.load_state(t, &x);
+        if !changed.is_empty() {
+            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            for &c in &m.conditions {
+                self.cond_prev[c as usize] = self.ode.regs[c as usize];
+            }
+        }
+        sliding
+    }
+
+    /// Per component (a relation, at its root at `(t, x)`): the value the relation
+    /// takes just after `t` along the flow with the current relation values, `None`
+    /// when its function is not at zero or does not move.
+    fn flow_sides(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        components: &[(usize, Direction)],
+    ) -> Option<Vec<Option<f64>>> {
+        let m = self.m();
         let n = x.len();
         let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
             let mut out = vec![0.0; m.roots.len()];
@@ -1072,7 +1152,7 @@ impl<'a> Simulator<'a> {
             }
             Some(out)
         };
-        let Some(g0) = g(self, t, &x) else { return };
+        let g0 = g(self, t, x)?;
         let dx: Vec<f64> = m
             .derivatives
             .iter()
@@ -1080,41 +1160,26 @@ impl<'a> Simulator<'a> {
             .collect();
         let delta = 1e-8 * t.abs().max(1.0);
         let x1: Vec<f64> = (0..n).map(|i| x[i] + delta * dx[i]).collect();
-        let Some(g1) = g(self, t + delta, &x1) else {
-            return;
-        };
-        let mut changed = false;
-        for &(k, _) in components {
+        let g1 = g(self, t + delta, &x1)?;
+        let side = |k: usize| {
             if k >= m.root_ops.len() {
-                continue;
+                return None;
             }
             let slope = (g1[k] - g0[k]) / delta;
             let near_zero = g0[k].abs()
                 <= 1e-10 * (1.0 + g0[k].abs())
                     + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs();
             if !near_zero || slope == 0.0 {
-                continue;
+                return None;
             }
             let dir = if slope > 0.0 {
                 Direction::Rising
             } else {
                 Direction::Falling
             };
-            if let Some(v) = after_crossing(m.root_ops[k], dir) {
-                if self.ode.ev.relations[k] != v {
-                    self.ode.ev.relations[k] = v;
-                    changed = true;
-                }
-            }
-        }
-        // Restore the registers to the state at t with the settled relations.
-        let _ = self.load_state(t, &x);
-        if changed {
-            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-            for &c in &m.conditions {
-                self.cond_prev[c as usize] = self.ode.regs[c as usize];
-            }
-        }
+            after_crossing(m.root_ops[k], dir)
+        };
+        Some(components.iter().map(|&(k, _)| side(k)).collect())
     }
 
     /// Which roots disagree, beyond rounding noise, with the value their relation (or
@@ -1259,6 +1324,7 @@ impl<'a> Simulator<'a> {
                 time: t,
                 crossing,
                 events: self.chatter.0,
+                sliding: false,
             });
         }
         self.record(t);
