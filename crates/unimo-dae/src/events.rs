@@ -49,16 +49,12 @@ fn collect(dae: &Dae, e: ExprId, seen: &mut HashSet<ExprId>, out: &mut Crossings
         }
         match dae.arena.node(x) {
             Node::NoEvent(_) => continue,
-            Node::Rel(..) => {
-                if moves(dae, x) {
-                    out.relations.push(x);
-                }
-            }
+            Node::Rel(..) if moves(dae, x) => out.relations.push(x),
             Node::Fn1(Fn1::Floor | Fn1::Ceil, _)
-            | Node::Fn2(Fn2::Div | Fn2::Mod | Fn2::Rem, ..) => {
-                if moves(dae, x) {
-                    out.held.push(x);
-                }
+            | Node::Fn2(Fn2::Div | Fn2::Mod | Fn2::Rem, ..)
+                if moves(dae, x) =>
+            {
+                out.held.push(x)
             }
             Node::Sample(..) => out.samples.push(x),
             _ => {}

@@ -9,6 +9,8 @@ use crate::tape::EventState;
 use unimo_dae::expr::RelOp;
 use unimo_solve::{Direction, EvalError, Method, Options, SolveError, Solver, StopReason, System};
 
+mod crossings;
+
 /// Internal steps of one simulation before it is stopped.
 const MAX_STEPS: u64 = 20_000_000;
 /// Event iterations at one instant before the event is declared non-converging.
@@ -274,6 +276,9 @@ fn output_names(m: &CompiledModel, regs: &[u32]) -> Vec<String> {
         })
         .collect()
 }
+
+/// Roots with the direction they crossed in.
+type Crossed = Vec<(usize, Direction)>;
 
 /// Relative size below which a root function counts as zero (blocks converge to 1e-13).
 const ROOT_NOISE: f64 = crate::tape::RELATION_NOISE;
@@ -1056,215 +1061,6 @@ impl<'a> Simulator<'a> {
             });
         }
         Ok(())
-    }
-
-    /// The outcome of root `k` just after it crossed in `dir`, used by the first pass
-    /// of the event iteration: a relation's value, or a held rounding one step up or
-    /// down (its argument crossed the upper or lower bound).
-    fn force_crossing(&mut self, k: usize, dir: Direction) {
-        let m = self.m();
-        let n_relations = m.root_ops.len();
-        if k < n_relations {
-            self.ode.ev.forced[k] = after_crossing(m.root_ops[k], dir);
-            return;
-        }
-        let held = (k - n_relations) / 2;
-        let upper = (k - n_relations) % 2 == 1;
-        let before = self.ode.ev.held[held];
-        let after = match (upper, dir) {
-            (true, Direction::Rising) => before + 1.0,
-            (false, Direction::Falling) => before - 1.0,
-            // Back into the interval (its value came out a rounding error outside it).
-            _ => return,
-        };
-        self.ode.ev.held_forced[held] = Some((before, after));
-    }
-
-    /// After an event the solver does not report the crossings it just reported again,
-    /// so a relation whose function is still (numerically) zero takes the value it
-    /// will have just after `t`: the side `g` moves to along the flow. Returns whether
-    /// the flow with the settled values drives some of these functions back across
-    /// zero (a sliding mode: the flow points at the surface from both sides).
-    fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) -> bool {
-        let m = self.m();
-        if components.is_empty() {
-            return false;
-        }
-        let x = self.states();
-        let Some(sides) = self.flow_sides(t, &x, components) else {
-            return false;
-        };
-        let mut changed = Vec::new();
-        for (&(k, _), side) in components.iter().zip(sides) {
-            if let Some(v) = side {
-                if self.ode.ev.relations[k] != v {
-                    self.ode.ev.relations[k] = v;
-                    changed.push((k, v));
-                }
-            }
-        }
-        let mut sliding = false;
-        if !changed.is_empty() {
-            let settled: Vec<(usize, Direction)> = changed
-                .iter()
-                .map(|&(k, _)| (k, Direction::Rising))
-                .collect();
-            // The registers (the warm start of Newton blocks) as without this check.
-            let registers = self.ode.regs.clone();
-            if let Some(again) = self.flow_sides(t, &x, &settled) {
-                sliding = changed
-                    .iter()
-                    .zip(again)
-                    .any(|(&(_, v), side)| side.is_some_and(|w| w != v));
-            }
-            self.ode.regs.copy_from_slice(&registers);
-        }
-        // Restore the registers to the state at t with the settled relations.
-        let _ = self.load_state(t, &x);
-        if !changed.is_empty() {
-            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-            for &c in &m.conditions {
-                self.cond_prev[c as usize] = self.ode.regs[c as usize];
-            }
-        }
-        sliding
-    }
-
-    /// Per component (a relation, at its root at `(t, x)`): the value the relation
-    /// takes just after `t` along the flow with the current relation values, `None`
-    /// when its function is not at zero or does not move.
-    fn flow_sides(
-        &mut self,
-        t: f64,
-        x: &[f64],
-        components: &[(usize, Direction)],
-    ) -> Option<Vec<Option<f64>>> {
-        let m = self.m();
-        let n = x.len();
-        let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
-            let mut out = vec![0.0; m.roots.len()];
-            // Raw differences, not the ones with Newton noise flushed to zero that the
-            // solver sees: a function that moves slowly off its root has a slope.
-            me.ode.load(t, x).ok()?;
-            m.roots_tape.run(&mut me.ode.regs, &mut me.ode.ev);
-            for (k, &(a, b)) in m.roots.iter().enumerate() {
-                out[k] = me.ode.regs[a as usize] - me.ode.regs[b as usize];
-            }
-            Some(out)
-        };
-        let g0 = g(self, t, x)?;
-        let dx: Vec<f64> = m
-            .derivatives
-            .iter()
-            .map(|&r| self.ode.regs[r as usize])
-            .collect();
-        let delta = 1e-8 * t.abs().max(1.0);
-        let x1: Vec<f64> = (0..n).map(|i| x[i] + delta * dx[i]).collect();
-        let g1 = g(self, t + delta, &x1)?;
-        let side = |k: usize| {
-            if k >= m.root_ops.len() {
-                return None;
-            }
-            let slope = (g1[k] - g0[k]) / delta;
-            let near_zero = g0[k].abs()
-                <= 1e-10 * (1.0 + g0[k].abs())
-                    + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs();
-            if !near_zero || slope == 0.0 {
-                return None;
-            }
-            let dir = if slope > 0.0 {
-                Direction::Rising
-            } else {
-                Direction::Falling
-            };
-            after_crossing(m.root_ops[k], dir)
-        };
-        Some(components.iter().map(|&(k, _)| side(k)).collect())
-    }
-
-    /// Which roots disagree, beyond rounding noise, with the value their relation (or
-    /// held rounding) holds, at `(t, x)`: a crossing the root search could not see
-    /// (its function sat in the noise band at zero and left it on the other side).
-    fn disagreeing(&mut self, t: f64, x: &[f64]) -> Result<Vec<(usize, Direction)>, SimError> {
-        let m = self.m();
-        self.load_state(t, x)?;
-        m.roots_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-        let n_relations = m.root_ops.len();
-        let mut out = Vec::new();
-        for (k, &(a, b)) in m.roots.iter().enumerate() {
-            let (a, b) = (self.ode.regs[a as usize], self.ode.regs[b as usize]);
-            let g = a - b;
-            if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) || g.is_nan() {
-                continue;
-            }
-            let rising = g > 0.0;
-            let missed = if k < n_relations {
-                if !m.relation_held[k] {
-                    continue;
-                }
-                let held = self.ode.ev.relations[k] != 0.0;
-                match m.root_ops[k] {
-                    RelOp::Lt | RelOp::Le => held == rising,
-                    RelOp::Gt | RelOp::Ge => held != rising,
-                    RelOp::Eq | RelOp::Ne => false,
-                }
-            } else {
-                // Held rounding: inside its interval lower root >= 0, upper root <= 0.
-                let upper = (k - n_relations) % 2 == 1;
-                upper == rising
-            };
-            if missed {
-                let dir = if rising {
-                    Direction::Rising
-                } else {
-                    Direction::Falling
-                };
-                out.push((k, dir));
-            }
-        }
-        Ok(out)
-    }
-
-    /// A crossing in `(t_left, t_right]` that the solver did not report: a relation
-    /// whose value disagrees with its operands at `t_right` (see `disagreeing`). Located
-    /// by bisection on the dense output to the root tolerance; `None` when every
-    /// relation agrees.
-    fn missed_crossing(
-        &mut self,
-        solver: &Solver,
-        t_left: f64,
-        t_right: f64,
-    ) -> Result<Option<(f64, Vec<(usize, Direction)>)>, SimError> {
-        if self.m().roots.is_empty() || t_right <= t_left {
-            return Ok(None);
-        }
-        let n = self.m().states.len();
-        let mut x = vec![0.0; n];
-        x.copy_from_slice(solver.state());
-        let mut found = self.disagreeing(t_right, &x)?;
-        if found.is_empty() {
-            return Ok(None);
-        }
-        let (mut low, mut high) = (t_left, t_right);
-        let tolerance = 4.0 * f64::EPSILON * t_right.abs().max(1.0);
-        while high - low > tolerance {
-            let middle = 0.5 * (low + high);
-            if middle <= low || middle >= high || solver.interpolate(middle, &mut x).is_err() {
-                break;
-            }
-            let here = self.disagreeing(middle, &x)?;
-            if here.is_empty() {
-                low = middle;
-            } else {
-                high = middle;
-                found = here;
-            }
-        }
-        // Leave the registers at the state the solver holds (the caller records from
-        // them); the event itself loads its own state.
-        let _ = solver.interpolate(high, &mut x);
-        self.load_state(high, &x)?;
-        Ok(Some((high, found)))
     }
 
     fn sample_event(&mut self, t: f64, solver: &mut Solver) -> Result<(), SimError> {
