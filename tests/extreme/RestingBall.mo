@@ -16,3 +16,7 @@ equation
   end when;
   annotation(experiment(StopTime = 20));
 end RestingBall;
+
+model RestingBallTiny "the resting speed far below what the tolerances resolve"
+  extends RestingBall(vmin = 1e-9);
+end RestingBallTiny;

@@ -1046,7 +1046,21 @@ impl<'a> Simulator<'a> {
             .collect::<Vec<_>>()
             .join(", ");
         self.after_event(t, what, components.first().map(|c| c.0), solver)?;
-        if self.settle_relations(t, components) {
+        let mut settled = self.settle_relations(t, components);
+        if settled.fires {
+            // The relations just after t make a `when` condition true: it fires now.
+            let what = "settled relations".to_string();
+            self.after_event(t, what, components.first().map(|c| c.0), solver)?;
+            settled = self.settle_relations(t, components);
+            if settled.fires {
+                // Keep the baseline consistent; the next crossing decides.
+                let m = self.m();
+                for &c in &m.conditions {
+                    self.cond_prev[c as usize] = self.ode.regs[c as usize];
+                }
+            }
+        }
+        if settled.sliding {
             self.sliding_events += 1;
         } else {
             self.sliding_events = 0;

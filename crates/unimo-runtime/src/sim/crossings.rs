@@ -6,6 +6,15 @@ use super::{after_crossing, Crossed, SimError, Simulator, ROOT_NOISE};
 use unimo_dae::expr::RelOp;
 use unimo_solve::{Direction, Solver};
 
+/// What settling the relations after an event found.
+pub(super) struct Settled {
+    /// The flow with the settled values drives some of the crossing functions back
+    /// across zero (a sliding mode: the flow points at the surface from both sides).
+    pub sliding: bool,
+    /// A `when` condition became true with the settled values.
+    pub fires: bool,
+}
+
 impl Simulator<'_> {
     /// The outcome of root `k` just after it crossed in `dir`, used by the first pass
     /// of the event iteration: a relation's value, or a held rounding one step up or
@@ -31,17 +40,23 @@ impl Simulator<'_> {
 
     /// After an event the solver does not report the crossings it just reported again,
     /// so a relation whose function is still (numerically) zero takes the value it
-    /// will have just after `t`: the side `g` moves to along the flow. Returns whether
-    /// the flow with the settled values drives some of these functions back across
-    /// zero (a sliding mode: the flow points at the surface from both sides).
-    pub(super) fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) -> bool {
+    /// will have just after `t`: the side `g` moves to along the flow.
+    pub(super) fn settle_relations(
+        &mut self,
+        t: f64,
+        components: &[(usize, Direction)],
+    ) -> Settled {
         let m = self.m();
+        let unchanged = Settled {
+            sliding: false,
+            fires: false,
+        };
         if components.is_empty() {
-            return false;
+            return unchanged;
         }
         let x = self.states();
         let Some(sides) = self.flow_sides(t, &x, components) else {
-            return false;
+            return unchanged;
         };
         let mut changed = Vec::new();
         for (&(k, _), side) in components.iter().zip(sides) {
@@ -70,13 +85,23 @@ impl Simulator<'_> {
         }
         // Restore the registers to the state at t with the settled relations.
         let _ = self.load_state(t, &x);
+        let mut fires = false;
         if !changed.is_empty() {
             m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-            for &c in &m.conditions {
-                self.cond_prev[c as usize] = self.ode.regs[c as usize];
+            // A `when` condition that the settled values make true fires at this event
+            // (the caller runs the event iteration again); otherwise they are the
+            // baseline the next edges are taken against.
+            fires = m
+                .conditions
+                .iter()
+                .any(|&c| self.ode.regs[c as usize] != 0.0 && self.cond_prev[c as usize] == 0.0);
+            if !fires {
+                for &c in &m.conditions {
+                    self.cond_prev[c as usize] = self.ode.regs[c as usize];
+                }
             }
         }
-        sliding
+        Settled { sliding, fires }
     }
 
     /// Per component (a relation, at its root at `(t, x)`): the value the relation
