@@ -413,3 +413,21 @@ fn events_at_the_start_and_at_the_stop_time() {
         assert_eq!(n_changes.last(), Some(&1.0), "{method:?}: {n_changes:?}");
     }
 }
+
+/// A collision body 1e300 long (parry's manifolds panicked on such shapes): the shape
+/// is refused with the geometry crate's error, and the run stops with it at t = 0.
+#[test]
+fn a_body_1e300_long_is_an_error_not_a_panic() {
+    let r = run(
+        "tests/extreme/HugeBody.mo",
+        &options(Method::Bdf, 1e-6, 0.0, 1.0, 0.01),
+    );
+    let e = r.error.as_ref().expect("the shape is refused");
+    assert!(
+        e.message()
+            .contains("must be positive and at most 1e12, got 1e300"),
+        "{}",
+        e.message()
+    );
+    assert_finite(&r);
+}
