@@ -431,3 +431,27 @@ fn a_body_1e300_long_is_an_error_not_a_panic() {
     );
     assert_finite(&r);
 }
+
+/// The issue's `tick = integer(time/period)` with `when change(tick)` in a model
+/// without states: the solvers step a constant clock state, so the when fires at every
+/// k/10 (to 1e-12).
+#[test]
+fn change_of_integer_time_fires_without_states() {
+    for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
+        let r = ok(
+            "tests/extreme/TickWithoutStates.mo",
+            &options(method, 1e-6, 0.0, 0.95, 0.01),
+        );
+        let fired = changes(&r, "count");
+        assert_eq!(fired.len(), 9, "{method:?}: {fired:?}");
+        for (k, t) in fired.iter().enumerate() {
+            let want = 0.1 * (k + 1) as f64;
+            assert!(
+                (t - want).abs() <= 1e-12,
+                "{method:?}: fired at {t}, want {want}"
+            );
+        }
+        assert_eq!(changes(&r, "tick"), fired);
+        assert!(r.final_states.is_empty());
+    }
+}

@@ -172,6 +172,9 @@ struct Ode<'a> {
     last_failure: Option<BlockFailure>,
     /// Nonzeros of the symbolic Jacobian (large systems then use the sparse LU).
     pattern: Option<unimo_solve::SparsityPattern>,
+    /// A model without states but with events gets one constant state, so that the
+    /// solvers step through time and locate its crossings and sample instants.
+    clock: bool,
 }
 
 impl Ode<'_> {
@@ -191,7 +194,7 @@ impl Ode<'_> {
 
 impl System for Ode<'_> {
     fn len(&self) -> usize {
-        self.m.states.len()
+        self.m.states.len() + usize::from(self.clock)
     }
 
     fn differential(&self) -> &[bool] {
@@ -209,6 +212,9 @@ impl System for Ode<'_> {
                 )));
             }
             out[k] = v;
+        }
+        if self.clock {
+            out[self.m.states.len()] = 0.0;
         }
         Ok(())
     }
@@ -309,12 +315,14 @@ pub struct Simulator<'a> {
 
 impl<'a> Simulator<'a> {
     pub fn new(m: &'a CompiledModel) -> Simulator<'a> {
+        let clock = m.states.is_empty() && (!m.roots.is_empty() || !m.samples.is_empty());
         let ode = Ode {
             m,
             regs: m.new_registers(),
             ev: m.new_event_state(),
             work: Workspace::default(),
-            differential: vec![true; m.states.len()],
+            differential: vec![true; m.states.len() + usize::from(clock)],
+            clock,
             evaluations: 0,
             last_failure: None,
             pattern: m.jacobian.as_ref().and_then(|(_, entries)| {
@@ -342,12 +350,18 @@ impl<'a> Simulator<'a> {
         self.ode.m
     }
 
+    /// The solver's state: the model's states (and the clock state, see `Ode`).
     fn states(&self) -> Vec<f64> {
-        self.m()
+        let mut x: Vec<f64> = self
+            .m()
             .states
             .iter()
             .map(|&r| self.ode.regs[r as usize])
-            .collect()
+            .collect();
+        if self.ode.clock {
+            x.push(0.0);
+        }
+        x
     }
 
     fn record(&mut self, t: f64) {
@@ -775,6 +789,7 @@ impl<'a> Simulator<'a> {
         if o.stop == o.start {
             // A zero-length interval: the consistent initial values are the result.
             self.result.final_states = self.states();
+            self.result.final_states.truncate(m.states.len());
             return self.result;
         }
         let x0 = self.states();
@@ -785,7 +800,7 @@ impl<'a> Simulator<'a> {
             );
         }
         options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
-        if m.states.is_empty() {
+        if m.states.is_empty() && !self.ode.clock {
             return self.run_without_states(o);
         }
         let options_max_step = options.max_step;
@@ -801,7 +816,7 @@ impl<'a> Simulator<'a> {
         }
         let mut next_output = 1usize;
         let grid = |k: usize| o.start + k as f64 * o.interval;
-        let mut buf = vec![0.0; m.states.len()];
+        let mut buf = vec![0.0; self.ode.len()];
         let mut steps_taken: u64 = 0;
         loop {
             let t_event = self
@@ -961,6 +976,7 @@ impl<'a> Simulator<'a> {
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
         self.result.final_states = self.states();
+        self.result.final_states.truncate(self.m().states.len());
         self.result
     }
 

@@ -133,7 +133,10 @@ impl Simulator<'_> {
             .map(|&r| self.ode.regs[r as usize])
             .collect();
         let delta = 1e-8 * t.abs().max(1.0);
-        let x1: Vec<f64> = (0..n).map(|i| x[i] + delta * dx[i]).collect();
+        // (A clock state, see `Ode`, has no derivative register: it stays.)
+        let x1: Vec<f64> = (0..n)
+            .map(|i| x[i] + delta * dx.get(i).copied().unwrap_or(0.0))
+            .collect();
         let g1 = g(self, t + delta, &x1)?;
         let side = |k: usize| {
             if k >= m.root_ops.len() {
@@ -212,9 +215,7 @@ impl Simulator<'_> {
         if self.m().roots.is_empty() || t_right <= t_left {
             return Ok(None);
         }
-        let n = self.m().states.len();
-        let mut x = vec![0.0; n];
-        x.copy_from_slice(solver.state());
+        let mut x = solver.state().to_vec();
         let mut found = self.disagreeing(t_right, &x)?;
         if found.is_empty() {
             return Ok(None);
