@@ -175,6 +175,9 @@ struct Ode<'a> {
     /// A model without states but with events gets one constant state, so that the
     /// solvers step through time and locate its crossings and sample instants.
     clock: bool,
+    /// The relations disagreeing with their operands at the latest time the root
+    /// functions were evaluated since the last event (see `crossings::disagreements`).
+    last_roots: (f64, Crossed),
 }
 
 impl Ode<'_> {
@@ -267,6 +270,9 @@ impl System for Ode<'_> {
                 g
             };
         }
+        if t >= self.last_roots.0 {
+            self.last_roots = (t, crossings::disagreements(self.m, &self.regs, &self.ev));
+        }
         Ok(())
     }
 }
@@ -323,6 +329,7 @@ impl<'a> Simulator<'a> {
             work: Workspace::default(),
             differential: vec![true; m.states.len() + usize::from(clock)],
             clock,
+            last_roots: (f64::NEG_INFINITY, Vec::new()),
             evaluations: 0,
             last_failure: None,
             pattern: m.jacobian.as_ref().and_then(|(_, entries)| {
@@ -1155,6 +1162,7 @@ impl<'a> Simulator<'a> {
         }
         self.record(t);
         let x = self.states();
+        self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
         solver
             .reset(&mut self.ode, t, &x)
             .map_err(|e| self.solver_error(e))

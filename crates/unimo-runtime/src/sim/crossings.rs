@@ -3,6 +3,8 @@
 //! crossings the root search could not see (a relation disagreeing with its operands).
 
 use super::{after_crossing, Crossed, SimError, Simulator, ROOT_NOISE};
+use crate::model::CompiledModel;
+use crate::tape::EventState;
 use unimo_dae::expr::RelOp;
 use unimo_solve::{Direction, Solver};
 
@@ -13,6 +15,45 @@ pub(super) struct Settled {
     pub sliding: bool,
     /// A `when` condition became true with the settled values.
     pub fires: bool,
+}
+
+/// The roots whose held relation (or rounding) disagrees with the operands in `regs`
+/// (after the roots tape ran) beyond rounding noise, with the direction they crossed.
+pub(super) fn disagreements(m: &CompiledModel, regs: &[f64], ev: &EventState) -> Crossed {
+    let n_relations = m.root_ops.len();
+    let mut out = Vec::new();
+    for (k, &(a, b)) in m.roots.iter().enumerate() {
+        let (a, b) = (regs[a as usize], regs[b as usize]);
+        let g = a - b;
+        if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) || g.is_nan() {
+            continue;
+        }
+        let rising = g > 0.0;
+        let missed = if k < n_relations {
+            if !m.relation_held[k] {
+                continue;
+            }
+            let held = ev.relations[k] != 0.0;
+            match m.root_ops[k] {
+                RelOp::Lt | RelOp::Le => held == rising,
+                RelOp::Gt | RelOp::Ge => held != rising,
+                RelOp::Eq | RelOp::Ne => false,
+            }
+        } else {
+            // Held rounding: inside its interval lower root >= 0, upper root <= 0.
+            let upper = (k - n_relations) % 2 == 1;
+            upper == rising
+        };
+        if missed {
+            let dir = if rising {
+                Direction::Rising
+            } else {
+                Direction::Falling
+            };
+            out.push((k, dir));
+        }
+    }
+    out
 }
 
 impl Simulator<'_> {
@@ -166,40 +207,7 @@ impl Simulator<'_> {
         let m = self.m();
         self.load_state(t, x)?;
         m.roots_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-        let n_relations = m.root_ops.len();
-        let mut out = Vec::new();
-        for (k, &(a, b)) in m.roots.iter().enumerate() {
-            let (a, b) = (self.ode.regs[a as usize], self.ode.regs[b as usize]);
-            let g = a - b;
-            if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) || g.is_nan() {
-                continue;
-            }
-            let rising = g > 0.0;
-            let missed = if k < n_relations {
-                if !m.relation_held[k] {
-                    continue;
-                }
-                let held = self.ode.ev.relations[k] != 0.0;
-                match m.root_ops[k] {
-                    RelOp::Lt | RelOp::Le => held == rising,
-                    RelOp::Gt | RelOp::Ge => held != rising,
-                    RelOp::Eq | RelOp::Ne => false,
-                }
-            } else {
-                // Held rounding: inside its interval lower root >= 0, upper root <= 0.
-                let upper = (k - n_relations) % 2 == 1;
-                upper == rising
-            };
-            if missed {
-                let dir = if rising {
-                    Direction::Rising
-                } else {
-                    Direction::Falling
-                };
-                out.push((k, dir));
-            }
-        }
-        Ok(out)
+        Ok(disagreements(m, &self.ode.regs, &self.ode.ev))
     }
 
     /// A crossing in `(t_left, t_right]` that the solver did not report: a relation
@@ -216,7 +224,11 @@ impl Simulator<'_> {
             return Ok(None);
         }
         let mut x = solver.state().to_vec();
-        let mut found = self.disagreeing(t_right, &x)?;
+        // The root search evaluated the functions at the step's end already.
+        let mut found = match &self.ode.last_roots {
+            (t, found) if *t == t_right => found.clone(),
+            _ => self.disagreeing(t_right, &x)?,
+        };
         if found.is_empty() {
             return Ok(None);
         }
