@@ -455,3 +455,24 @@ fn change_of_integer_time_fires_without_states() {
         assert!(r.final_states.is_empty());
     }
 }
+
+/// `edge` and `change` of a Boolean that is true while sin(2 pi (t - 1/4)) > 0: rises
+/// at 1/4 and 5/4, falls at 3/4 and 7/4 (to 1e-12), `change` at all four.
+#[test]
+fn edge_and_change_fire_at_the_switches() {
+    for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
+        let r = ok(
+            "tests/extreme/EdgeAndChange.mo",
+            &options(method, 1e-6, 0.0, 2.0, 0.01),
+        );
+        let close = |got: Vec<f64>, want: &[f64]| {
+            assert_eq!(got.len(), want.len(), "{method:?}: {got:?} vs {want:?}");
+            for (t, w) in got.iter().zip(want) {
+                assert!((t - w).abs() < 1e-12, "{method:?}: {t} vs {w}");
+            }
+        };
+        close(changes(&r, "rises"), &[0.25, 1.25]);
+        close(changes(&r, "falls"), &[0.75, 1.75]);
+        close(changes(&r, "switches"), &[0.25, 0.75, 1.25, 1.75]);
+    }
+}

@@ -810,6 +810,12 @@ impl<'a> Simulator<'a> {
         if m.states.is_empty() && !self.ode.clock {
             return self.run_without_states(o);
         }
+        if self.ode.clock {
+            // Nothing limits the steps of a constant state: the zero crossings (all of
+            // time) are searched one output interval at a time, so none pair up and
+            // cancel within a step.
+            options.max_step = options.max_step.min(o.interval);
+        }
         let options_max_step = options.max_step;
         let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
             Ok(s) => s,
