@@ -132,8 +132,8 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             let ex = &dae.experiment;
             let start = a.start.or(ex.start_time).unwrap_or(0.0);
             let stop = a.stop_time.or(ex.stop_time).unwrap_or(1.0);
-            if !positive(stop - start) {
-                eprintln!("error: the stop time {stop} is not after the start time {start}");
+            if !(stop - start).is_finite() || stop < start {
+                eprintln!("error: the stop time {stop} is before the start time {start}");
                 return EXIT_USAGE;
             }
             let rtol = a.tolerance.or(ex.tolerance).unwrap_or(1e-6);
@@ -143,6 +143,8 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 (None, Some(n)) => (stop - start) / n.max(1) as f64,
                 (None, None) => ex.interval.unwrap_or((stop - start) / 500.0),
             };
+            // A zero-length interval writes the initial values only.
+            let interval = if stop == start { 1.0 } else { interval };
             if !positive(interval) || !positive(rtol) || atol.is_nan() || atol < 0.0 {
                 eprintln!("error: the interval and tolerances must be positive");
                 return EXIT_USAGE;
@@ -245,6 +247,22 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             match &result.error {
                 Some(e) => {
                     eprintln!("error[{}]: {}", e.code(), e.message());
+                    if let unimo_runtime::sim::SimError::NonFinite {
+                        equation: Some(eq), ..
+                    } = e
+                    {
+                        let equation = &dae.equations[eq.index()];
+                        let mut text = String::new();
+                        let name = |s| dae.name(s);
+                        let _ = dae.arena.write(equation.lhs, &name, &mut text);
+                        text.push_str(" = ");
+                        let _ = dae.arena.write(equation.rhs, &name, &mut text);
+                        eprintln!(
+                            "note: equation #{} is `{text}` ({})",
+                            eq.0,
+                            map.location(equation.origin)
+                        );
+                    }
                     eprintln!(
                         "note: {} rows up to t = {} were kept",
                         result.times.len(),

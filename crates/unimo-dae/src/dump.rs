@@ -130,6 +130,12 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
             let _ = writeln!(o, "  z{k}: {}", show(z));
         }
     }
+    if !zc.held.is_empty() {
+        let _ = writeln!(o, "held between events: {}", zc.held.len());
+        for (k, &h) in zc.held.iter().enumerate() {
+            let _ = writeln!(o, "  h{k}: {}", show(h));
+        }
+    }
     let ex = &dae.experiment;
     if *ex != Experiment::default() {
         let f = |x: Option<f64>| x.map(fmt_num).unwrap_or_else(|| "-".into());

@@ -1,9 +1,10 @@
 //! Zero crossings: every relation outside `noEvent` (in continuous equations and
 //! `when` conditions) that involves a continuous-time quantity, plus `sample` time
-//! events.
+//! events, plus the event-generating integer functions (`floor`, `ceil`, `integer`,
+//! `div`, `mod`, `rem` of a continuous-time argument, MLS 3.7.2).
 
 use crate::dae::Dae;
-use crate::expr::{ExprId, Node};
+use crate::expr::{ExprId, Fn1, Fn2, Node};
 use rustc_hash::FxHashSet as HashSet;
 
 /// The relations that generate state events, in first-occurrence order, and the
@@ -12,6 +13,10 @@ use rustc_hash::FxHashSet as HashSet;
 pub struct Crossings {
     pub relations: Vec<ExprId>,
     pub samples: Vec<ExprId>,
+    /// `floor`/`ceil`/`integer`/`div`/`mod`/`rem` nodes whose argument moves between
+    /// events: their value is held between events, and an event comes when the
+    /// argument leaves the interval that rounds to the held value.
+    pub held: Vec<ExprId>,
 }
 
 pub fn zero_crossings(dae: &Dae) -> Crossings {
@@ -44,18 +49,23 @@ fn collect(dae: &Dae, e: ExprId, seen: &mut HashSet<ExprId>, out: &mut Crossings
         }
         match dae.arena.node(x) {
             Node::NoEvent(_) => continue,
-            Node::Rel(..) => {
-                let moves = dae.arena.vars(x).iter().any(|&s| dae.is_continuous(s))
-                    || depends_on_time(dae, x);
-                if moves {
-                    out.relations.push(x);
-                }
+            Node::Rel(..) if moves(dae, x) => out.relations.push(x),
+            Node::Fn1(Fn1::Floor | Fn1::Ceil, _)
+            | Node::Fn2(Fn2::Div | Fn2::Mod | Fn2::Rem, ..)
+                if moves(dae, x) =>
+            {
+                out.held.push(x)
             }
             Node::Sample(..) => out.samples.push(x),
             _ => {}
         }
         stack.extend(dae.arena.children(x));
     }
+}
+
+/// The expression changes between events (a continuous-time variable or `time`).
+fn moves(dae: &Dae, e: ExprId) -> bool {
+    dae.arena.vars(e).iter().any(|&s| dae.is_continuous(s)) || depends_on_time(dae, e)
 }
 
 fn depends_on_time(dae: &Dae, e: ExprId) -> bool {

@@ -22,7 +22,7 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
         }
     }
     let zc = zero_crossings(dae);
-    for &r in zc.relations.iter().chain(&zc.samples) {
+    for &r in zc.relations.iter().chain(&zc.samples).chain(&zc.held) {
         add(&mut needed, r);
     }
     for w in &dae.whens {

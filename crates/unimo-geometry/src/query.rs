@@ -50,6 +50,22 @@ fn unsupported(a: &Shape, b: &Shape) -> Unsupported {
     ))
 }
 
+/// A placement the queries can work with: finite, its position within
+/// [`MAX_LENGTH`](crate::shape::MAX_LENGTH) of the origin.
+fn check_placement(p: &Placement) -> Result<(), Unsupported> {
+    let limit = crate::shape::MAX_LENGTH;
+    let position_ok = p.r.iter().all(|c| c.is_finite() && c.abs() <= limit);
+    let rotation_ok = p.rot.iter().flatten().all(|c| c.is_finite());
+    if position_ok && rotation_ok {
+        Ok(())
+    } else {
+        Err(Unsupported(format!(
+            "a body placed at {:?} (rotation {:?}): positions must be finite and within {limit:e}",
+            p.r, p.rot
+        )))
+    }
+}
+
 /// Reusable memory for [`contacts`].
 #[derive(Default)]
 pub struct Scratch {
@@ -68,6 +84,8 @@ pub fn contacts(
     scratch: &mut Scratch,
     out: &mut Vec<ContactPoint>,
 ) -> Result<usize, Unsupported> {
+    check_placement(pa)?;
+    check_placement(pb)?;
     let before = out.len();
     match (a.ellipsoid.as_ref(), b.ellipsoid.as_ref()) {
         (None, None) => {
@@ -361,6 +379,8 @@ pub fn time_of_impact(
     vb: V3,
     max_time: f64,
 ) -> Option<f64> {
+    check_placement(pa).ok()?;
+    check_placement(pb).ok()?;
     let (ga, gb) = (a.parry.as_ref()?, b.parry.as_ref()?);
     let hit = query::cast_shapes(
         &pa.pose(),
@@ -535,5 +555,67 @@ mod tests {
             triangles: vec![[0, 1, 2]],
         });
         assert!(e.is_err());
+    }
+
+    /// A body 1e300 long is refused when it is built (parry's capsule-box manifold
+    /// panicked on it), and a placement out of range makes the query an error.
+    #[test]
+    fn huge_shapes_and_placements_are_errors_not_panics() {
+        for kind in [
+            K::Capsule {
+                half_height: 1e300,
+                radius: 1.0,
+            },
+            K::Box {
+                half: [1e300, 1.0, 1.0],
+            },
+            K::Sphere {
+                radius: f64::INFINITY,
+            },
+            K::ConvexHull {
+                points: vec![
+                    [0.0; 3],
+                    [1e300, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                ],
+            },
+        ] {
+            let e = Shape::new(kind.clone()).expect_err("too large");
+            assert!(e.0.contains("1e12"), "{kind:?}: {e}");
+        }
+        let capsule = sh(K::Capsule {
+            half_height: 1e12,
+            radius: 1.0,
+        });
+        let block = sh(K::Box { half: [1.0; 3] });
+        // The largest allowed capsule lying on the box: touching at distance 0.5.
+        let c = closest(
+            &capsule,
+            &Placement::at([0.0, 0.0, 2.5]),
+            &block,
+            &Placement::IDENTITY,
+            1.0,
+        )
+        .unwrap()
+        .unwrap();
+        assert!((c.dist - 0.5).abs() < 1e-3, "{c:?}");
+        let far = Placement::at([1e300, 0.0, 0.0]);
+        let err = closest(&block, &far, &block, &Placement::IDENTITY, 1.0).unwrap_err();
+        assert!(err.0.contains("finite and within"), "{err}");
+        let nan = Placement::at([f64::NAN, 0.0, 0.0]);
+        assert!(closest(&block, &nan, &block, &Placement::IDENTITY, 1.0).is_err());
+        assert_eq!(
+            time_of_impact(
+                &block,
+                &far,
+                [0.0; 3],
+                &block,
+                &Placement::IDENTITY,
+                [0.0; 3],
+                1.0
+            ),
+            None
+        );
     }
 }

@@ -90,13 +90,32 @@ fn v(x: V3) -> Vector {
     Vector::new(x[0], x[1], x[2])
 }
 
+/// The largest length a collision shape or placement may have: the queries square
+/// lengths and compare features of a body with its size, so beyond this (1e12 times a
+/// unit-size feature) a body's own features drop below f64 resolution, and near 1e200
+/// parry's manifolds overflow (and panic).
+pub const MAX_LENGTH: f64 = 1e12;
+
 fn positive(what: &str, x: f64) -> Result<f64, ShapeError> {
-    if x > 0.0 && x.is_finite() {
+    if x > 0.0 && x <= MAX_LENGTH {
         Ok(x)
     } else {
         Err(ShapeError(format!(
-            "{what} must be positive and finite, got {x}"
+            "{what} must be positive and at most {MAX_LENGTH:e}, got {x:e}"
         )))
+    }
+}
+
+/// A hull's or mesh's points: finite and within [`MAX_LENGTH`] of the body origin.
+fn bounded_points(what: &str, points: &[V3]) -> Result<(), ShapeError> {
+    match points
+        .iter()
+        .find(|p| !p.iter().all(|c| c.is_finite() && c.abs() <= MAX_LENGTH))
+    {
+        Some(p) => Err(ShapeError(format!(
+            "{what} point {p:?} is not finite or farther than {MAX_LENGTH:e} from the body origin"
+        ))),
+        None => Ok(()),
     }
 }
 
@@ -156,6 +175,7 @@ impl Shape {
             }
             ShapeKind::HalfSpace => (Some(SharedShape::halfspace(Vector::Z)), None, f64::INFINITY),
             ShapeKind::ConvexHull { points } => {
+                bounded_points("convex hull", points)?;
                 let pts: Vec<Vector> = points.iter().map(|&p| v(p)).collect();
                 let s = SharedShape::convex_hull(&pts).ok_or_else(|| {
                     ShapeError("the convex hull of the points is degenerate".into())
@@ -167,6 +187,7 @@ impl Shape {
                 vertices,
                 triangles,
             } => {
+                bounded_points("triangle mesh", vertices)?;
                 let pts: Vec<Vector> = vertices.iter().map(|&p| v(p)).collect();
                 for t in triangles {
                     if t.iter().any(|&i| i as usize >= pts.len()) {

@@ -65,8 +65,17 @@ pub struct CompiledModel {
     /// Zero-crossing functions: `g_k = reg_a - reg_b` of relation k.
     pub roots_tape: Tape,
     pub roots: Vec<(Reg, Reg)>,
-    /// The relation each root belongs to (its kind decides the post-crossing value).
+    /// The relation each of the first `root_ops.len()` roots belongs to (its kind
+    /// decides the post-crossing value). The roots after them come in pairs, the lower
+    /// and upper bound of held rounding `j` (roots `n + 2j`, `n + 2j + 1`).
     pub root_ops: Vec<unimo_dae::expr::RelOp>,
+    /// Every root in Modelica syntax (for messages), e.g. `h <= 0` or `floor(time / 0.1)`.
+    pub root_names: Vec<String>,
+    /// Number of held roundings (`floor`, `integer`, `mod`, ... with events).
+    pub n_held: usize,
+    /// The equation that computes each scalar's register (explicit assignments, and
+    /// a block's first equation for its unknowns), for errors naming the culprit.
+    pub definitions: HashMap<Reg, unimo_dae::dae::EqId>,
     /// `sample(start, interval)`: registers of start and interval.
     pub samples: Vec<(Reg, Reg)>,
     /// Conditions and action values of every `when`, computed in event mode.
@@ -106,6 +115,9 @@ pub struct CompiledModel {
     /// Whether `initial_tape` sets `pre` values (`initial equation pre(y) = y0`).
     pub initial_pre_assigned: bool,
     pub ops_total: usize,
+    /// Relations whose value some tape holds between events (a relation that only an
+    /// assertion reads is compared literally and never held).
+    pub relation_held: Vec<bool>,
     /// The collision world, when the model has collision bodies.
     pub collision: Option<CollisionModel>,
     /// External objects (tables): the tape computing their constructors' arguments
@@ -139,8 +151,10 @@ impl CompiledModel {
     pub fn new_event_state(&self) -> EventState {
         EventState {
             event_mode: false,
-            relations: vec![0.0; self.roots.len()],
-            forced: vec![None; self.roots.len()],
+            relations: vec![0.0; self.root_ops.len()],
+            forced: vec![None; self.root_ops.len()],
+            held: vec![0.0; self.n_held],
+            held_forced: vec![None; self.n_held],
             sticky: false,
             samples: vec![0.0; self.samples.len()],
             collision: self.collision.as_ref().map(|_| Box::default()),
@@ -290,7 +304,14 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         .enumerate()
         .map(|(k, &e)| (e, k as u32))
         .collect();
+    let held_index: HashMap<ExprId, u32> = zc
+        .held
+        .iter()
+        .enumerate()
+        .map(|(k, &e)| (e, k as u32))
+        .collect();
     let mut c = Compiler::new(&dae.arena, layout, &relation_index, &sample_index);
+    c.held_index = Some(&held_index);
     // Output registers of the collision world, known to every tape.
     let external = |c: &mut Compiler<'_>, site: u32, out: u32| -> Reg {
         let reg = c.temp_public();
@@ -343,7 +364,24 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     }
 
     let mut steps: Vec<CompiledStep> = Vec::new();
+    let mut definitions = HashMap::default();
     for step in &plan.steps {
+        match step {
+            PlanStep::Assign { var, eq, .. } => {
+                definitions.insert(layout.var(*var), *eq);
+            }
+            PlanStep::Block(b) => {
+                if let Some(&eq) = b.equations.first() {
+                    for &v in b
+                        .iteration_vars
+                        .iter()
+                        .chain(b.inner.iter().map(|(v, _)| v))
+                    {
+                        definitions.insert(layout.var(v), eq);
+                    }
+                }
+            }
+        }
         match step {
             PlanStep::Assign { var, value, .. } => {
                 // Consecutive assignments share one tape (one dispatch loop).
@@ -401,6 +439,22 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         let rb = c.expr(b, &mut roots_tape, &mut memo);
         roots.push((ra, rb));
         root_ops.push(op);
+    }
+    for (k, &h) in zc.held.iter().enumerate() {
+        let (argument, lo, hi) = c.held_crossings(h, k as u32, &mut roots_tape, &mut memo);
+        roots.push((argument, lo));
+        roots.push((argument, hi));
+    }
+    let show = |e: ExprId| {
+        let mut text = String::new();
+        let _ = dae.arena.write(e, &|s| dae.name(s), &mut text);
+        text
+    };
+    let mut root_names: Vec<String> = zc.relations.iter().map(|&r| show(r)).collect();
+    for &h in &zc.held {
+        let text = show(h);
+        root_names.push(format!("{text} (its lower bound)"));
+        root_names.push(format!("{text} (its upper bound)"));
     }
     let mut samples = Vec::new();
     let mut sample_memo = HashMap::default();
@@ -598,6 +652,9 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         roots_tape,
         roots,
         root_ops,
+        root_names,
+        n_held: zc.held.len(),
+        definitions,
         samples,
         when_tape,
         whens,
@@ -620,10 +677,12 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_assigned,
         initial_pre_assigned,
         ops_total: 0,
+        relation_held: Vec::new(),
         collision,
         objects_tape,
         objects,
     };
+    m.relation_held = held_relations(&m);
     m.ops_total = m
         .steps
         .iter()
@@ -633,6 +692,35 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         })
         .sum();
     m
+}
+
+/// Which relations are compiled with event semantics in some tape the runtime runs.
+fn held_relations(m: &CompiledModel) -> Vec<bool> {
+    let mut held = vec![false; m.root_ops.len()];
+    let mut tapes: Vec<&Tape> = vec![
+        &m.when_tape,
+        &m.alias_tape,
+        &m.initial_tape,
+        &m.starts,
+        &m.parameters,
+    ];
+    for step in &m.steps {
+        match step {
+            CompiledStep::Explicit(t) => tapes.push(t),
+            CompiledStep::Block(b) => tapes.extend([&b.residual_tape, &b.jacobian_tape]),
+        }
+    }
+    if let Some((t, _)) = &m.jacobian {
+        tapes.push(t);
+    }
+    for tape in tapes {
+        for op in &tape.ops {
+            if let Op::RelEvent(.., k) = op {
+                held[*k as usize] = true;
+            }
+        }
+    }
+    held
 }
 
 /// d der(x_i) / d x_j symbolically, when every step of the plan is an explicit
@@ -673,6 +761,7 @@ fn symbolic_jacobian(dae: &Dae, plan: &Plan, c: &mut Compiler<'_>) -> Option<Sym
         }
     }
     let mut compiler = Compiler::new(&arena, c.layout, c.relation_index, c.sample_index);
+    compiler.held_index = c.held_index;
     compiler.continue_from(c);
     let mut tape = Tape::default();
     let mut memo = HashMap::default();

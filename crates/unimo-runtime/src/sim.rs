@@ -9,6 +9,8 @@ use crate::tape::EventState;
 use unimo_dae::expr::RelOp;
 use unimo_solve::{Direction, EvalError, Method, Options, SolveError, Solver, StopReason, System};
 
+mod crossings;
+
 /// Internal steps of one simulation before it is stopped.
 const MAX_STEPS: u64 = 20_000_000;
 /// Event iterations at one instant before the event is declared non-converging.
@@ -60,6 +62,19 @@ pub enum SimError {
         time: f64,
         crossing: String,
         events: usize,
+        /// The events were a sliding mode (the flow drives the crossing function back
+        /// across zero from both sides), not close in time.
+        sliding: bool,
+    },
+    /// A result value became NaN or infinite.
+    NonFinite {
+        time: f64,
+        step: Option<f64>,
+        variable: String,
+        value: f64,
+        /// The equation computing it (a state: its derivative's), for the caller to
+        /// show with its source.
+        equation: Option<unimo_dae::dae::EqId>,
     },
 }
 
@@ -72,6 +87,7 @@ impl SimError {
             SimError::Assert { .. } => "E4004",
             SimError::EventIteration { .. } => "E4005",
             SimError::Chattering { .. } => "E4006",
+            SimError::NonFinite { .. } => "E4007",
         }
     }
 
@@ -96,8 +112,18 @@ impl SimError {
                 "event iteration did not converge at t = {time} after {MAX_EVENT_ITERATIONS} iterations; still changing: {}",
                 culprits.join(", ")
             ),
-            SimError::Chattering { time, crossing, events } => format!(
+            SimError::NonFinite { time, step, variable, value, equation } => format!(
+                "`{variable}` is {value} at t = {time}{}{}",
+                step.map(|h| format!(", step size {h:e}")).unwrap_or_default(),
+                equation
+                    .map(|e| format!(", computed by equation #{}", e.0))
+                    .unwrap_or_default()
+            ),
+            SimError::Chattering { time, crossing, events, sliding: false } => format!(
                 "chattering at t = {time}: {events} events in a row less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`"
+            ),
+            SimError::Chattering { time, crossing, events, sliding: true } => format!(
+                "chattering at t = {time}: {events} events in a row where the flow drives the zero crossing `{crossing}` back across zero from both sides (a sliding mode)"
             ),
         }
     }
@@ -146,6 +172,12 @@ struct Ode<'a> {
     last_failure: Option<BlockFailure>,
     /// Nonzeros of the symbolic Jacobian (large systems then use the sparse LU).
     pattern: Option<unimo_solve::SparsityPattern>,
+    /// A model without states but with events gets one constant state, so that the
+    /// solvers step through time and locate its crossings and sample instants.
+    clock: bool,
+    /// The relations disagreeing with their operands at the latest time the root
+    /// functions were evaluated since the last event (see `crossings::disagreements`).
+    last_roots: (f64, Crossed),
 }
 
 impl Ode<'_> {
@@ -164,10 +196,10 @@ impl Ode<'_> {
 }
 
 impl System for Ode<'_> {
-    /// A model without states is integrated as one constant phantom state, so that its
-    /// time events and relations of time are located like any other model's.
+    /// The states, and the constant clock state of a model without states that has
+    /// events (see `clock`).
     fn len(&self) -> usize {
-        self.m.states.len().max(1)
+        self.m.states.len() + usize::from(self.clock)
     }
 
     fn differential(&self) -> &[bool] {
@@ -176,9 +208,6 @@ impl System for Ode<'_> {
 
     fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
         self.load(t, x)?;
-        if self.m.states.is_empty() {
-            out[0] = 0.0;
-        }
         for (k, &reg) in self.m.derivatives.iter().enumerate() {
             let v = self.regs[reg as usize];
             if !v.is_finite() {
@@ -188,6 +217,9 @@ impl System for Ode<'_> {
                 )));
             }
             out[k] = v;
+        }
+        if self.clock {
+            out[self.m.states.len()] = 0.0;
         }
         Ok(())
     }
@@ -240,6 +272,9 @@ impl System for Ode<'_> {
                 g
             };
         }
+        if t >= self.last_roots.0 {
+            self.last_roots = (t, crossings::disagreements(self.m, &self.regs, &self.ev));
+        }
         Ok(())
     }
 }
@@ -255,6 +290,9 @@ fn output_names(m: &CompiledModel, regs: &[u32]) -> Vec<String> {
         })
         .collect()
 }
+
+/// Roots with the direction they crossed in.
+type Crossed = Vec<(usize, Direction)>;
 
 /// Relative size below which a root function counts as zero (blocks converge to 1e-13).
 const ROOT_NOISE: f64 = crate::tape::RELATION_NOISE;
@@ -277,16 +315,23 @@ pub struct Simulator<'a> {
     sample_next: Vec<f64>,
     chatter: (usize, f64),
     terminate: Option<String>,
+    /// A row with a NaN or infinite value was about to be written (it is not).
+    non_finite: Option<SimError>,
+    /// Consecutive state events that ended in a sliding mode.
+    sliding_events: usize,
 }
 
 impl<'a> Simulator<'a> {
     pub fn new(m: &'a CompiledModel) -> Simulator<'a> {
+        let clock = m.states.is_empty() && (!m.roots.is_empty() || !m.samples.is_empty());
         let ode = Ode {
             m,
             regs: m.new_registers(),
             ev: m.new_event_state(),
             work: Workspace::default(),
-            differential: vec![true; m.states.len().max(1)],
+            differential: vec![true; m.states.len() + usize::from(clock)],
+            clock,
+            last_roots: (f64::NEG_INFINITY, Vec::new()),
             evaluations: 0,
             last_failure: None,
             pattern: m
@@ -309,6 +354,8 @@ impl<'a> Simulator<'a> {
             sample_next: Vec::new(),
             chatter: (0, f64::NEG_INFINITY),
             terminate: None,
+            non_finite: None,
+            sliding_events: 0,
         }
     }
 
@@ -316,29 +363,58 @@ impl<'a> Simulator<'a> {
         self.ode.m
     }
 
-    /// The solver's state vector: the states, or the phantom state of a model
-    /// without states.
+    /// The solver's state: the model's states (and the clock state, see `Ode`).
     fn states(&self) -> Vec<f64> {
-        if self.m().states.is_empty() {
-            return vec![0.0];
-        }
-        self.m()
+        let mut x: Vec<f64> = self
+            .m()
             .states
             .iter()
             .map(|&r| self.ode.regs[r as usize])
-            .collect()
+            .collect();
+        if self.ode.clock {
+            x.push(0.0);
+        }
+        x
     }
 
     fn record(&mut self, t: f64) {
+        if self.non_finite.is_some() {
+            return;
+        }
         let m = self.m();
         m.alias_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-        let row = m
+        let row: Vec<f64> = m
             .outputs
             .iter()
             .map(|&(_, r)| self.ode.regs[r as usize])
             .collect();
+        if let Some(k) = row.iter().position(|v| !v.is_finite()) {
+            let (name, reg) = &m.outputs[k];
+            let defining = match m.states.iter().position(|s| s == reg) {
+                Some(state) => m.derivatives[state],
+                None => *reg,
+            };
+            self.non_finite = Some(SimError::NonFinite {
+                time: t,
+                step: None,
+                variable: name.clone(),
+                value: row[k],
+                equation: m.definitions.get(&defining).copied(),
+            });
+            return;
+        }
         self.result.times.push(t);
         self.result.rows.push(row);
+    }
+
+    /// The error of a NaN or infinite value recorded since the last call, with the
+    /// step size that produced it.
+    fn take_non_finite(&mut self, step: Option<f64>) -> Option<SimError> {
+        let mut e = self.non_finite.take()?;
+        if let SimError::NonFinite { step: s, .. } = &mut e {
+            *s = step;
+        }
+        Some(e)
     }
 
     fn eval_plan(&mut self) -> Result<(), SimError> {
@@ -680,6 +756,11 @@ impl<'a> Simulator<'a> {
         }
         self.ode.ev.event_mode = false;
         self.ode.ev.sticky = false;
+        // A rounding whose bound was crossed keeps its new value through every pass of
+        // the event (its argument may sit a rounding error before the bound).
+        for f in self.ode.ev.held_forced.iter_mut() {
+            *f = None;
+        }
         Ok(())
     }
 
@@ -728,6 +809,16 @@ impl<'a> Simulator<'a> {
             return self.result;
         }
         self.record(o.start);
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error = Some(e);
+            return self.result;
+        }
+        if o.stop == o.start {
+            // A zero-length interval: the consistent initial values are the result.
+            self.result.final_states = self.states();
+            self.result.final_states.truncate(m.states.len());
+            return self.result;
+        }
         let x0 = self.states();
         let mut options = Options::with_tolerances(o.rtol, o.atol);
         if !m.states.is_empty() {
@@ -736,6 +827,15 @@ impl<'a> Simulator<'a> {
             );
         }
         options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
+        if m.states.is_empty() && !self.ode.clock {
+            return self.run_without_states(o);
+        }
+        if self.ode.clock {
+            // Nothing limits the steps of a constant state: the zero crossings (all of
+            // time) are searched one output interval at a time, so none pair up and
+            // cancel within a step.
+            options.max_step = options.max_step.min(o.interval);
+        }
         let options_max_step = options.max_step;
         let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
             Ok(s) => s,
@@ -749,7 +849,7 @@ impl<'a> Simulator<'a> {
         }
         let mut next_output = 1usize;
         let grid = |k: usize| o.start + k as f64 * o.interval;
-        let mut buf = vec![0.0; m.states.len().max(1)];
+        let mut buf = vec![0.0; self.ode.len()];
         let mut steps_taken: u64 = 0;
         loop {
             let t_event = self
@@ -766,7 +866,21 @@ impl<'a> Simulator<'a> {
                     break;
                 }
             };
-            let now = solver.current_time();
+            let mut now = solver.current_time();
+            let mut reason = reason;
+            if !matches!(reason, StopReason::Root { .. }) {
+                match self.missed_crossing(&solver, prev, now) {
+                    Ok(Some((t, components))) => {
+                        now = t;
+                        reason = StopReason::Root { t, components };
+                    }
+                    Ok(None) => {}
+                    Err(e) => {
+                        self.result.error = Some(e);
+                        break;
+                    }
+                }
+            }
             steps_taken += 1;
             if !matches!(reason, StopReason::Root { .. }) {
                 let x = solver.state().to_vec();
@@ -801,6 +915,10 @@ impl<'a> Simulator<'a> {
                 }
                 next_output += 1;
             }
+            if let Some(e) = self.take_non_finite(Some(now - prev)) {
+                self.result.error = Some(e);
+                break;
+            }
             match reason {
                 StopReason::InternalStep => {
                     if o.every_step {
@@ -823,6 +941,13 @@ impl<'a> Simulator<'a> {
                         break;
                     }
                     if now >= o.stop {
+                        // A sample instant at the stop time is an event like any other.
+                        if t_event <= now {
+                            if let Err(e) = self.sample_event(now, &mut solver) {
+                                self.result.error = Some(e);
+                                break;
+                            }
+                        }
                         if self.result.times.last() != Some(&now) {
                             self.record(now);
                         }
@@ -835,7 +960,11 @@ impl<'a> Simulator<'a> {
                     }
                 }
                 StopReason::Root { t, components } => {
-                    let x = solver.state().to_vec();
+                    let mut x = solver.state().to_vec();
+                    if t != solver.current_time() {
+                        // A crossing the driver found inside the step.
+                        let _ = solver.interpolate(t, &mut x);
+                    }
                     if let Err(e) = self.state_event(t, &x, &components, &mut solver) {
                         self.result.error = Some(e);
                         break;
@@ -864,16 +993,40 @@ impl<'a> Simulator<'a> {
                     }
                 }
             }
+            if let Some(e) = self.take_non_finite(Some(now - prev)) {
+                self.result.error = Some(e);
+                break;
+            }
         }
         self.finish(&solver)
     }
 
     fn finish(mut self, solver: &Solver) -> SimResult {
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error.get_or_insert(e);
+        }
         self.result.stats.solver = solver.stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
         self.result.final_states = self.states();
         self.result.final_states.truncate(self.m().states.len());
+        self.result
+    }
+
+    fn run_without_states(mut self, o: &SimOptions) -> SimResult {
+        let n = ((o.stop - o.start) / o.interval).round().max(0.0) as usize;
+        for k in 1..=n {
+            let t = o.start + k as f64 * o.interval;
+            if let Err(e) = self.load_state(t, &[]) {
+                self.result.error = Some(e);
+                break;
+            }
+            self.record(t);
+            if let Some(e) = self.take_non_finite(Some(o.interval)) {
+                self.result.error = Some(e);
+                break;
+            }
+        }
         self.result
     }
 
@@ -922,11 +1075,10 @@ impl<'a> Simulator<'a> {
         components: &[(usize, Direction)],
         solver: &mut Solver,
     ) -> Result<(), SimError> {
-        let m = self.m();
         self.load_state(t, x)?;
         self.record(t);
         for &(k, dir) in components {
-            self.ode.ev.forced[k] = after_crossing(m.root_ops[k], dir);
+            self.force_crossing(k, dir);
         }
         let what = components
             .iter()
@@ -943,73 +1095,35 @@ impl<'a> Simulator<'a> {
             .collect::<Vec<_>>()
             .join(", ");
         self.after_event(t, what, components.first().map(|c| c.0), solver)?;
-        self.settle_relations(t, components);
-        Ok(())
-    }
-
-    /// After an event the solver does not report the crossings it just reported again,
-    /// so a relation whose function is still (numerically) zero takes the value it
-    /// will have just after `t`: the side `g` moves to along the flow.
-    fn settle_relations(&mut self, t: f64, components: &[(usize, Direction)]) {
-        let m = self.m();
-        if components.is_empty() {
-            return;
-        }
-        let x = self.states();
-        let n = x.len();
-        let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
-            let mut out = vec![0.0; m.roots.len()];
-            // Raw differences, not the ones with Newton noise flushed to zero that the
-            // solver sees: a function that moves slowly off its root has a slope.
-            me.ode.load(t, x).ok()?;
-            m.roots_tape.run(&mut me.ode.regs, &mut me.ode.ev);
-            for (k, &(a, b)) in m.roots.iter().enumerate() {
-                out[k] = me.ode.regs[a as usize] - me.ode.regs[b as usize];
-            }
-            Some(out)
-        };
-        let Some(g0) = g(self, t, &x) else { return };
-        let dx: Vec<f64> = m
-            .derivatives
-            .iter()
-            .map(|&r| self.ode.regs[r as usize])
-            .collect();
-        let delta = 1e-8 * t.abs().max(1.0);
-        let x1: Vec<f64> = (0..n)
-            .map(|i| x[i] + delta * dx.get(i).copied().unwrap_or(0.0))
-            .collect();
-        let Some(g1) = g(self, t + delta, &x1) else {
-            return;
-        };
-        let mut changed = false;
-        for &(k, _) in components {
-            let slope = (g1[k] - g0[k]) / delta;
-            let near_zero = g0[k].abs()
-                <= 1e-10 * (1.0 + g0[k].abs())
-                    + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs();
-            if !near_zero || slope == 0.0 {
-                continue;
-            }
-            let dir = if slope > 0.0 {
-                Direction::Rising
-            } else {
-                Direction::Falling
-            };
-            if let Some(v) = after_crossing(m.root_ops[k], dir) {
-                if self.ode.ev.relations[k] != v {
-                    self.ode.ev.relations[k] = v;
-                    changed = true;
+        let mut settled = self.settle_relations(t, components);
+        if settled.fires {
+            // The relations just after t make a `when` condition true: it fires now.
+            let what = "settled relations".to_string();
+            self.after_event(t, what, components.first().map(|c| c.0), solver)?;
+            settled = self.settle_relations(t, components);
+            if settled.fires {
+                // Keep the baseline consistent; the next crossing decides.
+                let m = self.m();
+                for &c in &m.conditions {
+                    self.cond_prev[c as usize] = self.ode.regs[c as usize];
                 }
             }
         }
-        // Restore the registers to the state at t with the settled relations.
-        let _ = self.load_state(t, &x);
-        if changed {
-            m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-            for &c in &m.conditions {
-                self.cond_prev[c as usize] = self.ode.regs[c as usize];
-            }
+        if settled.sliding {
+            self.sliding_events += 1;
+        } else {
+            self.sliding_events = 0;
         }
+        if self.sliding_events >= CHATTER_COUNT {
+            let k = components[0].0;
+            return Err(SimError::Chattering {
+                time: t,
+                crossing: format!("z{k}: {}", self.m().root_names[k]),
+                events: self.sliding_events,
+                sliding: true,
+            });
+        }
+        Ok(())
     }
 
     fn sample_event(&mut self, t: f64, solver: &mut Solver) -> Result<(), SimError> {
@@ -1063,16 +1177,18 @@ impl<'a> Simulator<'a> {
         if self.chatter.0 >= CHATTER_COUNT {
             let m = self.m();
             let crossing = crossing
-                .map(|k| format!("z{k} ({} relation)", m.root_ops[k].symbol()))
+                .map(|k| format!("z{k}: {}", m.root_names[k]))
                 .unwrap_or_else(|| "a time event".into());
             return Err(SimError::Chattering {
                 time: t,
                 crossing,
                 events: self.chatter.0,
+                sliding: false,
             });
         }
         self.record(t);
         let x = self.states();
+        self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
         solver
             .reset(&mut self.ode, t, &x)
             .map_err(|e| self.solver_error(e))

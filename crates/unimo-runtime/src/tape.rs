@@ -42,6 +42,51 @@ pub enum Op {
     /// `dst = f(object, a, b)`: a function of the external object whose handle is in
     /// the first register (a table lookup, `crate::tables`).
     Ext(ExtFn, Reg, [Reg; 3]),
+    /// An event-generating rounding (`floor`, `ceil`, `integer`, and the quotient of
+    /// `div`, `mod`, `rem`) of the argument register, held value `k`: computed and
+    /// stored in event mode, read between events (MLS 3.7.2).
+    Held(Rounding, Reg, Reg, u32),
+    /// The interval `(lo, hi)` of the argument in which held value `k` stays valid:
+    /// the operands of its two zero crossings `arg - lo` and `arg - hi`.
+    HeldBounds(Rounding, Reg, Reg, u32),
+}
+
+/// How an event-generating integer function rounds its argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rounding {
+    Floor,
+    Ceil,
+    /// Towards zero (`div`, `rem`).
+    Trunc,
+}
+
+impl Rounding {
+    pub fn apply(self, x: f64) -> f64 {
+        match self {
+            Rounding::Floor => x.floor(),
+            Rounding::Ceil => x.ceil(),
+            Rounding::Trunc => x.trunc(),
+        }
+    }
+
+    /// The bounds of the arguments that round to `n` (inclusive at the integer).
+    pub fn bounds(self, n: f64) -> (f64, f64) {
+        match self {
+            Rounding::Floor => (n, n + 1.0),
+            Rounding::Ceil => (n - 1.0, n),
+            Rounding::Trunc if n > 0.0 => (n, n + 1.0),
+            Rounding::Trunc if n < 0.0 => (n - 1.0, n),
+            Rounding::Trunc => (-1.0, 1.0),
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Rounding::Floor => "floor",
+            Rounding::Ceil => "ceil",
+            Rounding::Trunc => "trunc",
+        }
+    }
 }
 
 /// Where special values live in the register file.
@@ -89,6 +134,12 @@ pub struct EventState {
     /// Newton solution.
     pub sticky: bool,
     pub samples: Vec<f64>,
+    /// Values of the event-generating roundings (`Op::Held`).
+    pub held: Vec<f64>,
+    /// Outcome of a rounding whose bound was just crossed: `(before, after)`; used in
+    /// event mode when the literal rounding still gives `before` (the argument sits on
+    /// the bound up to rounding). Kept through every pass of the event.
+    pub held_forced: Vec<Option<(f64, f64)>>,
     /// The collision world's mutable side (contact set, sweep origin, broadphase).
     pub collision: Option<Box<crate::collision::CollisionState>>,
     /// External objects (tables), built after the parameters; handle `k` is object `k`.
@@ -164,6 +215,22 @@ impl Tape {
                         _ => f64::NAN,
                     };
                 }
+                Op::Held(kind, d, a, k) => {
+                    let k = k as usize;
+                    if ev.event_mode {
+                        let literal = kind.apply(r[a as usize]);
+                        ev.held[k] = match ev.held_forced[k] {
+                            Some((before, after)) if literal == before => after,
+                            _ => literal,
+                        };
+                    }
+                    r[d as usize] = ev.held[k];
+                }
+                Op::HeldBounds(kind, lo, hi, k) => {
+                    let (l, h) = kind.bounds(ev.held[k as usize]);
+                    r[lo as usize] = l;
+                    r[hi as usize] = h;
+                }
             }
         }
     }
@@ -178,6 +245,8 @@ pub struct Compiler<'a> {
     /// Relation node -> relation state index (relations with event semantics).
     pub relation_index: &'a HashMap<ExprId, u32>,
     pub sample_index: &'a HashMap<ExprId, u32>,
+    /// Event-generating rounding node -> held value index (see [`Op::Held`]).
+    pub held_index: Option<&'a HashMap<ExprId, u32>>,
     /// Nodes already computed by earlier, still-valid tapes.
     pub shared: HashMap<ExprId, Reg>,
     /// Constant registers, written once before any tape runs.
@@ -198,6 +267,7 @@ impl<'a> Compiler<'a> {
             next_temp: layout.temp_base,
             relation_index,
             sample_index,
+            held_index: None,
             shared: HashMap::default(),
             constants: Vec::new(),
             constant_regs: HashMap::default(),
@@ -310,6 +380,13 @@ impl<'a> Compiler<'a> {
                 }
                 continue;
             }
+            if !ne {
+                if let Some(&k) = self.held_index.and_then(|h| h.get(&x)) {
+                    let d = self.held(node, k, tape, memo);
+                    memo.insert(x, d);
+                    continue;
+                }
+            }
             let out = {
                 let shared = &self.shared;
                 let memo_ref = &*memo;
@@ -377,6 +454,78 @@ impl<'a> Compiler<'a> {
             .expect("compiled")
     }
 
+    /// The register of an already compiled child.
+    fn compiled(&self, e: ExprId, memo: &HashMap<ExprId, Reg>) -> Reg {
+        *memo
+            .get(&e)
+            .or_else(|| self.shared.get(&e))
+            .expect("children first")
+    }
+
+    /// The argument of an event-generating rounding node (the quotient for `div`,
+    /// `mod` and `rem`), compiled into `tape`.
+    fn held_argument(
+        &mut self,
+        node: Node,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+    ) -> Reg {
+        match node {
+            Node::Fn2(_, a, b) => {
+                let (ra, rb) = (self.expr(a, tape, memo), self.expr(b, tape, memo));
+                let q = self.temp();
+                tape.ops.push(Op::Div(q, ra, rb));
+                q
+            }
+            Node::Fn1(_, a) => self.expr(a, tape, memo),
+            _ => unreachable!("only roundings are held"),
+        }
+    }
+
+    /// `floor`, `ceil`, `integer`, `div`, `mod`, `rem` with events: the rounding is
+    /// held between events; `mod` and `rem` are `a - held * b`.
+    fn held(
+        &mut self,
+        node: Node,
+        k: u32,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+    ) -> Reg {
+        let kind = held_rounding(node).expect("only roundings are held");
+        let argument = self.held_argument(node, tape, memo);
+        let n = self.temp();
+        tape.ops.push(Op::Held(kind, n, argument, k));
+        match node {
+            Node::Fn2(Fn2::Mod | Fn2::Rem, a, b) => {
+                let (ra, rb) = (self.compiled(a, memo), self.compiled(b, memo));
+                let p = self.temp();
+                tape.ops.push(Op::Mul(p, n, rb));
+                let d = self.temp();
+                tape.ops.push(Op::Sub(d, ra, p));
+                d
+            }
+            _ => n,
+        }
+    }
+
+    /// The zero crossings of held rounding `e` (index `k`): registers of its argument
+    /// and of the bounds `lo`, `hi` of the interval where its value holds, compiled
+    /// into `tape`; the crossing functions are `argument - lo` and `argument - hi`.
+    pub fn held_crossings(
+        &mut self,
+        e: ExprId,
+        k: u32,
+        tape: &mut Tape,
+        memo: &mut HashMap<ExprId, Reg>,
+    ) -> (Reg, Reg, Reg) {
+        let node = self.arena.node(e);
+        let kind = held_rounding(node).expect("only roundings are held");
+        let argument = self.held_argument(node, tape, memo);
+        let (lo, hi) = (self.temp(), self.temp());
+        tape.ops.push(Op::HeldBounds(kind, lo, hi, k));
+        (argument, lo, hi)
+    }
+
     /// Compiles `target := e` (a store into a scalar's register).
     pub fn assign(
         &mut self,
@@ -390,6 +539,16 @@ impl<'a> Compiler<'a> {
         if r != d {
             tape.ops.push(Op::Copy(d, r));
         }
+    }
+}
+
+/// The rounding of an event-generating integer function node (`integer` is `floor`).
+pub fn held_rounding(node: Node) -> Option<Rounding> {
+    match node {
+        Node::Fn1(Fn1::Floor, _) | Node::Fn2(Fn2::Mod, ..) => Some(Rounding::Floor),
+        Node::Fn1(Fn1::Ceil, _) => Some(Rounding::Ceil),
+        Node::Fn2(Fn2::Div | Fn2::Rem, ..) => Some(Rounding::Trunc),
+        _ => None,
     }
 }
 
@@ -412,6 +571,8 @@ fn with_dst(op: Op, d: Reg) -> Op {
         Op::Select(_, c, a, b) => Op::Select(d, c, a, b),
         Op::Sample(_, k) => Op::Sample(d, k),
         Op::Ext(f, _, args) => Op::Ext(f, d, args),
+        Op::Held(kind, _, a, k) => Op::Held(kind, d, a, k),
+        Op::HeldBounds(..) => op,
         Op::Const(_, x) => Op::Const(d, x),
         Op::Copy(_, a) => Op::Copy(d, a),
     }

@@ -56,7 +56,9 @@ use crate::norm::{weighted_rms, weighted_rms_masked, worst_components, Tolerance
 use crate::options::{Method, Options};
 use crate::radau5::use_sparse;
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, minimum_step, InitialStepProblem};
+use crate::step_control::{
+    clip_to_limit, initial_step, minimum_step, step_above_floor, InitialStepProblem,
+};
 use crate::system::System;
 
 const MAX_ORDER: usize = 5;
@@ -798,13 +800,15 @@ impl Integrator for Bdf {
         self.update_scale();
         let (mut error_failures, mut newton_failures) = (0usize, 0usize);
         loop {
-            if self.h < minimum_step(self.t) {
+            let failed = error_failures + newton_failures > 0;
+            let Some(h) = step_above_floor(self.h, self.t, failed) else {
                 return Err(SolveError::StepSizeTooSmall {
                     time: self.t,
                     step: self.h,
                     worst: worst_components(&self.correction, &self.scale),
                 });
-            }
+            };
+            self.h = h;
             let (h_try, hits_limit) = clip_to_limit(self.t, self.h, t_limit);
             self.h = h_try;
             let t_new = if hits_limit { t_limit } else { self.t + h_try };

@@ -18,7 +18,7 @@ use crate::integrator::{eval_failure, Integrator, ProblemSetup};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
 use crate::options::{Method, Options};
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, minimum_step, InitialStepProblem};
+use crate::step_control::{clip_to_limit, initial_step, step_above_floor, InitialStepProblem};
 use crate::system::System;
 
 const C2: f64 = 0.2;
@@ -320,13 +320,14 @@ impl Integrator for Dopri5 {
         let exponent = 0.2 - BETA * 0.75;
         let mut failures = 0usize;
         loop {
-            if h < minimum_step(self.t) {
+            let Some(h_floor) = step_above_floor(h, self.t, failures > 0) else {
                 return Err(SolveError::StepSizeTooSmall {
                     time: self.t,
                     step: h,
                     worst: worst_components(&self.error_vector, &self.scale),
                 });
-            }
+            };
+            h = h_floor;
             let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
             let error = match self.attempt(system, h_try) {
                 Ok(()) => self.error_norm(),

@@ -36,7 +36,7 @@ use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, worst_components, Tolerances};
 use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, minimum_step, InitialStepProblem};
+use crate::step_control::{clip_to_limit, initial_step, step_above_floor, InitialStepProblem};
 use crate::system::System;
 
 const SQRT6: f64 = 2.449_489_742_783_178;
@@ -658,13 +658,14 @@ impl Integrator for Radau5 {
         let mut h = self.first_step_size(system, t_limit)?.min(max_step);
         let (mut failures, mut singular) = (0usize, 0usize);
         loop {
-            if h < minimum_step(self.t) {
+            let Some(h_floor) = step_above_floor(h, self.t, failures + singular > 0) else {
                 return Err(SolveError::StepSizeTooSmall {
                     time: self.t,
                     step: h,
                     worst: worst_components(&self.error_vector, &self.scale),
                 });
-            }
+            };
+            h = h_floor;
             let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
             self.ensure_jacobian(system)?;
             if !self.factor(h_try) {

@@ -12,6 +12,21 @@ pub(crate) fn minimum_step(t: f64) -> f64 {
     16.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE.sqrt())
 }
 
+/// The step to try at `t`: `step`, raised to [`minimum_step`] when no attempt of this
+/// call has failed yet (a step chosen at the floor, e.g. the first step after an event
+/// from a state near zero, stays legal as `t` and with it the floor grows); `None` when
+/// failures have pushed it below the floor (the step size collapsed).
+pub(crate) fn step_above_floor(step: f64, t: f64, failed: bool) -> Option<f64> {
+    let floor = minimum_step(t);
+    if step >= floor {
+        Some(step)
+    } else if !failed {
+        Some(floor)
+    } else {
+        None
+    }
+}
+
 /// Shortens `step` so that `t + step` does not pass `t_limit`; returns the step and whether it
 /// ends exactly on `t_limit`. A step that would leave a sliver shorter than a tiny fraction of
 /// itself before `t_limit` is stretched to end on it.
