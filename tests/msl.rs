@@ -17,10 +17,13 @@ use std::process::Command;
 const EXAMPLES: &[&str] = &[
     "Modelica.Blocks.Examples.CompareSincExpSine",
     "Modelica.Blocks.Examples.InverseModel",
+    "Modelica.Blocks.Examples.LogicalNetwork1",
+    "Modelica.Blocks.Examples.ShowLogicalSources",
     "Modelica.Blocks.Examples.SlewRateLimiter",
     "Modelica.Blocks.Examples.TotalHarmonicDistortion",
     "Modelica.Electrical.Analog.Examples.CauerLowPassAnalog",
     "Modelica.Electrical.Analog.Examples.CauerLowPassOPV",
+    "Modelica.Electrical.Analog.Examples.CharacteristicThyristors",
     "Modelica.Electrical.Analog.Examples.CharacteristicIdealDiodes",
     "Modelica.Electrical.Analog.Examples.IdealTriacCircuit",
     "Modelica.Electrical.Analog.Examples.InvertingAmp",
@@ -43,6 +46,7 @@ const EXAMPLES: &[&str] = &[
     "Modelica.Mechanics.Translational.Examples.InitialConditions",
     "Modelica.Mechanics.Translational.Examples.Oscillator",
     "Modelica.Mechanics.Translational.Examples.SignConvention",
+    "Modelica.Mechanics.Translational.Examples.Vehicle",
     "Modelica.Thermal.HeatTransfer.Examples.ControlledTemperature",
     "Modelica.Thermal.HeatTransfer.Examples.TwoMasses",
 ];

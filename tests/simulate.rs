@@ -352,6 +352,16 @@ fn initial_equations_of_pre_values_set_the_state_before_the_start() {
     assert_eq!(r.stats.events, 1, "{}", counters(&r));
 }
 
+/// `[t[1], 1; t, {3, 5}]` is 3x2 (a vector is a column), and the `if` whose other
+/// branch is 1x2 is decided by the parameter: sum(m) = 2 + 1 + 2 + 3 + 4 + 5 = 17.
+#[test]
+fn structural_if_bindings_of_different_sizes_take_their_branch() {
+    let m = load("tests/simulate/StructuralIfSizes.mo");
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
+    let y = value(&r, "y");
+    assert!((y - 17.0).abs() < 1e-12, "y(1) = {y}");
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

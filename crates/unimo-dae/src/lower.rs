@@ -87,6 +87,40 @@ impl<'m> Lowerer<'m> {
     /// The value of `e` when it is known at compile time: a constant, or an expression
     /// of parameters and constants whose bindings can be evaluated (structural
     /// parameters: sizes, ranges, indices, conditions of `if`-equations).
+    /// The branch of an `if`-expression to lower alone: `Some` when its conditions
+    /// are parameters known at compile time and lowering every branch fails (different
+    /// sizes, or a value the back end does not have).
+    fn structural_if<'e>(
+        &mut self,
+        branches: &'e [(Expr, Expr)],
+        otherwise: &'e Expr,
+    ) -> DaeResult<Option<&'e Expr>> {
+        let all_lower = {
+            let mut ok = self.expr(otherwise).map(|t| t.dims);
+            for (_, v) in branches {
+                let d = self.expr(v).map(|t| t.dims);
+                ok = match (ok, d) {
+                    (Ok(a), Ok(b)) if a == b => Ok(a),
+                    (Err(e), _) | (_, Err(e)) => Err(e),
+                    (Ok(a), Ok(_)) => Ok(a).and(Err(unsupported("", otherwise.span))),
+                };
+            }
+            ok.is_ok()
+        };
+        if all_lower {
+            return Ok(None);
+        }
+        for (c, v) in branches {
+            let c = self.scalar(c)?;
+            match self.const_value(c) {
+                Some(x) if x != 0.0 => return Ok(Some(v)),
+                Some(_) => continue,
+                None => return Ok(None),
+            }
+        }
+        Ok(Some(otherwise))
+    }
+
     pub(crate) fn const_value(&mut self, e: ExprId) -> Option<f64> {
         if let Some(c) = self.dae.arena.as_const(e) {
             return Some(c);
@@ -629,6 +663,12 @@ impl<'m> Lowerer<'m> {
                 branches,
                 otherwise,
             } => {
+                // A branch whose condition is known at compile time (parameters only)
+                // and that cannot be combined with the others (different sizes, or a
+                // value the back end does not have, such as a String): the branch taken.
+                if let Some(e) = self.structural_if(branches, otherwise)? {
+                    return self.expr(e);
+                }
                 let mut acc = self.expr(otherwise)?;
                 for (c, v) in branches.iter().rev() {
                     let c = self.scalar(c)?;

@@ -228,21 +228,57 @@ pub fn eval(
                 .collect::<Result<_, _>>()?,
         )),
         ExprKind::Matrix(rows) => {
-            let rows: Vec<Value> = rows
-                .iter()
-                .map(|r| {
-                    Ok(Value::Array(
-                        r.iter()
-                            .map(|i| eval(i, env, iterators))
-                            .collect::<Result<_, _>>()?,
-                    ))
-                })
-                .collect::<Result<_, EvalError>>()?;
-            Ok(Value::Array(rows))
+            // `[a, b; c, d]`: each row concatenated along columns, the rows along rows;
+            // a scalar is a 1x1 matrix and a vector a column (spec 10.4.2).
+            let mut out: Vec<Vec<Value>> = Vec::new();
+            for r in rows {
+                let mut block: Vec<Vec<Value>> = Vec::new();
+                for item in r {
+                    let m = as_matrix(eval(item, env, iterators)?);
+                    if block.is_empty() {
+                        block = m;
+                    } else if block.len() == m.len() {
+                        for (row, more) in block.iter_mut().zip(m) {
+                            row.extend(more);
+                        }
+                    } else {
+                        return Err(unsupported(
+                            item,
+                            "a matrix row of parts with different numbers of rows",
+                        ));
+                    }
+                }
+                if let (Some(first), Some(new)) = (out.first(), block.first()) {
+                    if first.len() != new.len() {
+                        return Err(unsupported(e, "matrix rows of different lengths"));
+                    }
+                }
+                out.extend(block);
+            }
+            Ok(Value::Array(out.into_iter().map(Value::Array).collect()))
         }
         ExprKind::Comprehension { body, indices } => comprehension(body, indices, env, iterators),
         ExprKind::Call { func, args } => call(e, func, args, env, iterators),
         _ => Err(unsupported(e, "this expression")),
+    }
+}
+
+/// A value as the rows of a matrix: a scalar is 1x1, a vector a column.
+fn as_matrix(v: Value) -> Vec<Vec<Value>> {
+    match v {
+        Value::Array(items)
+            if items.iter().all(|i| matches!(i, Value::Array(_))) && !items.is_empty() =>
+        {
+            items
+                .into_iter()
+                .map(|r| match r {
+                    Value::Array(r) => r,
+                    other => vec![other],
+                })
+                .collect()
+        }
+        Value::Array(items) => items.into_iter().map(|x| vec![x]).collect(),
+        other => vec![vec![other]],
     }
 }
 
