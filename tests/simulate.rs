@@ -362,6 +362,27 @@ fn structural_if_bindings_of_different_sizes_take_their_branch() {
     assert!((y - 17.0).abs() < 1e-12, "y(1) = {y}");
 }
 
+/// The limited op-amp in the linear band: vout = V0 vin / (1 + V0 R1 / (R1 + R2)) at
+/// every output point (plain Newton cycled between the two saturations and failed).
+#[test]
+fn newton_damps_steps_across_saturations() {
+    let m = load("tests/simulate/LimitedOpAmp.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 1.0, 50);
+    let (kin, kout) = (
+        r.names.iter().position(|n| n == "vin").unwrap(),
+        r.names.iter().position(|n| n == "vout").unwrap(),
+    );
+    let gain = 15000.0 / (1.0 + 15000.0 * 0.5);
+    for row in &r.rows {
+        let want = gain * row[kin];
+        assert!(
+            (row[kout] - want).abs() < 1e-9,
+            "vout {} against {want}",
+            row[kout]
+        );
+    }
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

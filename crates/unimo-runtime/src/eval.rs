@@ -83,6 +83,8 @@ pub struct Workspace {
     matrix: Vec<f64>,
     rhs: Vec<f64>,
     perm: Vec<usize>,
+    /// The iterate before a Newton step (for the line search).
+    saved: Vec<f64>,
 }
 
 /// Solves a block. Outside events its relations are frozen (they change only at
@@ -153,8 +155,13 @@ fn newton_smooth(
         reason: reason.to_owned(),
     };
     let mut last_norm = f64::INFINITY;
+    // Whether the residual tape already ran at the current iterate (the line search's
+    // last trial).
+    let mut evaluated = false;
     for it in 0..MAX_NEWTON_ITERATIONS {
-        b.residual_tape.run(r, ev);
+        if !evaluated {
+            b.residual_tape.run(r, ev);
+        }
         let mut norm = 0.0f64;
         for (k, &reg) in b.residuals.iter().enumerate() {
             let f = r[reg as usize];
@@ -174,10 +181,13 @@ fn newton_smooth(
         if !lu_solve(n, &mut w.matrix, &mut w.rhs, &mut w.perm) {
             return Err(fail("the block's Jacobian is singular", norm));
         }
+        let lambda = line_search(b, r, ev, w, norm);
+        evaluated = lambda.is_some();
+        let lambda = lambda.unwrap_or(1.0);
         let mut converged = true;
         for (k, &reg) in b.iteration.iter().enumerate() {
-            let x = r[reg as usize];
-            let dx = w.rhs[k];
+            let x = w.saved[k];
+            let dx = lambda * w.rhs[k];
             r[reg as usize] = x + dx;
             if dx.abs() > 1e-13 * (1.0 + x.abs()) {
                 converged = false;
@@ -204,6 +214,46 @@ fn newton_smooth(
         "Newton's method did not converge in 50 iterations",
         norm,
     ))
+}
+
+/// Damped Newton (Armijo backtracking): the step `w.rhs` from the iterate is halved
+/// until the residual's largest component decreases, so that a residual with kinks and
+/// saturations (a limited op-amp: slope 1e4 in a band 1e-3 wide, 0 outside) does not
+/// send the iterates back and forth between its flat parts. Returns the step length
+/// taken with the residual tape run at the new iterate, or `None` for a full step
+/// left to the caller (linear blocks, iterates already at rounding level, and
+/// directions along which the residual does not decrease at all).
+fn line_search(
+    b: &CompiledBlock,
+    r: &mut [f64],
+    ev: &mut EventState,
+    w: &mut Workspace,
+    norm: f64,
+) -> Option<f64> {
+    w.saved.clear();
+    w.saved
+        .extend(b.iteration.iter().map(|&reg| r[reg as usize]));
+    if b.linear || norm <= 1e-10 {
+        return None;
+    }
+    let mut lambda = 1.0;
+    loop {
+        for (k, &reg) in b.iteration.iter().enumerate() {
+            r[reg as usize] = w.saved[k] + lambda * w.rhs[k];
+        }
+        b.residual_tape.run(r, ev);
+        let trial = residual_norm(b, r);
+        if trial.is_finite() && trial <= (1.0 - 1e-4 * lambda) * norm {
+            return Some(lambda);
+        }
+        lambda *= 0.5;
+        if lambda < 1e-6 {
+            // No decrease along the Newton direction (a flat part, or a loop with
+            // several solutions such as a Schmitt trigger): the full step, as plain
+            // Newton takes it.
+            return None;
+        }
+    }
 }
 
 /// The largest absolute residual of a block (its residual tape must have run).
