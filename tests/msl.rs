@@ -25,6 +25,7 @@ const EXAMPLES: &[&str] = &[
     "Modelica.Electrical.Analog.Examples.CauerLowPassOPV",
     "Modelica.Electrical.Analog.Examples.CharacteristicThyristors",
     "Modelica.Electrical.Analog.Examples.CharacteristicIdealDiodes",
+    "Modelica.Electrical.Analog.Examples.GenerationOfFMUs",
     "Modelica.Electrical.Analog.Examples.IdealTriacCircuit",
     "Modelica.Electrical.Analog.Examples.InvertingAmp",
     "Modelica.Electrical.Analog.Examples.OpAmps.Adder",
@@ -53,6 +54,7 @@ const EXAMPLES: &[&str] = &[
     "Modelica.Mechanics.Translational.Examples.SignConvention",
     "Modelica.Mechanics.Translational.Examples.Vehicle",
     "Modelica.Thermal.HeatTransfer.Examples.ControlledTemperature",
+    "Modelica.Thermal.HeatTransfer.Examples.GenerationOfFMUs",
     "Modelica.Thermal.HeatTransfer.Examples.TwoMasses",
 ];
 

@@ -383,6 +383,42 @@ fn newton_damps_steps_across_saturations() {
     }
 }
 
+/// Fixed starts on both ends of a rigid link are redundant: consistent ones are
+/// accepted (x1 = -0.5 + 0.5 cos t), contradicting ones are E4001 naming the reason.
+#[test]
+fn redundant_fixed_starts_are_checked_not_refused() {
+    let m = load("tests/simulate/RedundantFixedStarts.mo");
+    let r = run(&m, Method::Bdf, 1e-9, 1e-11, 1.0, 2);
+    let x1 = value(&r, "x1");
+    assert!(
+        (x1 - (-0.5 + 0.5 * 1f64.cos())).abs() < 1e-6,
+        "x1(1) = {x1}"
+    );
+    let text =
+        std::fs::read_to_string(common::root().join("tests/simulate/RedundantFixedStarts.mo"))
+            .unwrap()
+            .replace("x2_start = 1;", "x2_start = 2;");
+    let dir = std::env::temp_dir().join(format!("unimo-redundant-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("RedundantFixedStarts.mo");
+    std::fs::write(&path, text).unwrap();
+    let bad = unimo_cli::load_model(&[path], None).unwrap();
+    let o = SimOptions {
+        start: 0.0,
+        stop: 1.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.5,
+        every_step: false,
+    };
+    let e = simulate(&bad.compiled, &o)
+        .error
+        .expect("contradicting starts fail");
+    assert!(e.message().contains("contradict"), "{}", e.message());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

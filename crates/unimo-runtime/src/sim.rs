@@ -513,15 +513,18 @@ impl<'a> Simulator<'a> {
                 .map(|&k| unknowns[k].1.clone())
                 .collect::<Vec<_>>()
         };
-        if free.len() < n_eq {
-            return Err(SimError::Init {
-                message: format!(
-                    "{n_eq} initial equations but only {} unknowns (states without fixed = true, parameters with fixed = false)",
-                    free.len()
-                ),
-                culprits: names(&free),
-            });
-        }
+        // More initial equations than unknowns is legal when the extra ones are
+        // redundant and hold at the solution (fixed starts on both ends of a rigid
+        // connection): the independent equations are solved, the others checked.
+        let too_many = |norm: f64| SimError::Init {
+            message: format!(
+                "{n_eq} initial equations for {} unknowns (states without fixed = true, \
+                 parameters with fixed = false), and the extra ones do not hold \
+                 (residual {norm:e}): the fixed start values contradict each other",
+                free.len()
+            ),
+            culprits: names(&free),
+        };
         // The plan is evaluated leniently at the iterates: a block that the initial
         // equations do not need may fail at the start values; that is an error only when
         // the residuals are not finite. The event iteration afterwards is strict.
@@ -552,7 +555,7 @@ impl<'a> Simulator<'a> {
                 .map(|&r| me.ode.regs[r as usize])
                 .collect())
         };
-        let mut chosen: Option<Vec<usize>> = None;
+        let mut chosen: Option<(Vec<usize>, Vec<usize>)> = None;
         for _ in 0..50 {
             let f = residual(self)?;
             let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -572,22 +575,27 @@ impl<'a> Simulator<'a> {
                     jac[i * free.len() + j] = (fp[i] - f[i]) / h;
                 }
             }
-            let cols = chosen.get_or_insert_with(|| pick_columns(&jac, n_eq, free.len()));
-            if cols.len() < n_eq {
+            let (rows, cols) =
+                chosen.get_or_insert_with(|| independent_rows_and_columns(&jac, n_eq, free.len()));
+            if rows.len() < n_eq && n_eq <= free.len() {
                 return Err(SimError::Init {
                     message: "the initial equations do not determine the states (singular)".into(),
                     culprits: names(&free),
                 });
             }
-            let mut a = vec![0.0; n_eq * n_eq];
-            for i in 0..n_eq {
+            let k = rows.len();
+            if k == 0 {
+                return Err(too_many(norm));
+            }
+            let mut a = vec![0.0; k * k];
+            for (ii, &i) in rows.iter().enumerate() {
                 for (jj, &j) in cols.iter().enumerate() {
-                    a[i * n_eq + jj] = jac[i * free.len() + j];
+                    a[ii * k + jj] = jac[i * free.len() + j];
                 }
             }
-            let mut b: Vec<f64> = f.iter().map(|x| -x).collect();
-            let mut perm = vec![0; n_eq];
-            if !crate::eval::lu_solve(n_eq, &mut a, &mut b, &mut perm) {
+            let mut b: Vec<f64> = rows.iter().map(|&i| -f[i]).collect();
+            let mut perm = vec![0; k];
+            if !crate::eval::lu_solve(k, &mut a, &mut b, &mut perm) {
                 return Err(SimError::Init {
                     message: "the initial equations have a singular Jacobian".into(),
                     culprits: names(&free),
@@ -602,6 +610,12 @@ impl<'a> Simulator<'a> {
         let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if norm <= 1e-9 {
             return Ok(());
+        }
+        if let Some((rows, _)) = &chosen {
+            let solved = rows.iter().fold(0.0f64, |a, &i| a.max(f[i].abs()));
+            if rows.len() < n_eq && solved <= 1e-9 {
+                return Err(too_many(norm));
+            }
         }
         Err(SimError::Init {
             message: format!(
@@ -1202,6 +1216,28 @@ pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
 
 /// Picks `k` columns of the `rows x cols` matrix `a` that make it best conditioned
 /// (greedy Gaussian elimination with complete pivoting on the columns).
+/// Independent equations (rows) of the initial equations' Jacobian `a` (`rows` x
+/// `cols`), and as many unknowns (columns) they determine, both by pivoting.
+fn independent_rows_and_columns(a: &[f64], rows: usize, cols: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut transposed = vec![0.0; rows * cols];
+    for i in 0..rows {
+        for j in 0..cols {
+            transposed[j * rows + i] = a[i * cols + j];
+        }
+    }
+    let mut chosen_rows = pick_columns(&transposed, cols, rows);
+    chosen_rows.sort_unstable();
+    let sub: Vec<f64> = chosen_rows
+        .iter()
+        .flat_map(|&i| a[i * cols..(i + 1) * cols].iter().copied())
+        .collect();
+    let chosen_cols = pick_columns(&sub, chosen_rows.len(), cols);
+    if chosen_cols.len() < chosen_rows.len() {
+        return (Vec::new(), Vec::new());
+    }
+    (chosen_rows, chosen_cols)
+}
+
 fn pick_columns(a: &[f64], rows: usize, cols: usize) -> Vec<usize> {
     let mut a = a.to_vec();
     let mut chosen = Vec::new();
