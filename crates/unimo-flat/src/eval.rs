@@ -29,6 +29,12 @@ pub enum EvalError {
 pub trait Env {
     fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError>;
 
+    /// The declared sizes of the variable `key` (`size(x, 2)` of a continuous `x` is
+    /// known at compile time although its value is not); `None` when unknown.
+    fn dims(&mut self, _key: &str) -> Option<Vec<usize>> {
+        None
+    }
+
     /// Calls the user function `name` (full name) on evaluated arguments.
     fn call(
         &mut self,
@@ -515,6 +521,27 @@ fn call(
     iterators: &mut Vec<(String, Value)>,
 ) -> Result<Value, EvalError> {
     let name = func.to_dotted();
+    // `size(x, k)` of a variable: its declared sizes, whatever its variability.
+    if let ("size", Some(ExprKind::Ref(r))) =
+        (name.as_str(), args.positional.first().map(|a| &a.kind))
+    {
+        let whole = r.parts.last().is_some_and(|p| p.subscripts.is_empty());
+        if let (true, Some(d)) = (whole, env.dims(&var_key(r))) {
+            return match args.positional.get(1) {
+                Some(k) => {
+                    let k = eval(k, env, iterators)?
+                        .as_int()
+                        .ok_or_else(|| unsupported(e, "size(a, k) needs an Integer k"))?;
+                    d.get((k - 1).max(0) as usize)
+                        .map(|n| Value::Int(*n as i64))
+                        .ok_or_else(|| unsupported(e, "size of a missing dimension"))
+                }
+                None => Ok(Value::Array(
+                    d.into_iter().map(|n| Value::Int(n as i64)).collect(),
+                )),
+            };
+        }
+    }
     if !args.iterators.is_empty() {
         // Reductions: sum(e for i in r) and friends.
         let body = args

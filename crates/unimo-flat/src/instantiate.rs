@@ -2034,6 +2034,11 @@ impl Instantiator<'_, '_> {
 }
 
 impl Env for Instantiator<'_, '_> {
+    fn dims(&mut self, key: &str) -> Option<Vec<usize>> {
+        let id = self.var_id(key)?;
+        Some(self.model.vars[id.0 as usize].dims.clone())
+    }
+
     fn call(
         &mut self,
         name: &str,
