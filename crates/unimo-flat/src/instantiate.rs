@@ -793,11 +793,16 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
                 Subscript::Colon(span) => {
                     // `[:]`: the size comes from the binding.
+                    // Its value when it is constant; else its shape, which a binding
+                    // of variables (`reset = {b1.on, b2.on}`) has too.
                     let size = merged.binding.clone().and_then(|b| {
                         let flat = self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new());
-                        eval::eval(&flat, self, &mut Vec::new()).ok()
+                        match eval::eval(&flat, self, &mut Vec::new()) {
+                            Ok(v) => Some(v.dims()),
+                            Err(_) => self.shape_of(&flat),
+                        }
                     });
-                    match size.map(|v| v.dims()) {
+                    match size {
                         Some(vd) if vd.len() > dims.len() => dims.push(vd[dims.len()]),
                         _ => self.error(
                             "E2003",
@@ -1958,6 +1963,38 @@ fn def_has_bases(def: &ClassDef) -> bool {
 }
 
 impl Instantiator<'_, '_> {
+    /// The sizes of a flattened expression from its structure (array constructors,
+    /// references to variables of known size, element-wise operations), for bindings
+    /// whose values are not known at compile time.
+    fn shape_of(&mut self, e: &Expr) -> Option<Vec<usize>> {
+        match &e.kind {
+            ExprKind::Array(items) => {
+                // The outer size is certain; inner sizes only as far as known (a
+                // reference to a component declared further down is not yet).
+                let mut d = vec![items.len()];
+                if let Some(first) = items.first() {
+                    d.extend(self.shape_of(first).unwrap_or_default());
+                }
+                Some(d)
+            }
+            ExprKind::Ref(r) if r.parts.last().is_some_and(|p| p.subscripts.is_empty()) => {
+                let key = eval::var_key(r);
+                let id = self.var_id(&key)?;
+                Some(self.model.vars[id.0 as usize].dims.clone())
+            }
+            ExprKind::Unary { operand, .. } => self.shape_of(operand),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                let (a, b) = (self.shape_of(lhs)?, self.shape_of(rhs)?);
+                Some(if a.len() >= b.len() { a } else { b })
+            }
+            ExprKind::If { otherwise, .. } => self.shape_of(otherwise),
+            ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {
+                Some(Vec::new())
+            }
+            _ => eval::eval(e, self, &mut Vec::new()).ok().map(|v| v.dims()),
+        }
+    }
+
     /// The value of a parameter or constant of an instance whose bases are being
     /// instantiated, before the instance declares it: its modifier's binding, else its
     /// declaration's (evaluated in their scopes).
