@@ -419,6 +419,23 @@ fn redundant_fixed_starts_are_checked_not_refused() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `when terminal()` fires once, at the stop time, with the final state: atEnd = e^-1;
+/// the five sample instants 0, 0.25, ..., 1 all fire before it.
+#[test]
+fn terminal_fires_at_the_end() {
+    let m = load("tests/simulate/TerminalEvent.mo");
+    let r = run(&m, Method::Bdf, 1e-9, 1e-11, 1.0, 2);
+    let at_end = value(&r, "atEnd");
+    assert!((at_end - (-1.0f64).exp()).abs() < 1e-7, "atEnd = {at_end}");
+    assert_eq!(value(&r, "n"), 5.0);
+    let k = r.names.iter().position(|n| n == "atEnd").unwrap();
+    let before: Vec<f64> = r.rows[..r.rows.len() - 1]
+        .iter()
+        .map(|row| row[k])
+        .collect();
+    assert!(before.iter().all(|&v| v == 0.0), "{before:?}");
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

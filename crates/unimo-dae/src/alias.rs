@@ -262,6 +262,7 @@ fn has_time_or_events(dae: &Dae, e: ExprId) -> bool {
             Node::Time
             | Node::Pre(_)
             | Node::Initial
+            | Node::Terminal
             | Node::Rel(..)
             | Node::Sample(..)
             | Node::External(..)

@@ -168,7 +168,10 @@ fn contains_non_differentiable(dae: &Dae, e: ExprId) -> bool {
         if !seen.insert(x) {
             continue;
         }
-        if matches!(dae.arena.node(x), Node::Sample(..) | Node::Initial) {
+        if matches!(
+            dae.arena.node(x),
+            Node::Sample(..) | Node::Initial | Node::Terminal
+        ) {
             return true;
         }
         stack.extend(dae.arena.children(x));

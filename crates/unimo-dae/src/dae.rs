@@ -179,6 +179,9 @@ pub struct Dae {
     /// External objects (the MSL's tables), made after the parameters: the handle of
     /// object `k` is the constant `k` (`crate::external`).
     pub external_objects: Vec<crate::external::ExternalObjectSite>,
+    /// Whether the model reads `terminal()` (the simulator then ends with a terminal
+    /// event at the stop time).
+    pub uses_terminal: bool,
 }
 
 /// One collision body: the arguments of its `collisionBody(...)` call, flattened.

@@ -40,6 +40,7 @@ fn derivative_node(
         Node::Const(_)
         | Node::Pre(_)
         | Node::Initial
+        | Node::Terminal
         | Node::Rel(..)
         | Node::And(..)
         | Node::Or(..)

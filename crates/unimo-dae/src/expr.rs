@@ -230,6 +230,8 @@ pub enum Node {
     NoEvent(ExprId),
     /// `initial()`: true during initialization.
     Initial,
+    /// `terminal()`: true at the end of a successful simulation.
+    Terminal,
     /// `sample(start, interval)`: true at the sample instants.
     Sample(ExprId, ExprId),
     /// Output `out` of external object site `site` (a collision body's force and
@@ -311,6 +313,10 @@ impl ExprArena {
 
     pub fn time(&mut self) -> ExprId {
         self.intern(Node::Time)
+    }
+
+    pub fn terminal(&mut self) -> ExprId {
+        self.intern(Node::Terminal)
     }
 
     pub fn initial(&mut self) -> ExprId {
@@ -527,6 +533,7 @@ impl ExprArena {
             | Node::Pre(_)
             | Node::Time
             | Node::Initial
+            | Node::Terminal
             | Node::External(..) => (None, None, None),
             Node::Neg(x) | Node::Fn1(_, x) | Node::Not(x) | Node::NoEvent(x) => {
                 (Some(x), None, None)
@@ -585,7 +592,12 @@ impl ExprArena {
         }
         let r = match self.node(id) {
             Node::Var(s) => map(s).unwrap_or(id),
-            Node::Const(_) | Node::Pre(_) | Node::Time | Node::Initial | Node::External(..) => id,
+            Node::Const(_)
+            | Node::Pre(_)
+            | Node::Time
+            | Node::Initial
+            | Node::Terminal
+            | Node::External(..) => id,
             node => {
                 let kids: Vec<ExprId> = self.children(id).collect();
                 let new: Vec<ExprId> = kids
@@ -611,6 +623,7 @@ impl ExprArena {
             | Node::Pre(_)
             | Node::Time
             | Node::Initial
+            | Node::Terminal
             | Node::External(..) => self.intern(node),
             Node::Add(..) => self.add(k[0], k[1]),
             Node::Mul(..) => self.mul(k[0], k[1]),
@@ -641,6 +654,7 @@ impl ExprArena {
             Node::Pre(s) => env.pre(s),
             Node::Time => env.time(),
             Node::Initial => f64::from(env.initial()),
+            Node::Terminal => 0.0,
             Node::Add(a, b) => e(a) + e(b),
             Node::Mul(a, b) => e(a) * e(b),
             Node::Div(a, b) => e(a) / e(b),
@@ -714,6 +728,7 @@ impl ExprArena {
             Node::Pre(s) => write!(out, "pre({})", name(s))?,
             Node::Time => out.push_str("time"),
             Node::Initial => out.push_str("initial()"),
+            Node::Terminal => out.push_str("terminal()"),
             Node::External(site, k) => write!(out, "external({site}, {k})")?,
             Node::Add(a, b) => {
                 w(a, 6, out)?;

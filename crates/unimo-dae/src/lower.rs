@@ -158,6 +158,7 @@ impl<'m> Lowerer<'m> {
                 Node::Time
                 | Node::Pre(_)
                 | Node::Initial
+                | Node::Terminal
                 | Node::Sample(..)
                 | Node::External(..) => return false,
                 _ => stack.extend(self.dae.arena.children(x)),
@@ -1039,7 +1040,10 @@ impl<'m> Lowerer<'m> {
                     data,
                 }
             }
-            "terminal" => Tensor::scalar(self.a().boolean(false)),
+            "terminal" => {
+                self.dae.uses_terminal = true;
+                Tensor::scalar(self.a().terminal())
+            }
             "noEvent" => {
                 let x = self.positional(args, 0, span)?;
                 x.map(|v| self.dae.arena.no_event(v))

@@ -124,6 +124,8 @@ pub struct CompiledModel {
     /// from the parameters, and where each object's arguments are.
     pub objects_tape: Tape,
     pub objects: Vec<ObjectSite>,
+    /// The model reads `terminal()`: the run ends with a terminal event.
+    pub uses_terminal: bool,
 }
 
 impl CompiledModel {
@@ -681,6 +683,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         collision,
         objects_tape,
         objects,
+        uses_terminal: dae.uses_terminal,
     };
     m.relation_held = held_relations(&m);
     m.ops_total = m

@@ -965,6 +965,9 @@ impl<'a> Simulator<'a> {
                         if self.result.times.last() != Some(&now) {
                             self.record(now);
                         }
+                        if let Err(e) = self.terminal_event(now) {
+                            self.result.error = Some(e);
+                        }
                         break;
                     }
                     // A sample instant.
@@ -1041,7 +1044,26 @@ impl<'a> Simulator<'a> {
                 break;
             }
         }
+        if self.result.error.is_none() {
+            if let Err(e) = self.terminal_event(o.stop) {
+                self.result.error = Some(e);
+            }
+        }
         self.result
+    }
+
+    /// At the end of a successful run of a model that reads `terminal()`: one more
+    /// event at the stop time with `terminal()` true (its `when terminal()` clauses
+    /// fire), recorded as the last row.
+    fn terminal_event(&mut self, t: f64) -> Result<(), SimError> {
+        let m = self.m();
+        if !m.uses_terminal {
+            return Ok(());
+        }
+        self.ode.regs[m.layout.terminal as usize] = 1.0;
+        self.event_iteration(t, false)?;
+        self.record(t);
+        Ok(())
     }
 
     fn load_state(&mut self, t: f64, x: &[f64]) -> Result<(), SimError> {

@@ -97,6 +97,7 @@ pub struct Layout {
     pub pre_base: u32,
     pub time: Reg,
     pub initial: Reg,
+    pub terminal: Reg,
     /// First temporary register.
     pub temp_base: u32,
 }
@@ -109,7 +110,8 @@ impl Layout {
             pre_base: n,
             time: 2 * n,
             initial: 2 * n + 1,
-            temp_base: 2 * n + 2,
+            terminal: 2 * n + 2,
+            temp_base: 2 * n + 3,
         }
     }
 
@@ -348,6 +350,10 @@ impl<'a> Compiler<'a> {
                     memo.insert(x, self.layout.initial);
                     continue;
                 }
+                Node::Terminal => {
+                    memo.insert(x, self.layout.terminal);
+                    continue;
+                }
                 Node::External(..) => {
                     // Output registers of external objects are allocated up front by
                     // `model::compile` (in `shared`); this is only a fallback.
@@ -432,6 +438,7 @@ impl<'a> Compiler<'a> {
                     | Node::Pre(_)
                     | Node::Time
                     | Node::Initial
+                    | Node::Terminal
                     | Node::External(..) => {
                         unreachable!("leaves are handled above")
                     }
