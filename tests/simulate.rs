@@ -436,6 +436,20 @@ fn terminal_fires_at_the_end() {
     assert!(before.iter().all(|&v| v == 0.0), "{before:?}");
 }
 
+/// A function output sized by an input is sized when the call is inlined: y = {t, 2t, 3t}.
+#[test]
+fn function_outputs_sized_by_inputs() {
+    let m = common::load(
+        "tests/simulate/FunctionOutputSize.mo",
+        Some("FunctionOutputSize.Use"),
+    );
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
+    for k in 1..=3 {
+        let y = value(&r, &format!("y[{k}]"));
+        assert!((y - k as f64).abs() < 1e-12, "y[{k}](1) = {y}");
+    }
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

@@ -539,6 +539,28 @@ impl Lowerer<'_> {
         })
     }
 
+    /// The sizes of a function's output or local, its size expressions evaluated with
+    /// the inputs bound (`output Real y[n]` where `n` is an input known here).
+    fn function_var_dims(&mut self, v: &unimo_flat::functions::FuncVar) -> Option<Vec<usize>> {
+        let mut out = Vec::with_capacity(v.dims.len());
+        for (k, d) in v.dims.iter().enumerate() {
+            let n = match d {
+                Some(n) => *n,
+                None => {
+                    let e = v.dim_exprs.get(k)?.as_ref()?;
+                    let t = self.expr(e).ok()?;
+                    let x = self.const_value(*t.data.first()?)?;
+                    if x < 0.0 || x != x.trunc() {
+                        return None;
+                    }
+                    x as usize
+                }
+            };
+            out.push(n);
+        }
+        Some(out)
+    }
+
     fn run_function(
         &mut self,
         f: &FlatFunction,
@@ -577,8 +599,8 @@ impl Lowerer<'_> {
                         dims: vec![n],
                     })
                 }
-                None if v.dims.iter().all(|d| d.is_some()) => {
-                    let dims: Vec<usize> = v.dims.iter().map(|d| d.unwrap_or(0)).collect();
+                None if !v.dims.is_empty() && self.function_var_dims(v).is_some() => {
+                    let dims = self.function_var_dims(v).unwrap_or_default();
                     let nan = self.dae.arena.constant(f64::NAN);
                     Some(Tensor {
                         data: vec![nan; dims.iter().product()],

@@ -647,7 +647,23 @@ impl ExprArena {
     /// are evaluated literally (no event semantics). For tests and constant folding of
     /// parameters, not the hot path.
     pub fn eval(&self, id: ExprId, env: &dyn EvalEnv) -> f64 {
-        let e = |x: ExprId| self.eval(x, env);
+        // Shared subexpressions once each: the arena is a DAG, and a tree walk of a
+        // deeply shared one (a filter's coefficients computed by loops) is exponential.
+        let mut memo = HashMap::default();
+        self.eval_memo(id, env, &mut memo)
+    }
+
+    fn eval_memo(&self, id: ExprId, env: &dyn EvalEnv, memo: &mut HashMap<ExprId, f64>) -> f64 {
+        if let Some(&v) = memo.get(&id) {
+            return v;
+        }
+        let v = self.eval_node(id, env, memo);
+        memo.insert(id, v);
+        v
+    }
+
+    fn eval_node(&self, id: ExprId, env: &dyn EvalEnv, memo: &mut HashMap<ExprId, f64>) -> f64 {
+        let mut e = |x: ExprId| self.eval_memo(x, env, memo);
         match self.node(id) {
             Node::Const(b) => f64::from_bits(b),
             Node::Var(s) => env.value(s),

@@ -19,6 +19,10 @@ pub struct FuncVar {
     pub type_name: String,
     /// Dimensions; `None` for `:` or a size not known at compile time.
     pub dims: Vec<Option<usize>>,
+    /// The size expressions as written (in the function's scope: they may read its
+    /// inputs, `output Real y[n]`), `None` for `:`; the back end evaluates them when
+    /// it inlines a call.
+    pub dim_exprs: Vec<Option<Expr>>,
     /// The default (inputs) or binding (outputs and locals).
     pub default: Option<Expr>,
     /// The type resolved through short class definitions: `Real`, `Integer`,
@@ -292,30 +296,41 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
+        let mut dim_exprs: Vec<Option<Expr>> = Vec::new();
         let mut dims: Vec<Option<usize>> = d
             .dims
             .iter()
             .chain(&cc.type_dims)
             .map(|s| match s {
-                Subscript::Colon(_) => None,
+                Subscript::Colon(_) => {
+                    dim_exprs.push(None);
+                    None
+                }
                 Subscript::Expr(x) => {
                     let x = self.function_expr(x, scope, local_names);
-                    match eval::eval(&x, self, &mut Vec::new()) {
+                    let n = match eval::eval(&x, self, &mut Vec::new()) {
                         Ok(Value::Int(n)) if n >= 0 => Some(n as usize),
                         _ => None,
-                    }
+                    };
+                    dim_exprs.push(Some(x));
+                    n
                 }
             })
             .collect();
         for (s, sc) in &short_dims {
             dims.push(match s {
-                Subscript::Colon(_) => None,
+                Subscript::Colon(_) => {
+                    dim_exprs.push(None);
+                    None
+                }
                 Subscript::Expr(x) => {
                     let x = self.function_expr(x, sc, &mut Vec::new());
-                    match eval::eval(&x, self, &mut Vec::new()) {
+                    let n = match eval::eval(&x, self, &mut Vec::new()) {
                         Ok(Value::Int(n)) if n >= 0 => Some(n as usize),
                         _ => None,
-                    }
+                    };
+                    dim_exprs.push(Some(x));
+                    n
                 }
             });
         }
@@ -328,6 +343,7 @@ impl Instantiator<'_, '_> {
             name: d.name.text.to_string(),
             type_name: cc.type_name.to_dotted(),
             dims,
+            dim_exprs,
             default,
             base,
             record,
