@@ -210,14 +210,7 @@ impl Lowerer<'_> {
     ) -> Result<Vec<ExprId>, DaeError> {
         at.iter()
             .map(|&k| {
-                let a = ext.args.get(k).ok_or_else(|| {
-                    DaeError::new(
-                        "E3020",
-                        format!("`{}` is called with too few arguments", ext.function),
-                        span,
-                    )
-                })?;
-                let t = self.expr(a)?;
+                let t = self.foreign_arg(ext, k, span)?;
                 t.data.first().copied().ok_or_else(|| {
                     DaeError::new(
                         "E3020",
@@ -229,6 +222,23 @@ impl Lowerer<'_> {
             .collect()
     }
 
+    /// Argument `k` of the foreign call, lowered.
+    fn foreign_arg(
+        &mut self,
+        ext: &ExternalCall,
+        k: usize,
+        span: Span,
+    ) -> Result<Tensor, DaeError> {
+        let a = ext.args.get(k).ok_or_else(|| {
+            DaeError::new(
+                "E3020",
+                format!("`{}` is called with too few arguments", ext.function),
+                span,
+            )
+        })?;
+        self.expr(a)
+    }
+
     /// A table constructor: the object's site; its value is the site's index.
     fn construct(
         &mut self,
@@ -238,16 +248,7 @@ impl Lowerer<'_> {
         time: Option<[usize; 3]>,
         span: Span,
     ) -> Result<ExprId, DaeError> {
-        let arg = |me: &mut Self, k: usize| -> Result<Tensor, DaeError> {
-            let a = ext.args.get(k).ok_or_else(|| {
-                DaeError::new(
-                    "E3020",
-                    format!("`{}` is called with too few arguments", ext.function),
-                    span,
-                )
-            })?;
-            me.expr(a)
-        };
+        let arg = |me: &mut Self, k: usize| me.foreign_arg(ext, k, span);
         let table = arg(self, at[0])?;
         let (rows, cols) = match table.dims.as_slice() {
             [r, c] => (*r, *c),

@@ -269,6 +269,23 @@ pub fn eval(
     }
 }
 
+/// `size(a, k)` (or `size(a)` without `k`) of an array of sizes `d`.
+fn size_of(e: &Expr, d: Vec<usize>, k: Option<&Value>) -> Result<Value, EvalError> {
+    match k {
+        Some(k) => {
+            let k = k
+                .as_int()
+                .ok_or_else(|| unsupported(e, "size(a, k) needs an Integer k"))?;
+            d.get((k - 1).max(0) as usize)
+                .map(|n| Value::Int(*n as i64))
+                .ok_or_else(|| unsupported(e, "size of a missing dimension"))
+        }
+        None => Ok(Value::Array(
+            d.into_iter().map(|n| Value::Int(n as i64)).collect(),
+        )),
+    }
+}
+
 /// A value as the rows of a matrix: a scalar is 1x1, a vector a column.
 fn as_matrix(v: Value) -> Vec<Vec<Value>> {
     match v {
@@ -527,19 +544,11 @@ fn call(
     {
         let whole = r.parts.last().is_some_and(|p| p.subscripts.is_empty());
         if let (true, Some(d)) = (whole, env.dims(&var_key(r))) {
-            return match args.positional.get(1) {
-                Some(k) => {
-                    let k = eval(k, env, iterators)?
-                        .as_int()
-                        .ok_or_else(|| unsupported(e, "size(a, k) needs an Integer k"))?;
-                    d.get((k - 1).max(0) as usize)
-                        .map(|n| Value::Int(*n as i64))
-                        .ok_or_else(|| unsupported(e, "size of a missing dimension"))
-                }
-                None => Ok(Value::Array(
-                    d.into_iter().map(|n| Value::Int(n as i64)).collect(),
-                )),
+            let k = match args.positional.get(1) {
+                Some(k) => Some(eval(k, env, iterators)?),
+                None => None,
             };
+            return size_of(e, d, k.as_ref());
         }
     }
     if !args.iterators.is_empty() {
@@ -618,22 +627,7 @@ fn call(
             Ok(if pick_first { x.clone() } else { y.clone() })
         }
         "min" | "max" | "sum" | "product" => reduce(e, &name, arg(0)?),
-        "size" => {
-            let d = arg(0)?.dims();
-            match vals.get(1) {
-                Some(k) => {
-                    let k = k
-                        .as_int()
-                        .ok_or_else(|| unsupported(e, "size(a, k) needs an Integer k"))?;
-                    d.get((k - 1).max(0) as usize)
-                        .map(|n| Value::Int(*n as i64))
-                        .ok_or_else(|| unsupported(e, "size of a missing dimension"))
-                }
-                None => Ok(Value::Array(
-                    d.into_iter().map(|n| Value::Int(n as i64)).collect(),
-                )),
-            }
-        }
+        "size" => size_of(e, arg(0)?.dims(), vals.get(1)),
         "zeros" | "ones" => {
             let fill_with = if name == "zeros" {
                 Value::Int(0)

@@ -431,17 +431,7 @@ impl<'a> P<'a, '_> {
                 self.pos = start;
                 (None, self.ident()?)
             };
-            self.expect(Sym::LParen)?;
-            let mut args = Vec::new();
-            if !self.at(Sym::RParen) {
-                loop {
-                    args.push(self.expression()?);
-                    if !self.eat(Sym::Comma) {
-                        break;
-                    }
-                }
-            }
-            self.expect(Sym::RParen)?;
+            let args = self.paren_list(Self::expression)?;
             Some(ExternalCall {
                 output,
                 function,
@@ -798,19 +788,25 @@ impl<'a> P<'a, '_> {
         })
     }
 
-    fn class_modification(&mut self) -> Option<ClassModification> {
-        let first = self.pos;
+    /// `( item, item, ... )`, possibly empty.
+    fn paren_list<T>(&mut self, mut item: impl FnMut(&mut Self) -> Option<T>) -> Option<Vec<T>> {
         self.expect(Sym::LParen)?;
-        let mut args = Vec::new();
+        let mut items = Vec::new();
         if !self.at(Sym::RParen) {
             loop {
-                args.push(self.argument()?);
+                items.push(item(self)?);
                 if !self.eat(Sym::Comma) {
                     break;
                 }
             }
         }
         self.expect(Sym::RParen)?;
+        Some(items)
+    }
+
+    fn class_modification(&mut self) -> Option<ClassModification> {
+        let first = self.pos;
+        let args = self.paren_list(Self::argument)?;
         Some(ClassModification {
             args,
             span: self.span_from(first),
