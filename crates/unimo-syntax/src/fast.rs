@@ -62,7 +62,8 @@ struct P<'a, 'd> {
     diags: &'d mut Vec<Diagnostic>,
 }
 
-fn is_class_kind(sym: Sym) -> bool {
+/// A keyword that names a kind of class (`operator` included).
+fn is_kind_keyword(sym: Sym) -> bool {
     matches!(
         sym,
         Sym::KwClass
@@ -74,10 +75,12 @@ fn is_class_kind(sym: Sym) -> bool {
             | Sym::KwPackage
             | Sym::KwFunction
             | Sym::KwOperator
-            | Sym::KwExpandable
-            | Sym::KwPure
-            | Sym::KwImpure
     )
+}
+
+/// A keyword that can start a class definition's prefixes and kind.
+fn is_class_kind(sym: Sym) -> bool {
+    is_kind_keyword(sym) || matches!(sym, Sym::KwExpandable | Sym::KwPure | Sym::KwImpure)
 }
 
 impl<'a> P<'a, '_> {
@@ -231,20 +234,9 @@ impl<'a> P<'a, '_> {
             prefixes.purity = Some(Purity::Impure);
         }
         if self.at(Sym::KwOperator)
-            && self.tok(self.pos + 1).is_some_and(|t| {
-                matches!(
-                    t.sym,
-                    Sym::KwClass
-                        | Sym::KwModel
-                        | Sym::KwRecord
-                        | Sym::KwBlock
-                        | Sym::KwConnector
-                        | Sym::KwType
-                        | Sym::KwPackage
-                        | Sym::KwFunction
-                        | Sym::KwOperator
-                )
-            })
+            && self
+                .tok(self.pos + 1)
+                .is_some_and(|t| is_kind_keyword(t.sym))
         {
             self.pos += 1;
             prefixes.operator = true;
