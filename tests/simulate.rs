@@ -437,6 +437,18 @@ fn function_outputs_sized_by_inputs() {
     }
 }
 
+/// A built-in of the language that unimo does not implement (clocks, streams,
+/// overconstrained connections) passes the name check and is E3001 naming it.
+#[test]
+fn unimplemented_builtins_are_reported_as_not_supported() {
+    let file = common::root().join("tests/simulate/ClockedNotSupported.mo");
+    let err = unimo_cli::load_model(&[file], None)
+        .err()
+        .expect("not supported");
+    assert!(err.contains("E3001") && err.contains("`previous`"), "{err}");
+    assert!(!err.contains("E2001"), "{err}");
+}
+
 /// An if-equation on a discrete condition inside an algebraic loop (`F = 0` in one
 /// branch, `D = 0` in the other): the variable solved in one branch only must not be
 /// torn by dividing by its coefficient, which is 0 in the other branch.

@@ -880,6 +880,15 @@ impl<'m> Lowerer<'m> {
                 })
             });
         }
+        if unimo_flat::lookup::UNSUPPORTED_BUILTINS.contains(&name.as_str()) {
+            return Err(unsupported(
+                format!(
+                    "the built-in `{name}` (stream connectors, clocked and synchronous features, \
+                     state machines and overconstrained connections are not implemented)"
+                ),
+                span,
+            ));
+        }
         match self.builtin(&name, args, span)? {
             Some(t) => Ok(t),
             None => Err(DaeError::new(

@@ -122,6 +122,40 @@ pub const BUILTIN_FUNCTIONS: &[&str] = &[
     "Real",
 ];
 
+/// Built-in operators of the language that unimo names but does not implement yet:
+/// stream connectors (spec 15), synchronous and clocked features (16), state machines
+/// (17), overconstrained connections (9.4). The name check accepts them; lowering
+/// reports each as "not supported yet" (`E3001`).
+pub const UNSUPPORTED_BUILTINS: &[&str] = &[
+    "inStream",
+    "actualStream",
+    "previous",
+    "Clock",
+    "superSample",
+    "subSample",
+    "shiftSample",
+    "backSample",
+    "hold",
+    "interval",
+    "firstTick",
+    "noClock",
+    "transition",
+    "initialState",
+    "activeState",
+    "ticksInState",
+    "timeInState",
+    "spatialDistribution",
+    "getInstanceName",
+    "Connections.branch",
+    "Connections.root",
+    "Connections.potentialRoot",
+    "Connections.isRoot",
+    "Connections.rooted",
+    "Connections.uniqueRoot",
+    "Connections.uniqueRootIndices",
+    "rooted",
+];
+
 /// Most levels of inheritance followed before giving up (cycles, or absurd depth).
 const MAX_INHERITANCE_DEPTH: usize = 64;
 

@@ -436,7 +436,10 @@ impl Checker<'_, '_> {
             ExprKind::Call { func, args } => {
                 // `.asin(u)` names the built-in from the global scope.
                 let simple = func.parts.len() == 1;
-                let builtin = simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str());
+                let builtin = (simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()))
+                    || (!func.global
+                        && crate::lookup::UNSUPPORTED_BUILTINS
+                            .contains(&func.to_dotted().as_str()));
                 if !builtin {
                     let refs: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
                     let scope = if func.global { None } else { Some(id) };
