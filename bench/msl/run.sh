@@ -15,3 +15,6 @@ python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/ms
   --ref "$shared/msl-reference" --results "$results" "$@" | tee "${results%.csv}.txt"
 python3 bench/msl/report.py "$results" > docs/results/msl.md
 echo "wrote docs/results/msl.md"
+# Names: every file of the MSL through the name check (syntax errors must be 0).
+target/release/unimo check --no-balance --lib "$shared/msl" "$shared/msl" > "${results%.csv}.check" 2>&1 || true
+python3 bench/msl/names.py "${results%.csv}.check" >> docs/results/msl.md
