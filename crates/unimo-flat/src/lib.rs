@@ -26,6 +26,7 @@ pub(crate) mod redeclare;
 pub mod resolve;
 pub mod tree;
 pub mod typecheck;
+mod values;
 
 pub use error::FlatError;
 pub use flat::{FlatModel, FlatVar, VarId};

@@ -1,0 +1,139 @@
+//! Values the instantiator resolves while it builds the flat model: enumeration
+//! literals by path, parameters of an instance read while its bases are instantiated
+//! (before it declares them), and the shape of a binding whose value is not constant.
+
+use crate::eval::{self, EvalError, Value};
+use crate::instantiate::Instantiator;
+use crate::lookup::Found;
+use unimo_source::Span;
+use unimo_syntax::ast::{ClassBody, ClassDef, ElementKind, Expr, ExprKind};
+
+/// Whether a long class inherits (an `extends` clause or a class extension).
+pub(crate) fn def_has_bases(def: &ClassDef) -> bool {
+    match &def.body {
+        ClassBody::Long {
+            composition,
+            extends,
+            ..
+        } => {
+            extends.is_some()
+                || composition
+                    .elements
+                    .iter()
+                    .any(|e| matches!(e.kind, ElementKind::Extends(_)))
+        }
+        _ => false,
+    }
+}
+
+impl Instantiator<'_, '_> {
+    /// The sizes of a flattened expression from its structure (array constructors,
+    /// references to variables of known size, element-wise operations), for bindings
+    /// whose values are not known at compile time.
+    pub(crate) fn shape_of(&mut self, e: &Expr) -> Option<Vec<usize>> {
+        match &e.kind {
+            ExprKind::Array(items) => {
+                // The outer size is certain; inner sizes only as far as known (a
+                // reference to a component declared further down is not yet).
+                let mut d = vec![items.len()];
+                if let Some(first) = items.first() {
+                    d.extend(self.shape_of(first).unwrap_or_default());
+                }
+                Some(d)
+            }
+            ExprKind::Ref(r) if r.parts.last().is_some_and(|p| p.subscripts.is_empty()) => {
+                let key = eval::var_key(r);
+                let id = self.var_id(&key)?;
+                Some(self.model.vars[id.0 as usize].dims.clone())
+            }
+            ExprKind::Unary { operand, .. } => self.shape_of(operand),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                let (a, b) = (self.shape_of(lhs)?, self.shape_of(rhs)?);
+                Some(if a.len() >= b.len() { a } else { b })
+            }
+            ExprKind::If { otherwise, .. } => self.shape_of(otherwise),
+            ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {
+                Some(Vec::new())
+            }
+            _ => eval::eval(e, self, &mut Vec::new()).ok().map(|v| v.dims()),
+        }
+    }
+
+    /// The value of a parameter or constant of an instance whose bases are being
+    /// instantiated, before the instance declares it: its modifier's binding, else its
+    /// declaration's (evaluated in their scopes).
+    pub(crate) fn pending_own_value(
+        &mut self,
+        key: &str,
+        span: Span,
+    ) -> Option<Result<Value, EvalError>> {
+        let frame = self.pending_own.iter().rposition(|(p, ..)| {
+            key.len() > p.len()
+                && key.starts_with(p.as_str())
+                && (p.is_empty() || key.as_bytes()[p.len()] == b'.')
+        })?;
+        let (prefix_key, class, m, scope) = self.pending_own[frame].clone();
+        let name = key[prefix_key.len()..].trim_start_matches('.');
+        if name.contains(['.', '[']) {
+            return None;
+        }
+        let def = self.tree.get(class).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return None;
+        };
+        let (cc, d) = composition.elements.iter().find_map(|e| match &e.kind {
+            ElementKind::Component(cc) => cc
+                .components
+                .iter()
+                .find(|d| d.name.text == name)
+                .map(|d| (cc, d)),
+            _ => None,
+        })?;
+        if !matches!(
+            cc.prefix.variability,
+            Some(
+                unimo_syntax::ast::Variability::Parameter
+                    | unimo_syntax::ast::Variability::Constant
+            )
+        ) {
+            return None;
+        }
+        let (expr, expr_scope) = match m.child(name).and_then(|c| c.binding.as_ref()) {
+            Some(b) => (b.expr.clone(), b.scope.clone()),
+            None => (d.modification.as_ref()?.binding.clone()?, scope.clone()),
+        };
+        if !self.evaluating.insert(key.to_owned()) {
+            return Some(Err(EvalError::Cycle {
+                span,
+                name: key.to_owned(),
+            }));
+        }
+        let flat = self.expr(&expr, &expr_scope, &mut Vec::new(), &mut Vec::new());
+        let r = eval::eval(&flat, self, &mut Vec::new());
+        self.evaluating.remove(key);
+        Some(r)
+    }
+
+    /// The value of an enumeration literal named by its full path
+    /// (`Modelica.Blocks.Types.FilterType.LowPass`), following short classes.
+    pub(crate) fn enum_literal(&mut self, key: &str) -> Option<Value> {
+        let parts = crate::flat::split_name(key);
+        let (literal, path) = parts.split_last()?;
+        let mut class = match self.tree.lookup_dotted(None, path, false)? {
+            Found::Class(c) => c,
+            _ => return None,
+        };
+        for _ in 0..32 {
+            match &self.tree.get(class).def.body {
+                ClassBody::Enumeration { literals, .. } => {
+                    let k = literals.iter().position(|l| l.name.text == *literal)?;
+                    let name = format!("{}.{literal}", self.tree.full_name(class));
+                    return Some(Value::Enum(k as i64 + 1, name));
+                }
+                ClassBody::Short { .. } => class = *self.tree.bases(class).first()?,
+                _ => return None,
+            }
+        }
+        None
+    }
+}
