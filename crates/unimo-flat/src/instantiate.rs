@@ -29,9 +29,12 @@ const ATTRIBUTES: &[&str] = &[
 /// Deepest component nesting followed (recursive models are errors).
 const MAX_DEPTH: usize = 100;
 
+/// How often one class may appear among an instance's enclosing instances.
+const MAX_SELF_NESTING: usize = 8;
+
 /// Most scalar variables and component instances one model may have: beyond it the
 /// model is refused (`E2014`) rather than exhausting memory.
-pub const MAX_SCALARS: usize = 20_000_000;
+pub const MAX_SCALARS: usize = 4_000_000;
 
 /// One `connect` as written, with full paths and faces.
 #[derive(Clone, Debug)]
@@ -59,6 +62,8 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// scope). A base's modifier or condition may read the instance's own parameters,
     /// which are declared after its bases (`extends Port(use = useHeat)`).
     pub(crate) pending_own: Vec<(String, ClassId, Mod, Scope)>,
+    /// The classes of the instances enclosing the current one (components only).
+    ancestors: Vec<ClassId>,
     /// Paths of conditional components that are absent.
     pub absent: Vec<String>,
     /// Element names declared so far in the instances being instantiated (one level
@@ -178,6 +183,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             values: HashMap::default(),
             evaluating: HashSet::default(),
             pending_own: Vec::new(),
+            ancestors: Vec::new(),
             absent: Vec::new(),
             declared: Vec::new(),
             declared_pool: Vec::new(),
@@ -395,11 +401,31 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         variability: Option<Variability>,
         top: bool,
     ) {
+        // A class inside itself (a record with a component of its own type): legal
+        // only while conditions stop the recursion, which they do within a few levels;
+        // past MAX_SELF_NESTING it would grow exponentially until memory runs out.
+        let nesting = self.ancestors.iter().filter(|&&c| c == class).count();
+        if nesting >= MAX_SELF_NESTING {
+            if !self.stopped {
+                self.stopped = true;
+                let def = &self.tree.get(class).def;
+                let (name, span) = (def.name.text.clone(), def.name.span);
+                self.error(
+                    "E2011",
+                    format!("instances of `{name}` nested {MAX_SELF_NESTING} deep in each other (a recursive model?)"),
+                    span,
+                    "this class contains itself",
+                );
+            }
+            return;
+        }
+        self.ancestors.push(class);
         let check = !self.duplicate_free.contains(&class);
         let level = check.then(|| self.declared_pool.pop().unwrap_or_default());
         self.declared.push(level);
         self.duplicate_found.push(false);
         self.class_body_inner(class, prefix, m, variability, top, true);
+        self.ancestors.pop();
         let found = self.duplicate_found.pop().unwrap_or(true);
         if let Some(Some(mut level)) = self.declared.pop() {
             level.clear();
