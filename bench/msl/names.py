@@ -5,15 +5,13 @@ by the file and the name, with the reason it is reported."""
 import collections, re, sys
 
 REASONS = [
-    ("Modelica/Clocked", "the type `Clock` (clocked features are not implemented)"),
+    ("Modelica/Clocked", "the predefined type `Clock` (clocked features are not implemented)"),
     ("Modelica/Media/Water/IF97_Utilities.mo", "the built-in `array(...)` constructor is "
      "not implemented"),
-    ("package.mo", "in a `package.mo` checked as a file on its own: the names it uses from "
-     "its sibling files (`Sources.mo`, `Functions.mo`, ...) or through replaceable `Medium` "
-     "packages are not found (the checker's limit: the Blocks examples among them resolve "
-     "and run when simulated with `--model`)"),
-    ("Modelica/Fluid", "names through the Fluid library's replaceable `Medium` packages "
-     "(not analysed yet)"),
+    ("Modelica/Fluid", "`Medium.saturationPressure` and the like, where `Medium` is "
+     "redeclared in an extends modifier (`extends Base(redeclare package Medium = "
+     "PartialTwoPhaseMedium)`): the name check looks them up in the base's declared "
+     "`PartialMedium`, which lacks them (flattening follows the redeclaration)"),
 ]
 
 

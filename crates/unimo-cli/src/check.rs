@@ -9,6 +9,34 @@ use unimo_flat::ClassTree;
 use unimo_source::{Diagnostic, SourceMap};
 use unimo_syntax::ast::{ClassBody, ElementKind, StoredDefinition};
 
+/// The library class a file below one of the `--lib` folders defines
+/// (`Lib/A/package.mo` is `A`'s package, `Lib/A/B.mo` is `A.B`), when the library
+/// loads it.
+fn library_class(
+    tree: &mut ClassTree<'_>,
+    libs: &[PathBuf],
+    path: &Path,
+) -> Option<unimo_flat::ClassId> {
+    let canonical = path.canonicalize().ok()?;
+    let rel = libs.iter().find_map(|root| {
+        let root = root.canonicalize().ok()?;
+        canonical.strip_prefix(root).ok().map(Path::to_path_buf)
+    })?;
+    let mut parts: Vec<String> = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().to_string())
+        .collect();
+    let last = parts.pop()?;
+    if last != "package.mo" {
+        parts.push(last.strip_suffix(".mo")?.to_owned());
+    }
+    if parts.is_empty() {
+        return None;
+    }
+    let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
+    tree.lookup_global(&refs)
+}
+
 /// Collects `*.mo` files below each path (files are taken as given), sorted per folder.
 fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
     let mut out = Vec::new();
@@ -105,15 +133,21 @@ pub fn check(
         // Names are checked only in files that parse: a broken file would only add
         // follow-on errors.
         if clean {
-            parsed_files.push((id, parsed.ast));
+            parsed_files.push((id, parsed.ast, path.clone()));
         }
     }
     // Enclosing packages before their members: a file `within A.B;` needs `A.B`.
-    parsed_files.sort_by_key(|(_, ast)| match &ast.within {
+    parsed_files.sort_by_key(|(_, ast, _)| match &ast.within {
         Some(Some(n)) => n.parts.len(),
         _ => 0,
     });
-    for (id, ast) in parsed_files {
+    for (id, ast, path) in parsed_files {
+        // A file of a library given with --lib is checked as that library's class, so
+        // that it sees its package's other files (a `package.mo` its siblings).
+        if let Some(c) = library_class(&mut tree, libs, &path) {
+            user_classes.push(c);
+            continue;
+        }
         user_classes.extend(tree.add_user_file(id, ast));
     }
     let mut flattened = 0;
