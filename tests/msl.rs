@@ -305,3 +305,22 @@ fn a_library_model_runs_without_a_file() {
     assert_eq!(none.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+/// A library file checked on its own sees its package's other files: the Blocks
+/// package's examples name `Sources.Sine`, which lives in `Blocks/Sources.mo`.
+#[test]
+fn a_package_file_of_a_library_checks_clean() {
+    let msl = shared("msl");
+    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["check", "--no-balance", "--color", "never", "--lib"])
+        .arg(&msl)
+        .arg(msl.join("Modelica/Blocks/package.mo"))
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
