@@ -1286,6 +1286,15 @@ impl<'m> Lowerer<'m> {
                 let x = self.positional(args, 0, span)?;
                 Tensor::scalar(x.as_scalar(span)?)
             }
+            // `array(a, b, c)` is `{a, b, c}` (spec 10.4).
+            "array" => {
+                let items = args
+                    .positional
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<DaeResult<Vec<_>>>()?;
+                Tensor::stack(items, span)?
+            }
             "vector" => {
                 let x = self.positional(args, 0, span)?;
                 Tensor::vector(x.data)

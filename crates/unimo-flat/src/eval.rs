@@ -637,6 +637,8 @@ fn call(
             filled(e, fill_with, &vals)
         }
         "fill" => filled(e, arg(0)?.clone(), &vals[1..]),
+        // `array(a, b, c)` is `{a, b, c}` (spec 10.4).
+        "array" => Ok(Value::Array(vals.clone())),
         "identity"
             if arg(0)?
                 .as_int()

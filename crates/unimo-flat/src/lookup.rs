@@ -61,6 +61,7 @@ pub const BUILTIN_FUNCTIONS: &[&str] = &[
     "assert",
     "atan",
     "atan2",
+    "array",
     "cardinality",
     "cat",
     "ceil",
