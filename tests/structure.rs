@@ -46,24 +46,35 @@ fn structure_dumps() {
     }
 }
 
-/// The Cartesian pendulum: index 3 reduced to index 1 with dummy derivatives.
+/// The Cartesian pendulum: index 3 reduced to index 1 with dummy derivatives; its
+/// position and velocity candidates form two dynamic state sets (the Jacobian of the
+/// constraint, `(2x, 2y)`, depends on the state), each with one state.
 #[test]
-fn pendulum_has_dummy_derivatives_and_an_index_one_blt() {
+fn pendulum_has_dynamic_state_sets_and_an_index_one_blt() {
     let (code, out, err) = emit("structure", Path::new("tests/structure/ok/Pendulum.mo"));
     assert_eq!(code, Some(0), "{err}");
     assert!(out.contains("max differentiations: 2"), "{out}");
     let states = out.lines().find(|l| l.starts_with("states:")).unwrap();
-    assert_eq!(states.split(',').count(), 2, "{states}");
-    let dummies = out
-        .lines()
-        .find(|l| l.starts_with("dummy derivatives:"))
-        .unwrap();
-    assert_eq!(dummies.split(',').count(), 4, "{dummies}");
-    // Every unknown is computed: equations and unknowns agree.
+    assert_eq!(states, "states: $set1.x[1], $set2.x[1]");
+    let sets: Vec<&str> = out.lines().filter(|l| l.starts_with("state set")).collect();
+    assert_eq!(sets.len(), 2, "{out}");
+    assert!(sets[1].contains("of {x, y}"), "{}", sets[1]);
+    // Every unknown is computed: the 9 equations, the 4 of index reduction and the
+    // sets' 4 (s = A x and der(s) = A der(x)) for as many unknowns.
     assert!(
-        out.contains("equations: 9 (4 differentiated), unknowns: 9"),
+        out.contains("equations: 13 (6 differentiated), unknowns: 13"),
         "{out}"
     );
+}
+
+/// A stateSelect on the candidates decides statically: no state set.
+#[test]
+fn state_select_prefer_keeps_the_static_choice() {
+    let (code, out, err) = emit("structure", Path::new("models/Pendulum.mo"));
+    assert_eq!(code, Some(0), "{err}");
+    assert!(!out.contains("state set"), "{out}");
+    let states = out.lines().find(|l| l.starts_with("states:")).unwrap();
+    assert_eq!(states, "states: x, vx");
 }
 
 /// The loop of three equations is torn to one iteration variable.

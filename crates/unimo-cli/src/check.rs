@@ -203,7 +203,7 @@ pub fn check(
     }
     for (name, p, time) in &model_stats {
         eprintln!(
-            "stats: model={name} flat_scalars={} aliases_removed={} constants_removed={} equations={} differentiated={} states={} dummy_derivatives={} algebraic={} blocks={} torn_blocks={} largest_block={} zero_crossings={} pruned={} analysis_ms={:.2}",
+            "stats: model={name} flat_scalars={} aliases_removed={} constants_removed={} equations={} differentiated={} states={} dummy_derivatives={} state_sets={} algebraic={} blocks={} torn_blocks={} largest_block={} zero_crossings={} pruned={} analysis_ms={:.2}",
             p.flat_scalars,
             p.aliases_removed,
             p.constants_removed,
@@ -211,6 +211,7 @@ pub fn check(
             p.differentiated_equations,
             p.states,
             p.dummy_derivatives,
+            p.state_sets,
             p.algebraic,
             p.blocks,
             p.torn_blocks,

@@ -207,7 +207,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             if a.stats {
                 let s = &result.stats;
                 eprintln!(
-                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
+                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
                 format!("{:?}", a.method).to_lowercase(),
                 compiled.states.len(),
                 s.solver.steps,
@@ -219,6 +219,7 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
                 s.events,
                 s.event_iterations,
                 s.rhs_evaluations,
+                s.state_selections,
                 plan.stats.pruned_equations,
                 compiled.plan_ops(),
                 compiled.roots.len(),

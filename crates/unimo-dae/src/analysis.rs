@@ -7,7 +7,7 @@ use crate::dae::{Dae, EqId, Equation, ScalarKind, StateSelect, WhenAction};
 use crate::diff::{partial, solve_linear};
 use crate::error::DaeError;
 use crate::expr::{ExprId, Node, ScalarId};
-use crate::plan::{Block, Plan, PlanStats, PlanStep};
+use crate::plan::{Block, Plan, PlanStats, PlanStep, StateSet};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use unimo_structure as st;
 
@@ -66,6 +66,16 @@ impl<'d> DaeSystem<'d> {
             sys.eq_derivative.push(None);
         }
         sys
+    }
+
+    /// Adds an equation to the DAE and the graph (its incidence from its residual).
+    fn add_equation(&mut self, eq: Equation) -> st::EqId {
+        self.dae.equations.push(eq);
+        let vars = self.incidence(EqId(self.dae.equations.len() as u32 - 1));
+        self.eq_derivative.push(None);
+        self.graph
+            .add_eq(vars)
+            .expect("incidence uses graph variables only")
     }
 
     fn add_graph_var(&mut self, s: ScalarId) -> st::VarId {
@@ -241,13 +251,27 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     let mut sys = DaeSystem::new(dae);
     let pantelides = st::pantelides(&mut sys).map_err(|e| struct_error(&sys, e))?;
     let graph = sys.graph.clone();
-    let dummies = st::select_dummy_derivatives(&graph, &pantelides, |v| {
-        let s = sys.scalar(v);
-        // The priority of the variable that would lose its state: v's integral.
-        let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
-        priority(sys.dae.scalar(base).state_select)
-    })
+    // The priority of the variable that would lose its state: v's integral.
+    let priorities: Vec<st::StateSelectPriority> = (0..graph.n_vars())
+        .map(|k| {
+            let s = sys.scalar(st::VarId(k as u32));
+            let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
+            priority(sys.dae.scalar(base).state_select)
+        })
+        .collect();
+    let mut dummies = st::select_dummy_derivatives_with_sets(
+        &graph,
+        &pantelides,
+        |v| priorities[v.index()],
+        |eqs, candidates| is_dynamic_set(&mut sys, &priorities, eqs, candidates),
+    )
     .map_err(|e| struct_error(&sys, e))?;
+    let state_sets = add_state_sets(&mut sys, &mut dummies);
+    let graph = sys.graph.clone();
+    let selectors: HashSet<ScalarId> = state_sets
+        .iter()
+        .flat_map(|s| s.selectors.iter().copied())
+        .collect();
     let matching = dummies
         .index_one_matching(&graph)
         .map_err(|e| struct_error(&sys, e))?;
@@ -281,6 +305,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
                     // variable is then left to Newton, which sees the branch in force.
                     if known_coef
                         && !has_if(sys.dae, coef)
+                        && !mentions(sys.dae, coef, &selectors)
                         && !zero_at_parameters(sys.dae, &mut parameter_values, coef)
                     {
                         solvable.insert((e.0, v.0));
@@ -306,6 +331,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         plan.derivatives.push(d);
     }
     plan.dummy_derivatives = dummies.dummies.iter().map(|&v| sys.scalar(v)).collect();
+    plan.state_sets = state_sets;
     let mut torn_count = 0;
     let mut largest = 0;
     for b in &blocks {
@@ -316,7 +342,9 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
             let s = sys.scalar(v);
             let r = sys.dae.residual(eq);
             match solve_linear(&mut sys.dae.arena, r, s) {
-                Some((value, coef)) if !has_if(sys.dae, coef) => {
+                Some((value, coef))
+                    if !has_if(sys.dae, coef) && !mentions(sys.dae, coef, &selectors) =>
+                {
                     plan.steps.push(PlanStep::Assign { var: s, value, eq })
                 }
                 _ => {
@@ -358,6 +386,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         differentiated_equations: dae.equations.len() - n_original,
         states: plan.states.len(),
         dummy_derivatives: plan.dummy_derivatives.len(),
+        state_sets: plan.state_sets.len(),
         algebraic: n_unknowns.saturating_sub(plan.derivatives.len()),
         blocks: blocks.len(),
         torn_blocks: torn_count,
@@ -366,6 +395,159 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         ..PlanStats::default()
     };
     Ok(Analysis { plan, dump })
+}
+
+/// Whether a component of a dummy level gets dynamic state selection: its candidates'
+/// integrals have no `stateSelect` of their own (a `prefer`, `always`, `avoid` or
+/// `never` decides statically), there are at most 64 of them, and the Jacobian of the
+/// level's equations in the candidates depends on the continuous variables (with
+/// constant coefficients, as in circuits and gears, a static choice is regular
+/// everywhere or nowhere).
+fn is_dynamic_set(
+    sys: &mut DaeSystem<'_>,
+    priorities: &[st::StateSelectPriority],
+    eqs: &[st::EqId],
+    candidates: &[st::VarId],
+) -> bool {
+    if candidates.len() > 64
+        || candidates
+            .iter()
+            .any(|v| priorities[v.index()] != st::StateSelectPriority::Default)
+    {
+        return false;
+    }
+    for &e in eqs {
+        let r = sys.dae.residual(EqId(e.0));
+        for &c in candidates {
+            let s = sys.scalar(c);
+            let d = partial(&mut sys.dae.arena, r, s);
+            let varying = sys.dae.arena.vars(d).into_iter().any(|x| {
+                matches!(
+                    sys.dae.scalar(x).kind,
+                    ScalarKind::Continuous | ScalarKind::Derivative
+                )
+            });
+            if varying {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Adds each dynamic state set's states and selection (module docs of
+/// [`crate::plan::StateSet`]): `k = candidates - equations` states `s`, a `k x n`
+/// selection `A` (discrete, switched by the simulator), the equations `s = A x` and
+/// `der(s) = A der(x)` (`x` the candidates' integrals), in the DAE and in the graph;
+/// `dummies` gets the states and unknowns.
+fn add_state_sets(sys: &mut DaeSystem<'_>, dummies: &mut st::DummyDerivatives) -> Vec<StateSet> {
+    let specs = std::mem::take(&mut dummies.state_sets);
+    let mut sets = Vec::new();
+    for (number, spec) in specs.iter().enumerate() {
+        let n = spec.candidates.len();
+        let k = n - spec.eqs.len();
+        let derivatives: Vec<ScalarId> = spec.candidates.iter().map(|&c| sys.scalar(c)).collect();
+        let candidates: Vec<ScalarId> = derivatives
+            .iter()
+            .map(|&d| {
+                sys.dae
+                    .scalar(d)
+                    .derivative_of
+                    .expect("candidates are derivatives")
+            })
+            .collect();
+        let equations: Vec<EqId> = spec.eqs.iter().map(|e| EqId(e.0)).collect();
+        let origin = sys.dae.equations[equations[0].index()].origin;
+        let mut jacobian = Vec::with_capacity(equations.len() * n);
+        for &e in &equations {
+            let r = sys.dae.residual(e);
+            for &d in &derivatives {
+                jacobian.push(partial(&mut sys.dae.arena, r, d));
+            }
+        }
+        // The first selection: the candidates the static order keeps as states.
+        let initial: Vec<usize> = (0..n)
+            .filter(|&j| !spec.initial.contains(&spec.candidates[j]))
+            .collect();
+        let name = format!("$set{}", number + 1);
+        let mut states = Vec::with_capacity(k);
+        let mut selectors = Vec::with_capacity(k * n);
+        for i in 0..k {
+            let mut x = crate::dae::Scalar::new(
+                format!("{name}.x[{}]", i + 1),
+                ScalarKind::Continuous,
+                crate::dae::ScalarType::Real,
+                origin,
+            );
+            x.start = Some(sys.dae.arena.var(candidates[initial[i]]));
+            x.description = Some("state of a dynamically selected set".into());
+            let s = sys.dae.add_scalar(x);
+            let ds = sys.dae.derivative_of(s);
+            let (vs, vds) = (sys.add_graph_var(s), sys.add_graph_var(ds));
+            dummies.is_unknown.resize(sys.graph.n_vars(), false);
+            dummies.is_dummy.resize(sys.graph.n_vars(), false);
+            dummies.is_unknown[vds.index()] = true;
+            dummies.states.push(vs);
+            let mut sel = sys.dae.arena.zero();
+            let mut dsel = sys.dae.arena.zero();
+            for j in 0..n {
+                let mut a = crate::dae::Scalar::new(
+                    format!("{name}.A[{},{}]", i + 1, j + 1),
+                    ScalarKind::Discrete,
+                    crate::dae::ScalarType::Real,
+                    origin,
+                );
+                a.start = Some(
+                    sys.dae
+                        .arena
+                        .constant(if initial[i] == j { 1.0 } else { 0.0 }),
+                );
+                let a = sys.dae.add_scalar(a);
+                selectors.push(a);
+                let av = sys.dae.arena.var(a);
+                let xv = sys.dae.arena.var(candidates[j]);
+                let dv = sys.dae.arena.var(derivatives[j]);
+                let t = sys.dae.arena.mul(av, xv);
+                sel = sys.dae.arena.add(sel, t);
+                let t = sys.dae.arena.mul(av, dv);
+                dsel = sys.dae.arena.add(dsel, t);
+            }
+            let sv = sys.dae.arena.var(s);
+            let dsv = sys.dae.arena.var(ds);
+            let e = sys.add_equation(Equation {
+                lhs: sv,
+                rhs: sel,
+                origin,
+                derivative_of: None,
+            });
+            // Written as `0 = der(s) - A der(x)`, like every differentiated equation.
+            let residual = sys.dae.arena.sub(dsv, dsel);
+            let zero = sys.dae.arena.zero();
+            sys.add_equation(Equation {
+                lhs: residual,
+                rhs: zero,
+                origin,
+                derivative_of: Some(EqId(e.0)),
+            });
+            states.push(s);
+        }
+        sets.push(StateSet {
+            states,
+            candidates,
+            derivatives,
+            selectors,
+            equations,
+            jacobian,
+            initial,
+        });
+    }
+    dummies.states.sort_unstable();
+    sets
+}
+
+/// Whether `e` mentions one of `scalars`.
+fn mentions(dae: &Dae, e: ExprId, scalars: &HashSet<ScalarId>) -> bool {
+    !scalars.is_empty() && dae.arena.vars(e).iter().any(|s| scalars.contains(s))
 }
 
 fn is_parameter(dae: &Dae, s: ScalarId) -> bool {
@@ -653,6 +835,19 @@ fn structure_dump(
     };
     let _ = writeln!(o, "states: {}", names(&plan.states));
     let _ = writeln!(o, "dummy derivatives: {}", names(&plan.dummy_derivatives));
+    for (k, set) in plan.state_sets.iter().enumerate() {
+        let eqs: Vec<String> = set.equations.iter().map(|e| format!("e{}", e.0)).collect();
+        let first: Vec<ScalarId> = set.initial.iter().map(|&j| set.candidates[j]).collect();
+        let _ = writeln!(
+            o,
+            "state set {}: {} of {{{}}} by [{}], chosen at run time; first {{{}}}",
+            k + 1,
+            names(&set.states),
+            names(&set.candidates),
+            eqs.join(" "),
+            names(&first)
+        );
+    }
     let _ = writeln!(o, "blocks: {}", blocks.len());
     for (k, (b, step)) in blocks.iter().zip(&plan.steps).enumerate() {
         match step {

@@ -36,6 +36,29 @@ pub struct Block {
     pub equations: Vec<EqId>,
 }
 
+/// A set of candidates of which the simulator picks, at run time, which are states
+/// (dynamic state selection, as in Mattsson & Söderlind's dummy derivatives with
+/// run-time pivoting). The set's `k` states are `s = A x`, `x` = `candidates` (`n` of
+/// them), `A` the `k x n` 0/1 matrix in the discrete scalars `selectors` (row-major);
+/// the plan solves `s = A x` with the constraints for `x` and computes
+/// `der(s) = A der(x)`. `jacobian` (`equations x n`, row-major) is the Jacobian of the
+/// set's equations in the candidates' derivatives (which equals that of their integrals
+/// in `x`): the simulator keeps as states the candidates whose columns it does not need
+/// for a well-conditioned pivot, and switches `A` (and sets `s` from `x`) when the
+/// current choice becomes ill-conditioned.
+#[derive(Clone, Debug)]
+pub struct StateSet {
+    pub states: Vec<ScalarId>,
+    pub candidates: Vec<ScalarId>,
+    /// `der(candidates[j])`.
+    pub derivatives: Vec<ScalarId>,
+    pub selectors: Vec<ScalarId>,
+    pub equations: Vec<EqId>,
+    pub jacobian: Vec<ExprId>,
+    /// The first selection: the candidate each state is (`k` indices).
+    pub initial: Vec<usize>,
+}
+
 /// Counts after each analysis step (`unimo check --stats`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PlanStats {
@@ -46,6 +69,8 @@ pub struct PlanStats {
     pub differentiated_equations: usize,
     pub states: usize,
     pub dummy_derivatives: usize,
+    /// Dynamically selected state sets.
+    pub state_sets: usize,
     pub algebraic: usize,
     pub blocks: usize,
     pub torn_blocks: usize,
@@ -63,5 +88,7 @@ pub struct Plan {
     pub dummy_derivatives: Vec<ScalarId>,
     /// Steps computing every unknown from the states.
     pub steps: Vec<PlanStep>,
+    /// Dynamically selected state sets (their states are among `states`).
+    pub state_sets: Vec<StateSet>,
     pub stats: PlanStats,
 }

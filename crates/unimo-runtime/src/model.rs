@@ -110,6 +110,19 @@ pub struct CompiledModel {
     /// algorithm gives explicitly (`count = integer(...)`), in their order.
     pub initial_tape: Tape,
     pub initial_residuals: Vec<Reg>,
+    /// Per initial residual: the equation as text (`x = 0.6 (fixed start)` for a fixed
+    /// start), and for a fixed start of a variable the plan computes, the first
+    /// equation of the step computing it (the constraint a contradiction runs through).
+    pub initial_names: Vec<(String, Option<String>)>,
+    /// Per initial residual: how many derivatives the fixed variable has above it
+    /// (`u32::MAX` for an initial equation). With more equations than unknowns the
+    /// independent ones are taken in decreasing order: positions before velocities.
+    pub initial_orders: Vec<u32>,
+    /// Constraints (equations index reduction differentiated) whose every variable has
+    /// a fixed start: checked at the start values before anything is solved. The tape
+    /// computes, per constraint, its two sides.
+    pub fixed_constraints_tape: Tape,
+    pub fixed_constraints: Vec<FixedConstraint>,
     /// Discrete variables `initial_tape` assigns (register, name).
     pub initial_assigned: Vec<(Reg, String)>,
     /// Whether `initial_tape` sets `pre` values (`initial equation pre(y) = y0`).
@@ -126,6 +139,35 @@ pub struct CompiledModel {
     pub objects: Vec<ObjectSite>,
     /// The model reads `terminal()`: the run ends with a terminal event.
     pub uses_terminal: bool,
+    /// Dynamically selected state sets (`unimo_dae::plan::StateSet`).
+    pub state_sets: Vec<CompiledStateSet>,
+}
+
+/// A constraint all of whose variables have fixed start values.
+#[derive(Clone, Debug)]
+pub struct FixedConstraint {
+    pub lhs: Reg,
+    pub rhs: Reg,
+    /// The equation as text.
+    pub text: String,
+    /// Its variables (name and register).
+    pub variables: Vec<(String, Reg)>,
+}
+
+/// A state set in compiled form: `jacobian_tape` (run after the plan) fills
+/// `jacobian` (`rows x candidates.len()`, row-major).
+#[derive(Clone, Debug)]
+pub struct CompiledStateSet {
+    /// Index of each set state in [`CompiledModel::states`].
+    pub states: Vec<usize>,
+    pub candidates: Vec<Reg>,
+    /// `k x n`, row-major.
+    pub selectors: Vec<Reg>,
+    pub jacobian_tape: Tape,
+    pub jacobian: Vec<Reg>,
+    pub rows: usize,
+    pub candidate_names: Vec<String>,
+    pub initial: Vec<usize>,
 }
 
 impl CompiledModel {
@@ -556,6 +598,30 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         }
     }
     let mut initial_regs = Vec::new();
+    let mut initial_names = Vec::new();
+    let mut initial_orders = Vec::new();
+    let selectors: std::collections::HashSet<ScalarId> = plan
+        .state_sets
+        .iter()
+        .flat_map(|s| s.selectors.iter().copied())
+        .collect();
+    let mut step_equations: HashMap<ScalarId, Vec<unimo_dae::dae::EqId>> = HashMap::default();
+    for step in &plan.steps {
+        match step {
+            PlanStep::Assign { var, eq, .. } => {
+                step_equations.insert(*var, vec![*eq]);
+            }
+            PlanStep::Block(b) => {
+                for v in b
+                    .iteration_vars
+                    .iter()
+                    .chain(b.inner.iter().map(|(v, _)| v))
+                {
+                    step_equations.insert(*v, b.equations.clone());
+                }
+            }
+        }
+    }
     let mut initial_assigned = Vec::new();
     let mut initial_pre_assigned = false;
     for (l, r) in pairs.drain(..) {
@@ -595,6 +661,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         let d = c.temp_public();
         initial_tape.ops.push(crate::tape::Op::Sub(d, lr, rr));
         initial_regs.push(d);
+        initial_names.push((format!("{} = {}", show(l), show(r)), None));
+        initial_orders.push(u32::MAX);
     }
     for (s, st) in arena_starts {
         let rr = c.expr(st, &mut initial_tape, &mut memo);
@@ -603,6 +671,91 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
             .ops
             .push(crate::tape::Op::Sub(d, layout.var(s), rr));
         initial_regs.push(d);
+        // The model equations of the step computing `s` (a differentiated one as
+        // `d/dt (...)` of its original; the selection of a state set left out).
+        let constraint = step_equations.get(&s).map(|eqs| {
+            eqs.iter()
+                .filter(|eq| {
+                    let e = &dae.equations[eq.index()];
+                    !dae.arena
+                        .vars(e.lhs)
+                        .iter()
+                        .chain(&dae.arena.vars(e.rhs))
+                        .any(|v| selectors.contains(v))
+                })
+                .map(|eq| {
+                    let mut eq = *eq;
+                    let mut order = 0;
+                    while let Some(b) = dae.equations[eq.index()].derivative_of {
+                        eq = b;
+                        order += 1;
+                    }
+                    let e = &dae.equations[eq.index()];
+                    let text = format!("{} = {}", show(e.lhs), show(e.rhs));
+                    match order {
+                        0 => text,
+                        1 => format!("d/dt ({text})"),
+                        n => format!("d^{n}/dt^{n} ({text})"),
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join("`, `")
+        });
+        initial_names.push((
+            format!("{} = {} (fixed start)", dae.name(s), show(st)),
+            constraint,
+        ));
+        // Position-like variables (more derivatives above them) are decided first.
+        let mut order = 0;
+        let mut cur = dae.scalar(s).derivative;
+        while let Some(d) = cur {
+            order += 1;
+            cur = dae.scalar(d).derivative;
+        }
+        initial_orders.push(order);
+    }
+
+    // Constraints fully fixed by start values.
+    let mut fixed_constraints_tape = Tape::default();
+    let mut fixed_constraints = Vec::new();
+    let mut memo = HashMap::default();
+    let differentiated: std::collections::HashSet<unimo_dae::dae::EqId> = dae
+        .equations
+        .iter()
+        .filter_map(|e| e.derivative_of)
+        .collect();
+    for (k, e) in dae.equations.iter().enumerate() {
+        let id = unimo_dae::dae::EqId(k as u32);
+        if e.derivative_of.is_some() || !differentiated.contains(&id) {
+            continue;
+        }
+        let mut vars = dae.arena.vars(e.lhs);
+        vars.extend(dae.arena.vars(e.rhs));
+        vars.sort();
+        vars.dedup();
+        vars.retain(|&v| {
+            !matches!(
+                dae.scalar(v).kind,
+                ScalarKind::Parameter | ScalarKind::Constant
+            )
+        });
+        let all_fixed = !vars.is_empty()
+            && vars.iter().all(|&v| {
+                let sc = dae.scalar(v);
+                sc.fixed == Some(true)
+                    && sc.start.is_some()
+                    && sc.alias.is_none()
+                    && matches!(sc.kind, ScalarKind::Continuous)
+            });
+        if !all_fixed {
+            continue;
+        }
+        fixed_constraints.push(FixedConstraint {
+            lhs: c.expr(e.lhs, &mut fixed_constraints_tape, &mut memo),
+            rhs: c.expr(e.rhs, &mut fixed_constraints_tape, &mut memo),
+            text: format!("{} = {}", show(e.lhs), show(e.rhs)),
+            variables: vars.iter().map(|&v| (dae.name(v), layout.var(v))).collect(),
+        });
     }
 
     let discretes = dae
@@ -642,6 +795,38 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     } else {
         symbolic_jacobian(dae, plan, &mut c)
     };
+    let state_sets = plan
+        .state_sets
+        .iter()
+        .map(|set| {
+            let mut jacobian_tape = Tape::default();
+            let mut memo = HashMap::default();
+            let jacobian = set
+                .jacobian
+                .iter()
+                .map(|&e| c.expr(e, &mut jacobian_tape, &mut memo))
+                .collect();
+            CompiledStateSet {
+                states: set
+                    .states
+                    .iter()
+                    .map(|s| {
+                        plan.states
+                            .iter()
+                            .position(|x| x == s)
+                            .expect("a set's states are states")
+                    })
+                    .collect(),
+                candidates: set.candidates.iter().map(|&x| layout.var(x)).collect(),
+                selectors: set.selectors.iter().map(|&a| layout.var(a)).collect(),
+                jacobian_tape,
+                jacobian,
+                rows: set.equations.len(),
+                candidate_names: set.candidates.iter().map(|&x| dae.name(x)).collect(),
+                initial: set.initial.clone(),
+            }
+        })
+        .collect();
     let n_registers = c.n_registers();
     let constants = std::mem::take(&mut c.constants);
     let mut m = CompiledModel {
@@ -676,6 +861,10 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         dependent_parameters,
         initial_tape,
         initial_residuals: initial_regs,
+        initial_names,
+        initial_orders,
+        fixed_constraints_tape,
+        fixed_constraints,
         initial_assigned,
         initial_pre_assigned,
         ops_total: 0,
@@ -684,6 +873,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         objects_tape,
         objects,
         uses_terminal: dae.uses_terminal,
+        state_sets,
     };
     m.relation_held = held_relations(&m);
     m.ops_total = m

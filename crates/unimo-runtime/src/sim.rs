@@ -145,6 +145,8 @@ pub struct SimStats {
     pub rhs_evaluations: u64,
     /// The collision world's counters, when the model has one.
     pub collision: Option<crate::collision::CollisionStats>,
+    /// Times a dynamically selected state set changed its states (after the start).
+    pub state_selections: usize,
 }
 
 /// Results computed so far (also after a failure).
@@ -319,7 +321,14 @@ pub struct Simulator<'a> {
     non_finite: Option<SimError>,
     /// Consecutive state events that ended in a sliding mode.
     sliding_events: usize,
+    /// Per dynamic state set: the candidate each of its states is.
+    selections: Vec<Vec<usize>>,
 }
+
+/// A dynamic state set changes its states when the current choice's pivot falls below
+/// this fraction of the best one's (hysteresis: no switching back and forth between two
+/// choices of about equal quality).
+const RESELECT_RATIO: f64 = 0.5;
 
 impl<'a> Simulator<'a> {
     pub fn new(m: &'a CompiledModel) -> Simulator<'a> {
@@ -356,7 +365,84 @@ impl<'a> Simulator<'a> {
             terminate: None,
             non_finite: None,
             sliding_events: 0,
+            selections: m.state_sets.iter().map(|s| s.initial.clone()).collect(),
         }
+    }
+
+    /// Dynamic state selection: evaluates each set's Jacobian at the current registers
+    /// and, where the current choice of states is ill-conditioned (or, with `best`,
+    /// whenever another is better), switches to the choice with the best pivots: the
+    /// selection `A` (and its `pre`) and the set's states `s = A x` are set from the
+    /// current candidates. Returns whether any set changed.
+    fn select_states(&mut self, best: bool) -> bool {
+        let m = self.m();
+        let mut changed = false;
+        for (k, set) in m.state_sets.iter().enumerate() {
+            set.jacobian_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+            let n = set.candidates.len();
+            let a: Vec<f64> = set
+                .jacobian
+                .iter()
+                .map(|&r| self.ode.regs[r as usize])
+                .collect();
+            if a.iter().any(|v| !v.is_finite()) {
+                continue;
+            }
+            let dummies = pick_columns(&a, set.rows, n);
+            if dummies.len() < set.rows {
+                continue;
+            }
+            let states: Vec<usize> = (0..n).filter(|j| !dummies.contains(j)).collect();
+            if states == self.selections[k] {
+                continue;
+            }
+            let current: Vec<usize> = (0..n).filter(|j| !self.selections[k].contains(j)).collect();
+            let det_current = abs_det(&a, set.rows, n, &current);
+            let det_best = abs_det(&a, set.rows, n, &dummies);
+            let switch = if best {
+                det_best > det_current
+            } else {
+                det_current < RESELECT_RATIO * det_best
+            };
+            if !switch {
+                continue;
+            }
+            let pre = m.layout.pre_base as usize;
+            for (i, &j_state) in states.iter().enumerate() {
+                for j in 0..n {
+                    let r = set.selectors[i * n + j] as usize;
+                    let v = f64::from(j == j_state);
+                    self.ode.regs[r] = v;
+                    self.ode.regs[pre + r] = v;
+                }
+                let value = self.ode.regs[set.candidates[j_state] as usize];
+                self.ode.regs[m.states[set.states[i]] as usize] = value;
+            }
+            self.selections[k] = states;
+            changed = true;
+        }
+        changed
+    }
+
+    /// After an accepted step or an event: dynamic state selection at the solver's
+    /// current point; a switch restarts the solver there.
+    fn reselect_after_step(&mut self, solver: &mut Solver) -> Result<(), SimError> {
+        if self.m().state_sets.is_empty() {
+            return Ok(());
+        }
+        let t = solver.current_time();
+        let x = solver.state().to_vec();
+        self.load_state(t, &x)?;
+        if self.select_states(false) {
+            self.result.stats.state_selections += 1;
+            self.eval_plan()?;
+            let x = self.states();
+            self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
+            solver
+                .reset(&mut self.ode, t, &x)
+                .map_err(|e| self.solver_error(e))?;
+        }
+        Ok(())
     }
 
     fn m(&self) -> &'a CompiledModel {
@@ -447,6 +533,32 @@ impl<'a> Simulator<'a> {
             });
         }
         m.starts.run(&mut self.ode.regs, &mut self.ode.ev);
+        // A constraint whose variables all have fixed starts must hold at them.
+        m.fixed_constraints_tape
+            .run(&mut self.ode.regs, &mut self.ode.ev);
+        for c in &m.fixed_constraints {
+            let (l, r) = (self.ode.regs[c.lhs as usize], self.ode.regs[c.rhs as usize]);
+            if (l - r).abs() > 1e-9 * (1.0 + l.abs().max(r.abs())) || !(l - r).is_finite() {
+                let values: Vec<String> = c
+                    .variables
+                    .iter()
+                    .map(|(n, reg)| format!("{n} = {:?}", self.ode.regs[*reg as usize]))
+                    .collect();
+                return Err(SimError::Init {
+                    message: format!(
+                        "the fixed start values {} contradict the equation `{}` \
+                         (its sides differ by {:e}); free one of them (fixed = false) or \
+                         make them consistent",
+                        values.join(", "),
+                        c.text,
+                        (l - r).abs()
+                    ),
+                    culprits: c.variables.iter().map(|(n, _)| n.clone()).collect(),
+                });
+            }
+        }
+        // Dynamic state sets start with the best choice at the start values.
+        self.select_states(true);
         // pre(v) starts at the start value.
         for s in 0..layout.n_scalars {
             self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
@@ -482,6 +594,11 @@ impl<'a> Simulator<'a> {
         for &c in &m.conditions {
             self.cond_prev[c as usize] = self.ode.regs[c as usize];
         }
+        // The consistent values may call for other states than the start values did.
+        if self.select_states(true) {
+            self.eval_plan()?;
+        }
+        let m = self.m();
         // Sample instants.
         self.sample_next = m
             .samples
@@ -516,14 +633,86 @@ impl<'a> Simulator<'a> {
         // More initial equations than unknowns is legal when the extra ones are
         // redundant and hold at the solution (fixed starts on both ends of a rigid
         // connection): the independent equations are solved, the others checked.
-        let too_many = |norm: f64| SimError::Init {
-            message: format!(
-                "{n_eq} initial equations for {} unknowns (states without fixed = true, \
-                 parameters with fixed = false), and the extra ones do not hold \
-                 (residual {norm:e}): the fixed start values contradict each other",
-                free.len()
-            ),
-            culprits: names(&free),
+        // The equations that do not hold once the independent ones are solved, and the
+        // model equations through which they contradict the solved ones.
+        let explain = |f: &[f64], solved: &[usize]| -> (String, Vec<String>) {
+            let mut off = Vec::new();
+            let mut through: Vec<String> = Vec::new();
+            let mut culprits = Vec::new();
+            // The solved equations of the same order as one that is off take part.
+            let orders: Vec<u32> = (0..f.len())
+                .filter(|&i| f[i].abs() > 1e-9 && !solved.contains(&i))
+                .map(|i| m.initial_orders.get(i).copied().unwrap_or(u32::MAX))
+                .collect();
+            let involved = |i: usize| {
+                f[i].abs() > 1e-9
+                    || (solved.contains(&i)
+                        && orders.contains(&m.initial_orders.get(i).copied().unwrap_or(u32::MAX)))
+            };
+            for (i, (text, constraint)) in m.initial_names.iter().enumerate() {
+                if involved(i) {
+                    if !solved.contains(&i) {
+                        off.push(format!("`{text}` is off by {:.3e}", f[i].abs()));
+                    }
+                    if let Some(c) = constraint.as_ref().filter(|c| !through.contains(c)) {
+                        through.push(c.clone());
+                    }
+                    culprits.push(text.split(" = ").next().unwrap_or(text).to_string());
+                }
+            }
+            let held: Vec<String> = solved
+                .iter()
+                .filter(|&&i| involved(i))
+                .filter_map(|&i| m.initial_names.get(i).map(|(t, _)| format!("`{t}`")))
+                .collect();
+            let mut text = off.join(", ");
+            if !held.is_empty() {
+                text += &format!(
+                    " when {} {}",
+                    held.join(", "),
+                    if held.len() == 1 { "holds" } else { "hold" }
+                );
+            }
+            if !through.is_empty() {
+                text += &format!(
+                    "; they are related by the model's equations `{}`",
+                    through.join("`, `")
+                );
+            }
+            if culprits.is_empty() {
+                culprits = names(&free);
+            }
+            (text, culprits)
+        };
+        let too_many = |f: &[f64], solved: &[usize]| {
+            let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            let (detail, culprits) = explain(f, solved);
+            SimError::Init {
+                message: format!(
+                    "{n_eq} initial equations for {} unknowns (states without fixed = true, \
+                     parameters with fixed = false), and the extra ones do not hold \
+                     (residual {norm:e}): the fixed start values contradict each other{}",
+                    free.len(),
+                    if detail.is_empty() {
+                        String::new()
+                    } else {
+                        format!(": {detail}")
+                    },
+                ),
+                culprits,
+            }
+        };
+        // Any other failure, with the initial equations that are off at the last iterate.
+        let failed = |what: &str, f: &[f64], solved: &[usize]| {
+            let (detail, culprits) = explain(f, solved);
+            SimError::Init {
+                message: if detail.is_empty() {
+                    what.to_string()
+                } else {
+                    format!("{what}; at the last iterate {detail}")
+                },
+                culprits,
+            }
         };
         // The plan is evaluated leniently at the iterates: a block that the initial
         // equations do not need may fail at the start values; that is an error only when
@@ -575,17 +764,23 @@ impl<'a> Simulator<'a> {
                     jac[i * free.len() + j] = (fp[i] - f[i]) / h;
                 }
             }
-            let (rows, cols) =
-                chosen.get_or_insert_with(|| independent_rows_and_columns(&jac, n_eq, free.len()));
+            let (rows, cols) = chosen.get_or_insert_with(|| {
+                if n_eq > free.len() {
+                    independent_rows_in_order(&jac, n_eq, free.len(), &m.initial_orders)
+                } else {
+                    independent_rows_and_columns(&jac, n_eq, free.len())
+                }
+            });
             if rows.len() < n_eq && n_eq <= free.len() {
-                return Err(SimError::Init {
-                    message: "the initial equations do not determine the states (singular)".into(),
-                    culprits: names(&free),
-                });
+                return Err(failed(
+                    "the initial equations do not determine the states (singular)",
+                    &f,
+                    &[],
+                ));
             }
             let k = rows.len();
             if k == 0 {
-                return Err(too_many(norm));
+                return Err(too_many(&f, &[]));
             }
             let mut a = vec![0.0; k * k];
             for (ii, &i) in rows.iter().enumerate() {
@@ -596,10 +791,11 @@ impl<'a> Simulator<'a> {
             let mut b: Vec<f64> = rows.iter().map(|&i| -f[i]).collect();
             let mut perm = vec![0; k];
             if !crate::eval::lu_solve(k, &mut a, &mut b, &mut perm) {
-                return Err(SimError::Init {
-                    message: "the initial equations have a singular Jacobian".into(),
-                    culprits: names(&free),
-                });
+                return Err(failed(
+                    "the initial equations have a singular Jacobian",
+                    &f,
+                    rows,
+                ));
             }
             for (jj, &j) in cols.iter().enumerate() {
                 let reg = unknowns[free[j]].0;
@@ -614,15 +810,15 @@ impl<'a> Simulator<'a> {
         if let Some((rows, _)) = &chosen {
             let solved = rows.iter().fold(0.0f64, |a, &i| a.max(f[i].abs()));
             if rows.len() < n_eq && solved <= 1e-9 {
-                return Err(too_many(norm));
+                return Err(too_many(&f, rows));
             }
         }
-        Err(SimError::Init {
-            message: format!(
-                "Newton on the initial equations did not converge (residual {norm:e})"
-            ),
-            culprits: names(&free),
-        })
+        let solved = chosen.as_ref().map(|(r, _)| r.clone()).unwrap_or_default();
+        Err(failed(
+            &format!("Newton on the initial equations did not converge (residual {norm:e})"),
+            &f,
+            &solved,
+        ))
     }
 
     /// Modelica's event iteration at `t`: evaluate with `pre` values, fire `when`
@@ -1010,6 +1206,10 @@ impl<'a> Simulator<'a> {
                     }
                 }
             }
+            if let Err(e) = self.reselect_after_step(&mut solver) {
+                self.result.error = Some(e);
+                break;
+            }
             if let Some(e) = self.take_non_finite(Some(now - prev)) {
                 self.result.error = Some(e);
                 break;
@@ -1236,10 +1436,93 @@ pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
     Simulator::new(m).run(o)
 }
 
+/// `|det|` of the square submatrix of the `rows x cols` matrix `a` made of `columns`
+/// (Gaussian elimination with partial pivoting).
+fn abs_det(a: &[f64], rows: usize, cols: usize, columns: &[usize]) -> f64 {
+    let n = columns.len();
+    if n != rows {
+        return 0.0;
+    }
+    let mut b: Vec<f64> = (0..n)
+        .flat_map(|i| columns.iter().map(move |&j| a[i * cols + j]))
+        .collect();
+    let mut det = 1.0;
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| b[i * n + c].abs().total_cmp(&b[j * n + c].abs()))
+            .unwrap_or(c);
+        let pivot = b[p * n + c];
+        if pivot == 0.0 {
+            return 0.0;
+        }
+        if p != c {
+            for j in 0..n {
+                b.swap(p * n + j, c * n + j);
+            }
+        }
+        det *= pivot;
+        for i in c + 1..n {
+            let f = b[i * n + c] / pivot;
+            for j in c..n {
+                b[i * n + j] -= f * b[c * n + j];
+            }
+        }
+    }
+    det.abs()
+}
+
 /// Picks `k` columns of the `rows x cols` matrix `a` that make it best conditioned
 /// (greedy Gaussian elimination with complete pivoting on the columns).
 /// Independent equations (rows) of the initial equations' Jacobian `a` (`rows` x
 /// `cols`), and as many unknowns (columns) they determine, both by pivoting.
+/// Like [`independent_rows_and_columns`], but the rows are taken greedily in
+/// decreasing `order` (ties by index), each when it is independent of those taken.
+fn independent_rows_in_order(
+    a: &[f64],
+    rows: usize,
+    cols: usize,
+    order: &[u32],
+) -> (Vec<usize>, Vec<usize>) {
+    let mut sequence: Vec<usize> = (0..rows).collect();
+    sequence.sort_by_key(|&i| std::cmp::Reverse(order.get(i).copied().unwrap_or(u32::MAX)));
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut chosen_rows = Vec::new();
+    for i in sequence {
+        if basis.len() == cols {
+            break;
+        }
+        let mut r = a[i * cols..(i + 1) * cols].to_vec();
+        let norm = r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if norm == 0.0 || !norm.is_finite() {
+            continue;
+        }
+        for b in &basis {
+            let p = b
+                .iter()
+                .enumerate()
+                .fold(0, |k, (j, x)| if x.abs() > b[k].abs() { j } else { k });
+            let f = r[p] / b[p];
+            for (x, y) in r.iter_mut().zip(b) {
+                *x -= f * y;
+            }
+        }
+        if r.iter().fold(0.0f64, |m, x| m.max(x.abs())) > 1e-10 * norm {
+            basis.push(r);
+            chosen_rows.push(i);
+        }
+    }
+    chosen_rows.sort_unstable();
+    let sub: Vec<f64> = chosen_rows
+        .iter()
+        .flat_map(|&i| a[i * cols..(i + 1) * cols].iter().copied())
+        .collect();
+    let chosen_cols = pick_columns(&sub, chosen_rows.len(), cols);
+    if chosen_cols.len() < chosen_rows.len() {
+        return (Vec::new(), Vec::new());
+    }
+    (chosen_rows, chosen_cols)
+}
+
 fn independent_rows_and_columns(a: &[f64], rows: usize, cols: usize) -> (Vec<usize>, Vec<usize>) {
     let mut transposed = vec![0.0; rows * cols];
     for i in 0..rows {

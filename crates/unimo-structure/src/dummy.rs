@@ -46,6 +46,22 @@ pub struct DummyDerivatives {
     pub levels: Vec<DummyLevel>,
     /// Variables with priority `Always` that could not stay states.
     pub always_not_states: Vec<VarId>,
+    /// Candidate sets whose choice is made at run time (dynamic state selection): all
+    /// their candidates are dummies here, and the symbolic side adds the set's states.
+    pub state_sets: Vec<StateSetSpec>,
+}
+
+/// A group of a level's equations and candidates (a connected component of the level's
+/// graph with more candidates than equations) whose dummies are chosen at run time.
+/// Every candidate is a dummy in [`DummyDerivatives`]; `initial` are the dummies the
+/// static order would have chosen (the first selection). The set has
+/// `candidates.len() - eqs.len()` states, each one of the candidates' integrals.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StateSetSpec {
+    pub level: u32,
+    pub eqs: Vec<EqId>,
+    pub candidates: Vec<VarId>,
+    pub initial: Vec<VarId>,
 }
 
 impl DummyDerivatives {
@@ -87,6 +103,22 @@ pub fn select_dummy_derivatives(
     pantelides: &PantelidesResult,
     priority: impl Fn(VarId) -> StateSelectPriority,
 ) -> Result<DummyDerivatives, StructError> {
+    select_dummy_derivatives_with_sets(graph, pantelides, priority, |_, _| false)
+}
+
+/// [`select_dummy_derivatives`] with dynamic state selection: a connected component of
+/// a level (its equations and the candidates they contain) with more candidates than
+/// equations for which `dynamic(eqs, candidates)` holds becomes a [`StateSetSpec`]:
+/// all its candidates are dummies, and the next level takes all their integrals as
+/// candidates. The caller adds, per set, the set's states `s = A x` (`x` the
+/// candidates' integrals, `A` a selection switched at run time) and `der(s) = A der(x)`;
+/// without that the system is not index 1.
+pub fn select_dummy_derivatives_with_sets(
+    graph: &BipartiteGraph,
+    pantelides: &PantelidesResult,
+    priority: impl Fn(VarId) -> StateSelectPriority,
+    mut dynamic: impl FnMut(&[EqId], &[VarId]) -> bool,
+) -> Result<DummyDerivatives, StructError> {
     let chains = &pantelides.chains;
     let n_vars = graph.n_vars();
     let var_levels = chains.var_levels();
@@ -105,21 +137,6 @@ pub fn select_dummy_derivatives(
         .eqs()
         .filter(|&e| chains.eq_derivative(e).is_none() && chains.eq_integral(e).is_some())
         .collect();
-    // Derivatives that occur in an equation of the input (not only in equations made by
-    // index reduction): the model's own states. At equal priority the derivatives that
-    // index reduction introduced become dummies first, so the model's states stay states
-    // (the usual "natural states" rule). Without it the order by id prefers the input's
-    // derivatives as dummies: a body's position then becomes algebraic and is solved
-    // from the velocity of a contact point, v_P = v + omega x (r_P - r), whose Jacobian
-    // in r is singular.
-    let mut in_input = vec![false; n_vars];
-    for e in graph.eqs() {
-        if chains.eq_integral(e).is_none() {
-            for &v in graph.eq_vars(e) {
-                in_input[v.index()] = true;
-            }
-        }
-    }
     // Derivatives that occur in an equation of the input (not only in equations made by
     // index reduction): the model's own states. At equal priority the derivatives that
     // index reduction introduced become dummies first, so the model's states stay states
@@ -166,6 +183,29 @@ pub fn select_dummy_derivatives(
                 allowed[state.index()] = true;
             }
         }
+        for (comp_eqs, comp_vars) in components(graph, &eqs, &candidates) {
+            if comp_vars.len() <= comp_eqs.len() || !dynamic(&comp_eqs, &comp_vars) {
+                continue;
+            }
+            let initial: Vec<VarId> = assignments
+                .iter()
+                .map(|&(_, d)| d)
+                .filter(|d| comp_vars.contains(d))
+                .collect();
+            for &d in &comp_vars {
+                result.is_dummy[d.index()] = true;
+                let state = chains.var_integral(d).expect("candidates are derivatives");
+                if chains.var_integral(state).is_some() {
+                    allowed[state.index()] = true;
+                }
+            }
+            result.state_sets.push(StateSetSpec {
+                level,
+                eqs: comp_eqs,
+                candidates: comp_vars,
+                initial,
+            });
+        }
         result.levels.push(DummyLevel { level, assignments });
         eqs = eqs
             .iter()
@@ -176,6 +216,62 @@ pub fn select_dummy_derivatives(
     }
     classify_variables(graph, pantelides, &mut result);
     Ok(result)
+}
+
+/// The connected components of a level's graph (equations × candidates, candidates in
+/// their given order), each as (equations, candidates).
+fn components(
+    graph: &BipartiteGraph,
+    eqs: &[EqId],
+    candidates: &[VarId],
+) -> Vec<(Vec<EqId>, Vec<VarId>)> {
+    let local: std::collections::HashMap<VarId, usize> = candidates
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v, i))
+        .collect();
+    // Union-find over the candidates; each equation joins the candidates it contains.
+    let mut parent: Vec<usize> = (0..candidates.len()).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut eq_root = Vec::with_capacity(eqs.len());
+    for &e in eqs {
+        let mut first = None;
+        for v in graph.eq_vars(e) {
+            if let Some(&i) = local.get(v) {
+                match first {
+                    None => first = Some(i),
+                    Some(f) => {
+                        let (a, b) = (find(&mut parent, f), find(&mut parent, i));
+                        parent[a] = b;
+                    }
+                }
+            }
+        }
+        eq_root.push(first);
+    }
+    let mut index_of_root: std::collections::HashMap<usize, usize> = Default::default();
+    let mut out: Vec<(Vec<EqId>, Vec<VarId>)> = Vec::new();
+    for (i, &v) in candidates.iter().enumerate() {
+        let r = find(&mut parent, i);
+        let k = *index_of_root.entry(r).or_insert_with(|| {
+            out.push((Vec::new(), Vec::new()));
+            out.len() - 1
+        });
+        out[k].1.push(v);
+    }
+    for (j, &e) in eqs.iter().enumerate() {
+        if let Some(i) = eq_root[j] {
+            let r = find(&mut parent, i);
+            out[index_of_root[&r]].0.push(e);
+        }
+    }
+    out
 }
 
 /// Fills states, dummy states and unknowns from the dummies.

@@ -107,7 +107,10 @@ pub mod verify;
 pub use blt::{blt, Block};
 pub use chains::DerivativeChains;
 pub use dm::{dulmage_mendelsohn, dulmage_mendelsohn_where, singularity, DulmageMendelsohn, Part};
-pub use dummy::{select_dummy_derivatives, DummyDerivatives, DummyLevel, StateSelectPriority};
+pub use dummy::{
+    select_dummy_derivatives, select_dummy_derivatives_with_sets, DummyDerivatives, DummyLevel,
+    StateSelectPriority, StateSetSpec,
+};
 pub use dump::{FnNaming, IdNaming, Naming};
 pub use error::StructError;
 pub use graph::{BipartiteGraph, VarIncidence};

@@ -89,14 +89,21 @@ pub fn verify_pantelides(
     Ok(())
 }
 
-/// As many dummies as differentiated equations, all derivatives; states and dummy
-/// states disjoint; the reduced system has a perfect matching (index 1).
+/// As many dummies as differentiated equations (plus each state set's extra candidates),
+/// all derivatives; states and dummy states disjoint; without state sets, the reduced
+/// system has a perfect matching (index 1). With state sets it is index 1 only once the
+/// caller has added the sets' equations, which this crate does not see.
 pub fn verify_dummy_derivatives(
     graph: &BipartiteGraph,
     pantelides: &PantelidesResult,
     dummies: &DummyDerivatives,
 ) -> Result<(), StructError> {
-    let differentiated = pantelides.differentiated_eqs().len();
+    let differentiated = pantelides.differentiated_eqs().len()
+        + dummies
+            .state_sets
+            .iter()
+            .map(|s| s.candidates.len() - s.eqs.len())
+            .sum::<usize>();
     if dummies.dummies.len() != differentiated {
         return fail(
             "dummy derivatives",
@@ -125,6 +132,9 @@ pub fn verify_dummy_derivatives(
             "dummy derivatives",
             format!("{v} is both a state and a dummy state"),
         );
+    }
+    if !dummies.state_sets.is_empty() {
+        return Ok(());
     }
     let unknowns = dummies.is_unknown.iter().filter(|&&u| u).count();
     if unknowns != graph.n_eqs() {

@@ -1,0 +1,34 @@
+model DoublePendulumCartesian "Double pendulum of point masses on rigid rods in Cartesian coordinates (index 3): two constraints, four position candidates, states chosen at run time"
+  parameter Real L1 = 1 "Length of the upper rod";
+  parameter Real L2 = 0.8 "Length of the lower rod";
+  parameter Real m1 = 1 "Upper mass";
+  parameter Real m2 = 0.5 "Lower mass";
+  parameter Real g = 9.81 "Gravity";
+  parameter Real phi1 = 1.5707963267948966 "Initial angle of the upper rod from the downward vertical";
+  parameter Real phi2 = 3.141592653589793 "Initial angle of the lower rod from the downward vertical";
+  Real x1(start = L1*sin(phi1), fixed = true);
+  Real y1(start = -L1*cos(phi1), fixed = true);
+  Real x2(start = L1*sin(phi1) + L2*sin(phi2), fixed = true);
+  Real y2(start = -L1*cos(phi1) - L2*cos(phi2), fixed = true);
+  Real vx1(start = 0, fixed = true);
+  Real vy1(start = 0, fixed = true);
+  Real vx2(start = 0, fixed = true);
+  Real vy2(start = 0, fixed = true);
+  Real F1 "Force per length in the upper rod";
+  Real F2 "Force per length in the lower rod";
+  Real energy = m1*(vx1^2 + vy1^2)/2 + m2*(vx2^2 + vy2^2)/2 + m1*g*y1 + m2*g*y2;
+  Real drift1 = x1^2 + y1^2 - L1^2;
+  Real drift2 = (x2 - x1)^2 + (y2 - y1)^2 - L2^2;
+equation
+  der(x1) = vx1;
+  der(y1) = vy1;
+  der(x2) = vx2;
+  der(y2) = vy2;
+  m1*der(vx1) = -F1*x1 + F2*(x2 - x1);
+  m1*der(vy1) = -F1*y1 + F2*(y2 - y1) - m1*g;
+  m2*der(vx2) = -F2*(x2 - x1);
+  m2*der(vy2) = -F2*(y2 - y1) - m2*g;
+  x1^2 + y1^2 = L1^2;
+  (x2 - x1)^2 + (y2 - y1)^2 = L2^2;
+  annotation(experiment(StopTime = 20, Tolerance = 1e-8, Interval = 0.01));
+end DoublePendulumCartesian;

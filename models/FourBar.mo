@@ -1,0 +1,36 @@
+model FourBar "Four-bar linkage (a closed kinematic loop) of point masses on massless rods in Cartesian coordinates: three constraints on four coordinates, one degree of freedom; the crank turns through configurations where every static choice of state is singular"
+  parameter Real d = 3 "Ground link: the pivots A = (0, 0) and D = (d, 0)";
+  parameter Real l1 = 1 "Crank A-B";
+  parameter Real l2 = 3 "Coupler B-C";
+  parameter Real l3 = 2 "Rocker C-D";
+  parameter Real mB = 1 "Mass at B";
+  parameter Real mC = 1 "Mass at C";
+  parameter Real g = 9.81 "Gravity";
+  parameter Real w0 = 8 "Initial angular velocity of the crank";
+  Real xB(start = 0, fixed = true);
+  Real yB(start = l1);
+  Real xC(start = 2.5);
+  Real yC(start = 1.9);
+  Real vxB(start = -l1*w0, fixed = true);
+  Real vyB;
+  Real vxC;
+  Real vyC;
+  Real F1 "Force per length in the crank";
+  Real F2 "Force per length in the coupler";
+  Real F3 "Force per length in the rocker";
+  Real energy = mB*(vxB^2 + vyB^2)/2 + mC*(vxC^2 + vyC^2)/2 + mB*g*yB + mC*g*yC;
+  Real drift = abs(xB^2 + yB^2 - l1^2) + abs((xC - xB)^2 + (yC - yB)^2 - l2^2) + abs((xC - d)^2 + yC^2 - l3^2);
+equation
+  der(xB) = vxB;
+  der(yB) = vyB;
+  der(xC) = vxC;
+  der(yC) = vyC;
+  mB*der(vxB) = -F1*xB + F2*(xC - xB);
+  mB*der(vyB) = -F1*yB + F2*(yC - yB) - mB*g;
+  mC*der(vxC) = -F2*(xC - xB) - F3*(xC - d);
+  mC*der(vyC) = -F2*(yC - yB) - F3*yC - mC*g;
+  xB^2 + yB^2 = l1^2;
+  (xC - xB)^2 + (yC - yB)^2 = l2^2;
+  (xC - d)^2 + yC^2 = l3^2;
+  annotation(experiment(StopTime = 20, Tolerance = 1e-8, Interval = 0.01));
+end FourBar;

@@ -1,0 +1,34 @@
+model SliderCrank "Slider-crank mechanism of point masses as an index-3 DAE with one Lagrange multiplier per constraint: crank A-B about the origin, rod B-C, slider C on the x axis"
+  parameter Real r = 0.5 "Crank length";
+  parameter Real l = 1.5 "Rod length";
+  parameter Real mB = 1 "Mass at the crank pin B";
+  parameter Real mC = 2 "Mass of the slider C";
+  parameter Real g = 9.81 "Gravity";
+  parameter Real w0 = 6 "Initial angular velocity of the crank";
+  Real xB(start = 0.3, fixed = true) "Crank pin; x fixed, y found by initialization";
+  Real yB(start = 0.5);
+  Real xC(start = 1.5);
+  Real yC(start = 0);
+  Real vxB(start = -0.4*w0, fixed = true);
+  Real vyB;
+  Real vxC;
+  Real vyC;
+  Real lambda1 "Multiplier of the crank constraint";
+  Real lambda2 "Multiplier of the rod constraint";
+  Real lambda3 "Multiplier of the slider guide (its normal force)";
+  Real energy = mB*(vxB^2 + vyB^2)/2 + mC*(vxC^2 + vyC^2)/2 + mB*g*yB + mC*g*yC;
+  Real drift = abs(xB^2 + yB^2 - r^2) + abs((xC - xB)^2 + (yC - yB)^2 - l^2) + abs(yC);
+equation
+  der(xB) = vxB;
+  der(yB) = vyB;
+  der(xC) = vxC;
+  der(yC) = vyC;
+  mB*der(vxB) = -2*lambda1*xB + 2*lambda2*(xC - xB);
+  mB*der(vyB) = -2*lambda1*yB + 2*lambda2*(yC - yB) - mB*g;
+  mC*der(vxC) = -2*lambda2*(xC - xB);
+  mC*der(vyC) = -2*lambda2*(yC - yB) - lambda3 - mC*g;
+  xB^2 + yB^2 = r^2;
+  (xC - xB)^2 + (yC - yB)^2 = l^2;
+  yC = 0;
+  annotation(experiment(StopTime = 10, Tolerance = 1e-8, Interval = 0.01));
+end SliderCrank;
