@@ -248,6 +248,7 @@ pub struct Analysis {
 /// plan. Index reduction appends differentiated equations to `dae.equations`.
 pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     let n_original = dae.equations.len();
+    let exposed = crate::singular::expose_hidden_constraints(dae);
     let mut sys = DaeSystem::new(dae);
     let pantelides = st::pantelides(&mut sys).map_err(|e| struct_error(&sys, e))?;
     let graph = sys.graph.clone();
@@ -374,7 +375,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         plan.steps.push(PlanStep::Block(block));
     }
     let n_unknowns = dummies.is_unknown.iter().filter(|&&u| u).count();
-    let dump = structure_dump(&sys, &pantelides, &dummies, &blocks, &plan);
+    let dump = structure_dump(&sys, &pantelides, &dummies, &blocks, &plan, &exposed);
     let dae = sys.dae;
     plan.stats = PlanStats {
         flat_scalars: dae
@@ -584,6 +585,27 @@ fn zero_at_parameters(dae: &Dae, values: &mut HashMap<ScalarId, f64>, coef: Expr
     dae.arena.eval(coef, &ParameterValues(values)) == 0.0
 }
 
+/// The value of an expression of parameters and constants only (None otherwise, or
+/// when a parameter has no value).
+pub(crate) fn constant_value(
+    dae: &Dae,
+    values: &mut HashMap<ScalarId, f64>,
+    e: ExprId,
+) -> Option<f64> {
+    if let Some(c) = dae.arena.as_const(e) {
+        return Some(c);
+    }
+    let vars = dae.arena.vars(e);
+    if !vars.iter().all(|&s| is_parameter(dae, s)) {
+        return None;
+    }
+    for s in vars {
+        parameter_value(dae, values, s, 0);
+    }
+    let v = dae.arena.eval(e, &ParameterValues(values));
+    v.is_finite().then_some(v)
+}
+
 /// The value of a parameter or constant from its binding (else its start value); NaN
 /// when it has neither, depends on non-parameters or on itself.
 fn parameter_value(dae: &Dae, values: &mut HashMap<ScalarId, f64>, s: ScalarId, depth: u32) -> f64 {
@@ -770,6 +792,7 @@ fn structure_dump(
     dummies: &st::DummyDerivatives,
     blocks: &[st::Block],
     plan: &Plan,
+    exposed: &[EqId],
 ) -> String {
     use std::fmt::Write;
     let dae = &*sys.dae;
@@ -790,6 +813,20 @@ fn structure_dump(
         "max differentiations: {}",
         pantelides.max_differentiations()
     );
+    if !exposed.is_empty() {
+        let _ = writeln!(
+            o,
+            "hidden constraints (derivatives eliminated by a linear combination):"
+        );
+        for e in exposed {
+            let _ = writeln!(
+                o,
+                "  e{}: 0 = {}",
+                e.0,
+                dae.show(dae.equations[e.index()].lhs)
+            );
+        }
+    }
     // Derivative chains, one per base variable: `x -> der(x) -> der(der(x))`.
     let mut chains: Vec<String> = Vec::new();
     for k in 0..sys.graph.n_vars() {

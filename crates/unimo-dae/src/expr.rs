@@ -703,7 +703,27 @@ impl ExprArena {
         name: &dyn Fn(ScalarId) -> String,
         out: &mut String,
     ) -> fmt::Result {
-        self.write_prec(id, name, out, 0)
+        self.write_prec(id, name, out, 0, usize::MAX)
+    }
+
+    /// `id` as text of at most about `limit` bytes (cut with `...`): for messages
+    /// about expressions that may be huge when written out as trees.
+    pub fn to_short_string(
+        &self,
+        id: ExprId,
+        name: &dyn Fn(ScalarId) -> String,
+        limit: usize,
+    ) -> String {
+        let mut s = String::new();
+        if self.write_prec(id, name, &mut s, 0, limit).is_err() || s.len() > limit {
+            let mut cut = limit.min(s.len());
+            while !s.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            s.truncate(cut);
+            s.push_str("...");
+        }
+        s
     }
 
     fn write_prec(
@@ -712,8 +732,12 @@ impl ExprArena {
         name: &dyn Fn(ScalarId) -> String,
         out: &mut String,
         outer: u8,
+        limit: usize,
     ) -> fmt::Result {
         use std::fmt::Write;
+        if out.len() > limit {
+            return Err(fmt::Error);
+        }
         let prec = match self.node(id) {
             Node::If(..) => 1,
             Node::Or(..) => 2,
@@ -730,7 +754,7 @@ impl ExprArena {
         if paren {
             out.push('(');
         }
-        let w = |x: ExprId, p: u8, out: &mut String| self.write_prec(x, name, out, p);
+        let w = |x: ExprId, p: u8, out: &mut String| self.write_prec(x, name, out, p, limit);
         match self.node(id) {
             Node::Const(b) => {
                 let x = f64::from_bits(b);

@@ -20,6 +20,7 @@ pub mod lower;
 pub mod plan;
 pub mod prune;
 mod records;
+pub mod singular;
 pub mod tensor;
 
 pub use dae::Dae;

@@ -489,11 +489,9 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         roots.push((argument, lo));
         roots.push((argument, hi));
     }
-    let show = |e: ExprId| {
-        let mut text = String::new();
-        let _ = dae.arena.write(e, &|s| dae.name(s), &mut text);
-        text
-    };
+    // Texts for messages: cut at 300 bytes (a shared expression written as a tree
+    // can be exponentially long).
+    let show = |e: ExprId| dae.arena.to_short_string(e, &|s| dae.name(s), 300);
     let mut root_names: Vec<String> = zc.relations.iter().map(|&r| show(r)).collect();
     for &h in &zc.held {
         let text = show(h);
