@@ -527,3 +527,24 @@ fn fixed_false_parameters_are_solved_at_initialization() {
     let digits = scd(&r, &want);
     assert!(digits >= 8.0, "free parameter: scd {digits}");
 }
+
+/// Functions with algorithm sections count as one equation per output: `(r, phi) =
+/// polar(x, y)` (two outputs), `ds = step(s, k)` (a record in and out, a protected
+/// local), a while loop — the model balances and follows the closed form
+/// x = cos t, y = sin t, r = 1, phi = t, s.p = cos(2t), total = 10.
+#[test]
+fn functions_with_algorithms_tuples_and_records_balance() {
+    let m = load("tests/simulate/FunctionsCount.mo");
+    let r = run(&m, Method::Radau5, 1e-10, 1e-12, 1.0, 1);
+    let want = [
+        ("x", 1.0f64.cos()),
+        ("y", 1.0f64.sin()),
+        ("r", 1.0),
+        ("phi", 1.0),
+        ("s.p", 2.0f64.cos()),
+        ("s.v", -2.0 * 2.0f64.sin()),
+        ("total", 10.0),
+    ];
+    let digits = scd(&r, &want);
+    assert!(digits >= 8.0, "scd {digits}");
+}
