@@ -548,3 +548,21 @@ fn functions_with_algorithms_tuples_and_records_balance() {
     let digits = scd(&r, &want);
     assert!(digits >= 8.0, "scd {digits}");
 }
+
+/// `return` and `break` under conditions that depend on variables: the inlined body
+/// merges each exit into the result (`k` = index of the first element above 0.5, a
+/// sum capped with `break`, early returns), against the values computed by hand.
+#[test]
+fn conditional_return_and_break_are_inlined() {
+    let m = load("tests/simulate/ConditionalExits.mo");
+    for (stop, k, s, y) in [
+        (0.3, 2.0, 1.8, -0.8),
+        (0.15, 0.0, 0.9, -1.0),
+        (1.0, 1.0, 3.0, 1.0),
+    ] {
+        let r = run(&m, Method::Radau5, 1e-10, 1e-12, stop, 1);
+        assert_eq!(value(&r, "k"), k, "k at {stop}");
+        assert!((value(&r, "s") - s).abs() < 1e-12, "s at {stop}");
+        assert!((value(&r, "y") - y).abs() < 1e-12, "y at {stop}");
+    }
+}

@@ -24,6 +24,16 @@ pub(crate) enum Flow {
 
 type Snapshot = (Vec<Local>, Option<HashMap<ScalarId, ExprId>>);
 
+/// A `return` or `break` taken under a condition that depends on variables: when
+/// `cond` holds, execution left with `state`; the statements after it run on the
+/// other path. At the end of the function (`return`) or of the loop (`break`) the
+/// exits are merged into the final state, earlier exits taking precedence.
+pub(crate) struct Exit {
+    is_return: bool,
+    cond: ExprId,
+    state: Snapshot,
+}
+
 impl Lowerer<'_> {
     fn snapshot(&self) -> Snapshot {
         (self.locals.clone(), self.assigned.clone())
@@ -127,6 +137,23 @@ impl Lowerer<'_> {
             } => self.exec_if(branches, otherwise, st.span),
             StatementKind::For { indices, body } => self.exec_for(indices, body),
             StatementKind::While { condition, body } => {
+                let first_exit = self.exits.len();
+                let flow = self.exec_while(condition, body, st.span);
+                self.merge_exits(first_exit, false);
+                flow
+            }
+            StatementKind::When { branches } => {
+                self.when_statement(branches, st.span)?;
+                Ok(Flow::Next)
+            }
+            StatementKind::Return => Ok(Flow::Return),
+            StatementKind::Break => Ok(Flow::Break),
+        }
+    }
+
+    fn exec_while(&mut self, condition: &Expr, body: &[Statement], span: Span) -> DaeResult<Flow> {
+        {
+            {
                 for _ in 0..MAX_WHILE_ITERATIONS {
                     let c = self.scalar(condition)?;
                     match self.const_value(c) {
@@ -148,15 +175,9 @@ impl Lowerer<'_> {
                 Err(DaeError::new(
                     "E3015",
                     "a `while` loop ran a million times",
-                    st.span,
+                    span,
                 ))
             }
-            StatementKind::When { branches } => {
-                self.when_statement(branches, st.span)?;
-                Ok(Flow::Next)
-            }
-            StatementKind::Return => Ok(Flow::Return),
-            StatementKind::Break => Ok(Flow::Break),
         }
     }
 
@@ -176,22 +197,84 @@ impl Lowerer<'_> {
             None => {}
         }
         let before = self.snapshot();
+        let first_exit = self.exits.len();
         let f1 = self.exec_block(body)?;
+        self.guard_exits(first_exit, c);
         let then = self.snapshot();
         self.restore(before);
+        let not_c = self.dae.arena.not(c);
+        let first_exit = self.exits.len();
         let f2 = self.exec_if(rest, otherwise, span)?;
-        if !matches!((f1, f2), (Flow::Next, Flow::Next)) {
-            return Err(unsupported(
-                "`return` or `break` under a condition that depends on variables",
-                span,
-            ));
-        }
+        self.guard_exits(first_exit, not_c);
         let other = self.snapshot();
-        self.merge(c, then, other);
-        Ok(Flow::Next)
+        match (f1, f2) {
+            (Flow::Next, Flow::Next) => {
+                self.merge(c, then, other);
+                Ok(Flow::Next)
+            }
+            (Flow::Return, Flow::Return) => {
+                self.merge(c, then, other);
+                Ok(Flow::Return)
+            }
+            (Flow::Break, Flow::Break) => {
+                self.merge(c, then, other);
+                Ok(Flow::Break)
+            }
+            (Flow::Next, f) => {
+                self.exits.push(Exit {
+                    is_return: matches!(f, Flow::Return),
+                    cond: not_c,
+                    state: other,
+                });
+                self.restore(then);
+                Ok(Flow::Next)
+            }
+            (f, Flow::Next) => {
+                self.exits.push(Exit {
+                    is_return: matches!(f, Flow::Return),
+                    cond: c,
+                    state: then,
+                });
+                self.restore(other);
+                Ok(Flow::Next)
+            }
+            _ => Err(unsupported(
+                "`return` in one branch and `break` in the other of an `if` whose condition depends on variables",
+                span,
+            )),
+        }
+    }
+
+    /// The exits recorded since `first` were taken inside a branch entered when `c`
+    /// holds.
+    fn guard_exits(&mut self, first: usize, c: ExprId) {
+        for k in first..self.exits.len() {
+            let cond = self.exits[k].cond;
+            self.exits[k].cond = self.dae.arena.and(c, cond);
+        }
+    }
+
+    /// Merges the exits since `first` of one kind (`returns`: the function's, else a
+    /// loop's `break`s) into the current state, earlier ones taking precedence.
+    pub(crate) fn merge_exits(&mut self, first: usize, returns: bool) {
+        let tail: Vec<Exit> = self.exits.drain(first..).collect();
+        let (mine, others): (Vec<Exit>, Vec<Exit>) =
+            tail.into_iter().partition(|e| e.is_return == returns);
+        self.exits.extend(others);
+        for e in mine.into_iter().rev() {
+            let current = self.snapshot();
+            self.merge(e.cond, e.state, current);
+        }
     }
 
     fn exec_for(&mut self, indices: &[ForIndex], body: &[Statement]) -> DaeResult<Flow> {
+        let first_exit = self.exits.len();
+        let flow = self.exec_for_indices(indices, body)?;
+        self.merge_exits(first_exit, false);
+        Ok(flow)
+    }
+
+    fn exec_for_indices(&mut self, indices: &[ForIndex], body: &[Statement]) -> DaeResult<Flow> {
         let Some((first, rest)) = indices.split_first() else {
             return self.exec_block(body);
         };
@@ -202,7 +285,7 @@ impl Lowerer<'_> {
                 value: Some(v),
                 record: None,
             });
-            let f = self.exec_for(rest, body);
+            let f = self.exec_for_indices(rest, body);
             self.locals.pop();
             match f? {
                 Flow::Next => {}
@@ -524,12 +607,14 @@ impl Lowerer<'_> {
         let saved_locals = std::mem::take(&mut self.locals);
         let saved_assigned = self.assigned.take();
         let saved_actions = self.when_actions.take();
+        let saved_exits = std::mem::take(&mut self.exits);
         self.inline_depth += 1;
         let r = self.run_function(f, given, span);
         self.inline_depth -= 1;
         self.locals = saved_locals;
         self.assigned = saved_assigned;
         self.when_actions = saved_actions;
+        self.exits = saved_exits;
         r.map_err(|e| {
             if e.notes().iter().any(|n| n.starts_with("while inlining")) {
                 e
@@ -619,7 +704,9 @@ impl Lowerer<'_> {
         match &f.external_call {
             Some(ext) if f.external => self.external_body(f, ext, span)?,
             _ => {
+                let first_exit = self.exits.len();
                 self.exec_block(&f.algorithm)?;
+                self.merge_exits(first_exit, true);
             }
         }
         let mut outs = Vec::new();

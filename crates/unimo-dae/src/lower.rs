@@ -44,6 +44,8 @@ pub struct Lowerer<'m> {
     /// Values of parameters evaluated at compile time (NaN: not evaluable).
     pub(crate) parameter_values: HashMap<ScalarId, f64>,
     pub(crate) errors: Vec<DaeError>,
+    /// Conditional `return`/`break` exits of the algorithm being executed.
+    pub(crate) exits: Vec<crate::algo::Exit>,
 }
 
 /// Parameter values for [`ExprArena::eval`].
@@ -81,6 +83,7 @@ impl<'m> Lowerer<'m> {
             when_actions: None,
             parameter_values: HashMap::default(),
             errors: Vec::new(),
+            exits: Vec::new(),
         }
     }
 
