@@ -141,6 +141,9 @@ pub struct CompiledModel {
     pub uses_terminal: bool,
     /// Dynamically selected state sets (`unimo_dae::plan::StateSet`).
     pub state_sets: Vec<CompiledStateSet>,
+    /// Some equation reads `initial()`: after initialization the simulator runs one
+    /// more event iteration at the start time with it false.
+    pub equations_read_initial: bool,
 }
 
 /// A constraint all of whose variables have fixed start values.
@@ -872,6 +875,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         objects,
         uses_terminal: dae.uses_terminal,
         state_sets,
+        equations_read_initial: reads_initial(dae),
     };
     m.relation_held = held_relations(&m);
     m.ops_total = m
@@ -883,6 +887,22 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         })
         .sum();
     m
+}
+
+/// Whether an equation of the model reads `initial()`.
+fn reads_initial(dae: &Dae) -> bool {
+    let mut seen = std::collections::HashSet::new();
+    let mut stack: Vec<ExprId> = dae.equations.iter().flat_map(|e| [e.lhs, e.rhs]).collect();
+    while let Some(e) = stack.pop() {
+        if !seen.insert(e) {
+            continue;
+        }
+        if matches!(dae.arena.node(e), Node::Initial) {
+            return true;
+        }
+        stack.extend(dae.arena.children(e));
+    }
+    false
 }
 
 /// Which relations are compiled with event semantics in some tape the runtime runs.

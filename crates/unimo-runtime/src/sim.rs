@@ -588,6 +588,14 @@ impl<'a> Simulator<'a> {
         self.ode.regs[layout.initial as usize] = 1.0;
         self.event_iteration(t0, true)?;
         self.ode.regs[layout.initial as usize] = 0.0;
+        if self.m().equations_read_initial {
+            // After initialization `initial()` is false: the discrete variables whose
+            // equations read it take their values for the run in one more event
+            // iteration at the start time (a friction's `startForward`, true only
+            // while initializing).
+            self.ode.ev.event_mode = true;
+            self.event_iteration(t0, false)?;
+        }
         self.ode.ev.event_mode = false;
         let m = self.m();
         m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
