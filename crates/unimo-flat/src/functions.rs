@@ -453,7 +453,7 @@ impl Instantiator<'_, '_> {
         out.push(class);
     }
 
-    fn flat_function(&mut self, class: ClassId, name: &str) -> Option<FlatFunction> {
+    pub(crate) fn flat_function(&mut self, class: ClassId, name: &str) -> Option<FlatFunction> {
         let def = self.tree.get(class).def.clone();
         if !matches!(def.body, ClassBody::Long { .. }) {
             return None;

@@ -52,11 +52,85 @@ impl Instantiator<'_, '_> {
                 Some(if a.len() >= b.len() { a } else { b })
             }
             ExprKind::If { otherwise, .. } => self.shape_of(otherwise),
+            ExprKind::Call { func, args } if func.global => self
+                .call_shape(func, args)
+                .or_else(|| eval::eval(e, self, &mut Vec::new()).ok().map(|v| v.dims())),
             ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {
                 Some(Vec::new())
             }
             _ => eval::eval(e, self, &mut Vec::new()).ok().map(|v| v.dims()),
         }
+    }
+
+    /// The sizes of the first output of a user function called with `args`, from its
+    /// declared sizes: constants, inputs (`output Real table[nTable, 2]` with `nTable`
+    /// given as a constant argument or by its default) and `size(u, k)` of an input.
+    fn call_shape(
+        &mut self,
+        func: &unimo_syntax::ast::Name,
+        args: &unimo_syntax::ast::CallArgs,
+    ) -> Option<Vec<usize>> {
+        let name = func.to_dotted().trim_start_matches('.').to_owned();
+        let parts: Vec<&str> = crate::flat::split_name(&name);
+        let Some(crate::lookup::Found::Class(c)) = self.tree.lookup_dotted(None, &parts, false)
+        else {
+            return None;
+        };
+        if self.tree.get(c).def.kind != unimo_syntax::ast::ClassKind::Function {
+            return None;
+        }
+        let f = self.flat_function(c, &name)?;
+        let out = f.outputs.first()?;
+        // The argument bound to input `k` (flattened: in the caller's terms).
+        let argument = |k: usize| -> Option<Expr> {
+            let input = f.inputs.get(k)?;
+            args.named
+                .iter()
+                .find(|a| a.name.text.as_str() == input.name)
+                .map(|a| a.value.clone())
+                .or_else(|| args.positional.get(k).cloned())
+        };
+        let input_index = |n: &str| f.inputs.iter().position(|i| i.name == n);
+        let mut dims = Vec::with_capacity(out.dims.len());
+        for (k, d) in out.dims.iter().enumerate() {
+            if let Some(n) = d {
+                dims.push(*n);
+                continue;
+            }
+            let e = out.dim_exprs.get(k)?.as_ref()?;
+            let n = match &e.kind {
+                ExprKind::Integer(n) => usize::try_from(*n).ok()?,
+                ExprKind::Ref(r) if r.parts.len() == 1 && r.parts[0].subscripts.is_empty() => {
+                    let k = input_index(r.parts[0].name.text.as_str())?;
+                    match argument(k) {
+                        Some(a) => eval::eval(&a, self, &mut Vec::new()).ok()?.as_int()?,
+                        // The input's default is in the function's scope: only a
+                        // constant is used here.
+                        None => match f.inputs[k].default.as_ref()?.kind {
+                            ExprKind::Integer(n) => n,
+                            _ => return None,
+                        },
+                    }
+                    .try_into()
+                    .ok()?
+                }
+                ExprKind::Call { func, args: a } if func.to_dotted() == "size" => {
+                    let (u, j) = (a.positional.first()?, a.positional.get(1)?);
+                    let ExprKind::Ref(r) = &u.kind else {
+                        return None;
+                    };
+                    let k = input_index(r.parts.first()?.name.text.as_str())?;
+                    let ExprKind::Integer(j) = j.kind else {
+                        return None;
+                    };
+                    let shape = self.shape_of(&argument(k)?)?;
+                    *shape.get(usize::try_from(j).ok()?.checked_sub(1)?)?
+                }
+                _ => return None,
+            };
+            dims.push(n);
+        }
+        Some(dims)
     }
 
     /// The value of a parameter or constant of an instance whose bases are being
