@@ -268,8 +268,10 @@ impl Dae {
         self.scalars[s.index()].name.clone()
     }
 
-    /// `e` as Modelica text.
+    /// `e` as Modelica text, cut after 10,000 bytes with `...` (an expression whose
+    /// parts are shared, as filter coefficients computed by loops, can be
+    /// exponentially long written out as a tree).
     pub fn show(&self, e: ExprId) -> String {
-        self.arena.to_string(e, &|s| self.name(s))
+        self.arena.to_short_string(e, &|s| self.name(s), 10_000)
     }
 }

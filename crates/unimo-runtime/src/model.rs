@@ -118,6 +118,9 @@ pub struct CompiledModel {
     /// (`u32::MAX` for an initial equation). With more equations than unknowns the
     /// independent ones are taken in decreasing order: positions before velocities.
     pub initial_orders: Vec<u32>,
+    /// Per initial residual: it reads parameters and constants only (the free
+    /// parameters' own equations, solved before the rest).
+    pub initial_parameter_only: Vec<bool>,
     /// Constraints (equations index reduction differentiated) whose every variable has
     /// a fixed start: checked at the start values before anything is solved. The tape
     /// computes, per constraint, its two sides.
@@ -601,6 +604,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     let mut initial_regs = Vec::new();
     let mut initial_names = Vec::new();
     let mut initial_orders = Vec::new();
+    let mut initial_parameter_only = Vec::new();
     let selectors: std::collections::HashSet<ScalarId> = plan
         .state_sets
         .iter()
@@ -664,6 +668,14 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_regs.push(d);
         initial_names.push((format!("{} = {}", show(l), show(r)), None));
         initial_orders.push(u32::MAX);
+        initial_parameter_only.push(dae.arena.vars(l).into_iter().chain(dae.arena.vars(r)).all(
+            |v| {
+                matches!(
+                    dae.scalar(v).kind,
+                    ScalarKind::Parameter | ScalarKind::Constant
+                )
+            },
+        ));
     }
     for (s, st) in arena_starts {
         let rr = c.expr(st, &mut initial_tape, &mut memo);
@@ -714,6 +726,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
             cur = dae.scalar(d).derivative;
         }
         initial_orders.push(order);
+        initial_parameter_only.push(false);
     }
 
     // Constraints fully fixed by start values.
@@ -864,6 +877,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         initial_residuals: initial_regs,
         initial_names,
         initial_orders,
+        initial_parameter_only,
         fixed_constraints_tape,
         fixed_constraints,
         initial_assigned,

@@ -752,7 +752,59 @@ impl<'a> Simulator<'a> {
                 .map(|&r| me.ode.regs[r as usize])
                 .collect())
         };
+        // The initial equations of the free parameters alone (`cr = ...`, `r = -cr*w`
+        // of a filter) first: the states' equations may be singular until they hold
+        // (a steady state `der(x) = r*(x - u)` with r still 0).
+        let parameter_rows: Vec<usize> = (0..n_eq)
+            .filter(|&i| m.initial_parameter_only.get(i).copied().unwrap_or(false))
+            .collect();
+        let parameter_unknowns: Vec<usize> = (0..unknowns.len())
+            .filter(|&k| k >= unknowns.len() - m.free_parameters.len())
+            .collect();
+        if !parameter_rows.is_empty() && !parameter_unknowns.is_empty() {
+            for _ in 0..30 {
+                let f = residual(self)?;
+                let fr: Vec<f64> = parameter_rows.iter().map(|&i| f[i]).collect();
+                if fr.iter().all(|x| x.abs() <= 1e-12) {
+                    break;
+                }
+                let (nr, nc) = (parameter_rows.len(), parameter_unknowns.len());
+                let mut jac = vec![0.0; nr * nc];
+                for (j, &k) in parameter_unknowns.iter().enumerate() {
+                    let reg = unknowns[k].0;
+                    let x = self.ode.regs[reg];
+                    let h = 1e-7 * x.abs().max(1e-3);
+                    self.ode.regs[reg] = x + h;
+                    let fp = residual(self)?;
+                    self.ode.regs[reg] = x;
+                    for (ii, &i) in parameter_rows.iter().enumerate() {
+                        jac[ii * nc + j] = (fp[i] - f[i]) / h;
+                    }
+                }
+                let (rows, cols) = independent_rows_and_columns(&jac, nr, nc);
+                let k = rows.len();
+                if k == 0 {
+                    break;
+                }
+                let mut a = vec![0.0; k * k];
+                for (ii, &i) in rows.iter().enumerate() {
+                    for (jj, &j) in cols.iter().enumerate() {
+                        a[ii * k + jj] = jac[i * nc + j];
+                    }
+                }
+                let mut b: Vec<f64> = rows.iter().map(|&i| -fr[i]).collect();
+                let mut perm = vec![0; k];
+                if !crate::eval::lu_solve(k, &mut a, &mut b, &mut perm) {
+                    break;
+                }
+                for (jj, &j) in cols.iter().enumerate() {
+                    let reg = unknowns[parameter_unknowns[j]].0;
+                    self.ode.regs[reg] += b[jj];
+                }
+            }
+        }
         let mut chosen: Option<(Vec<usize>, Vec<usize>)> = None;
+        let mut deficient_steps = 0;
         for _ in 0..50 {
             let f = residual(self)?;
             let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -779,13 +831,26 @@ impl<'a> Simulator<'a> {
                     independent_rows_and_columns(&jac, n_eq, free.len())
                 }
             });
-            if rows.len() < n_eq && n_eq <= free.len() {
-                return Err(failed(
-                    "the initial equations do not determine the states (singular)",
-                    &f,
-                    &[],
-                ));
+            let deficient = rows.len() < n_eq && n_eq <= free.len();
+            if deficient {
+                // Singular at this iterate: the equations that are independent here
+                // take a step (e.g. the parameters a filter's steady state depends on,
+                // which start at 0 and make that state's rows vanish), then the rank
+                // is looked at again; singular for good is an error.
+                deficient_steps += 1;
+                if deficient_steps > 8 || rows.is_empty() {
+                    return Err(failed(
+                        "the initial equations do not determine the states (singular)",
+                        &f,
+                        &[],
+                    ));
+                }
             }
+            let (rows, cols) = (rows.clone(), cols.clone());
+            if deficient {
+                chosen = None;
+            }
+            let (rows, cols) = (&rows, &cols);
             let k = rows.len();
             if k == 0 {
                 return Err(too_many(&f, &[]));
