@@ -860,6 +860,26 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 self.model.vars.push(var);
             }
             Kind::Class(c) => {
+                // An instance of a partial class (spec 4.7; an `outer` component is
+                // not instantiated here, it refers to its inner).
+                if self.tree.get(c).def.partial {
+                    let class_name = self.tree.full_name(c);
+                    self.diags.push(
+                        Diagnostic::error(
+                            "E2009",
+                            format!(
+                                "component `{key}` is an instance of the partial class \
+                                 `{class_name}`"
+                            ),
+                        )
+                        .at(d.name.span, "instance of a partial class")
+                        .with_label(self.tree.get(c).def.name.span, "declared `partial` here")
+                        .with_help(
+                            "use a class that extends it, or redeclare the component with one",
+                        ),
+                    );
+                    return;
+                }
                 let mut path = Vec::with_capacity(scope.prefix.len() + 1);
                 path.extend_from_slice(&scope.prefix);
                 path.push(part(name, d.name.span));

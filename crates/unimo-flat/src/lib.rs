@@ -24,6 +24,7 @@ pub mod provider;
 pub(crate) mod records;
 pub(crate) mod redeclare;
 pub mod resolve;
+mod semantic;
 pub mod tree;
 pub mod typecheck;
 mod values;
@@ -50,6 +51,10 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     inst.collect_functions();
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
+    // A cycle that compile-time evaluation met is reported there already.
+    if !diags.iter().any(|d| d.code.0 == "E2008") {
+        diags.extend(semantic::parameter_cycles(&model));
+    }
     // Connection equations and the size/type check of the equations so far are
     // independent: they run side by side. (Connected variables are checked against
     // each other in `connect`, so the generated equations need no type check.)
