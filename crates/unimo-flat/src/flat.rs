@@ -212,66 +212,85 @@ pub fn printable(e: &Expr) -> Expr {
 /// Calls `f` with every component reference in `e` (not function names), subscripts
 /// of references included.
 pub fn for_each_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
+    refs(e, f, false);
+}
+
+/// [`for_each_ref`] without the arguments of `size`, `ndims`, `cardinality` and
+/// `isPresent`, which read a variable's structure, not its value.
+pub fn for_each_value_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
+    refs(e, f, true);
+}
+
+fn refs(e: &Expr, f: &mut dyn FnMut(&ComponentRef), values_only: bool) {
     match &e.kind {
         ExprKind::Ref(r) => {
             for p in &r.parts {
                 for s in &p.subscripts {
                     if let unimo_syntax::ast::Subscript::Expr(x) = s {
-                        for_each_ref(x, f);
+                        refs(x, f, values_only);
                     }
                 }
             }
             f(r);
         }
-        ExprKind::Call { args, .. } => {
+        ExprKind::Call { func, args } => {
+            // `size(x, 1)` reads x's shape, not its value.
+            if values_only
+                && matches!(
+                    func.to_dotted().as_str(),
+                    "size" | "ndims" | "cardinality" | "isPresent"
+                )
+            {
+                return;
+            }
             for a in &args.positional {
-                for_each_ref(a, f);
+                refs(a, f, values_only);
             }
             for a in &args.named {
-                for_each_ref(&a.value, f);
+                refs(&a.value, f, values_only);
             }
             for i in &args.iterators {
                 if let Some(r) = &i.range {
-                    for_each_ref(r, f);
+                    refs(r, f, values_only);
                 }
             }
         }
-        ExprKind::Unary { operand, .. } => for_each_ref(operand, f),
+        ExprKind::Unary { operand, .. } => refs(operand, f, values_only),
         ExprKind::Binary { lhs, rhs, .. } => {
-            for_each_ref(lhs, f);
-            for_each_ref(rhs, f);
+            refs(lhs, f, values_only);
+            refs(rhs, f, values_only);
         }
         ExprKind::If {
             branches,
             otherwise,
         } => {
             for (c, v) in branches {
-                for_each_ref(c, f);
-                for_each_ref(v, f);
+                refs(c, f, values_only);
+                refs(v, f, values_only);
             }
-            for_each_ref(otherwise, f);
+            refs(otherwise, f, values_only);
         }
         ExprKind::Range { start, step, stop } => {
-            for_each_ref(start, f);
+            refs(start, f, values_only);
             if let Some(s) = step {
-                for_each_ref(s, f);
+                refs(s, f, values_only);
             }
-            for_each_ref(stop, f);
+            refs(stop, f, values_only);
         }
-        ExprKind::Array(items) => items.iter().for_each(|i| for_each_ref(i, f)),
-        ExprKind::Matrix(rows) => rows.iter().flatten().for_each(|i| for_each_ref(i, f)),
-        ExprKind::Tuple(items) => items.iter().flatten().for_each(|i| for_each_ref(i, f)),
+        ExprKind::Array(items) => items.iter().for_each(|i| refs(i, f, values_only)),
+        ExprKind::Matrix(rows) => rows.iter().flatten().for_each(|i| refs(i, f, values_only)),
+        ExprKind::Tuple(items) => items.iter().flatten().for_each(|i| refs(i, f, values_only)),
         ExprKind::Comprehension { body, indices } => {
             for i in indices {
                 if let Some(r) = &i.range {
-                    for_each_ref(r, f);
+                    refs(r, f, values_only);
                 }
             }
-            for_each_ref(body, f);
+            refs(body, f, values_only);
         }
         ExprKind::PartialApplication { args, .. } => {
             for a in args {
-                for_each_ref(&a.value, f);
+                refs(&a.value, f, values_only);
             }
         }
         ExprKind::Integer(_)

@@ -55,6 +55,7 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     if !diags.iter().any(|d| d.code.0 == "E2008") {
         diags.extend(semantic::parameter_cycles(&model));
     }
+    diags.extend(semantic::binding_variability(&model));
     // Connection equations and the size/type check of the equations so far are
     // independent: they run side by side. (Connected variables are checked against
     // each other in `connect`, so the generated equations need no type check.)

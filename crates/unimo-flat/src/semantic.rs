@@ -1,9 +1,11 @@
 //! Semantic checks on the flat model that need the whole of it: parameters and
 //! constants whose bindings depend on each other in a cycle (spec 4.4.4: a binding may
-//! not depend on itself, directly or through other bindings).
+//! not depend on itself, directly or through other bindings), and bindings of higher
+//! variability than their variable (spec 3.8: a parameter's binding reads parameters
+//! and constants only, never `time` or a time-varying variable).
 
 use crate::eval::var_key;
-use crate::flat::{for_each_ref, FlatModel, Variability};
+use crate::flat::{for_each_ref, for_each_value_ref, FlatModel, Variability};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_source::Diagnostic;
 
@@ -60,6 +62,69 @@ pub(crate) fn parameter_cycles(model: &FlatModel) -> Vec<Diagnostic> {
             )
             .at(span, "this binding is part of the cycle"),
         );
+    }
+    diags
+}
+
+/// `E2019` for a parameter or constant whose binding reads `time` or a variable that
+/// is not a parameter or constant.
+pub(crate) fn binding_variability(model: &FlatModel) -> Vec<Diagnostic> {
+    let index: HashMap<&str, usize> = model
+        .vars
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (v.name.as_str(), k))
+        .collect();
+    let mut diags = Vec::new();
+    for v in &model.vars {
+        if !matches!(
+            v.variability,
+            Variability::Parameter | Variability::Constant
+        ) {
+            continue;
+        }
+        let Some(b) = &v.binding else { continue };
+        let mut culprit: Option<String> = None;
+        for_each_value_ref(b, &mut |r| {
+            if culprit.is_some() {
+                return;
+            }
+            let key = var_key(r);
+            match index.get(key.as_str()) {
+                Some(&j) => {
+                    let w = &model.vars[j];
+                    if matches!(
+                        w.variability,
+                        Variability::Discrete | Variability::Continuous
+                    ) {
+                        culprit = Some(format!("`{}`, a variable that varies in time", w.name));
+                    }
+                }
+                None if key == "time" && !r.global => {
+                    culprit = Some("`time`".to_owned());
+                }
+                None => {}
+            }
+        });
+        if let Some(c) = culprit {
+            let kind = if v.variability == Variability::Constant {
+                "constant"
+            } else {
+                "parameter"
+            };
+            diags.push(
+                Diagnostic::error(
+                    "E2019",
+                    format!("the binding of {kind} `{}` reads {c}", v.name),
+                )
+                .at(b.span, "varies in time")
+                .with_help(format!(
+                    "a {kind}'s value is fixed before the simulation starts: bind it to \
+                     parameters and constants, or declare `{}` without the `{kind}` prefix",
+                    v.name
+                )),
+            );
+        }
     }
     diags
 }
