@@ -212,28 +212,44 @@ pub fn printable(e: &Expr) -> Expr {
 /// Calls `f` with every component reference in `e` (not function names), subscripts
 /// of references included.
 pub fn for_each_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
-    refs(e, f, false);
+    refs(e, f, false, &mut |_, _| {});
+}
+
+/// Calls `on_call` with the function name and arguments of every call in `e` (outer
+/// calls first), and `f` with every component reference.
+pub fn for_each_call(
+    e: &Expr,
+    f: &mut dyn FnMut(&ComponentRef),
+    on_call: &mut dyn FnMut(&Name, &unimo_syntax::ast::CallArgs),
+) {
+    refs(e, f, false, on_call);
 }
 
 /// [`for_each_ref`] without the arguments of `size`, `ndims`, `cardinality` and
 /// `isPresent`, which read a variable's structure, not its value.
 pub fn for_each_value_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
-    refs(e, f, true);
+    refs(e, f, true, &mut |_, _| {});
 }
 
-fn refs(e: &Expr, f: &mut dyn FnMut(&ComponentRef), values_only: bool) {
+fn refs(
+    e: &Expr,
+    f: &mut dyn FnMut(&ComponentRef),
+    values_only: bool,
+    on_call: &mut dyn FnMut(&Name, &unimo_syntax::ast::CallArgs),
+) {
     match &e.kind {
         ExprKind::Ref(r) => {
             for p in &r.parts {
                 for s in &p.subscripts {
                     if let unimo_syntax::ast::Subscript::Expr(x) = s {
-                        refs(x, f, values_only);
+                        refs(x, f, values_only, on_call);
                     }
                 }
             }
             f(r);
         }
         ExprKind::Call { func, args } => {
+            on_call(func, args);
             // `size(x, 1)` reads x's shape, not its value.
             if values_only
                 && matches!(
@@ -244,53 +260,59 @@ fn refs(e: &Expr, f: &mut dyn FnMut(&ComponentRef), values_only: bool) {
                 return;
             }
             for a in &args.positional {
-                refs(a, f, values_only);
+                refs(a, f, values_only, on_call);
             }
             for a in &args.named {
-                refs(&a.value, f, values_only);
+                refs(&a.value, f, values_only, on_call);
             }
             for i in &args.iterators {
                 if let Some(r) = &i.range {
-                    refs(r, f, values_only);
+                    refs(r, f, values_only, on_call);
                 }
             }
         }
-        ExprKind::Unary { operand, .. } => refs(operand, f, values_only),
+        ExprKind::Unary { operand, .. } => refs(operand, f, values_only, on_call),
         ExprKind::Binary { lhs, rhs, .. } => {
-            refs(lhs, f, values_only);
-            refs(rhs, f, values_only);
+            refs(lhs, f, values_only, on_call);
+            refs(rhs, f, values_only, on_call);
         }
         ExprKind::If {
             branches,
             otherwise,
         } => {
             for (c, v) in branches {
-                refs(c, f, values_only);
-                refs(v, f, values_only);
+                refs(c, f, values_only, on_call);
+                refs(v, f, values_only, on_call);
             }
-            refs(otherwise, f, values_only);
+            refs(otherwise, f, values_only, on_call);
         }
         ExprKind::Range { start, step, stop } => {
-            refs(start, f, values_only);
+            refs(start, f, values_only, on_call);
             if let Some(s) = step {
-                refs(s, f, values_only);
+                refs(s, f, values_only, on_call);
             }
-            refs(stop, f, values_only);
+            refs(stop, f, values_only, on_call);
         }
-        ExprKind::Array(items) => items.iter().for_each(|i| refs(i, f, values_only)),
-        ExprKind::Matrix(rows) => rows.iter().flatten().for_each(|i| refs(i, f, values_only)),
-        ExprKind::Tuple(items) => items.iter().flatten().for_each(|i| refs(i, f, values_only)),
+        ExprKind::Array(items) => items.iter().for_each(|i| refs(i, f, values_only, on_call)),
+        ExprKind::Matrix(rows) => rows
+            .iter()
+            .flatten()
+            .for_each(|i| refs(i, f, values_only, on_call)),
+        ExprKind::Tuple(items) => items
+            .iter()
+            .flatten()
+            .for_each(|i| refs(i, f, values_only, on_call)),
         ExprKind::Comprehension { body, indices } => {
             for i in indices {
                 if let Some(r) = &i.range {
-                    refs(r, f, values_only);
+                    refs(r, f, values_only, on_call);
                 }
             }
-            refs(body, f, values_only);
+            refs(body, f, values_only, on_call);
         }
         ExprKind::PartialApplication { args, .. } => {
             for a in args {
-                refs(&a.value, f, values_only);
+                refs(&a.value, f, values_only, on_call);
             }
         }
         ExprKind::Integer(_)

@@ -1,8 +1,10 @@
 //! Type and size checks of the flat model: references with more subscripts than their
 //! variable has dimensions (`E2017`), and equations or bindings whose two sides have
 //! certainly different sizes or types (`E2018`: `y = x` with `x[3]`, `b = 1.5` with a
-//! Boolean `b`). Only shapes and types known for certain are compared: a function call
-//! or an expression this check cannot size is left to the back end.
+//! Boolean `b`), and operators applied to variables of the wrong type (`E2020`: `der`
+//! of an Integer, `edge` of a Real). Only shapes and types known for certain are
+//! compared: a function call or an expression this check cannot size is left to the
+//! back end.
 
 use crate::eval::var_key_into;
 use crate::flat::{FlatModel, FlatType};
@@ -57,6 +59,13 @@ fn ty_of(t: &FlatType) -> Ty {
 }
 
 impl Checker<'_> {
+    /// The index of the variable `r` names (subscripts of its last part ignored).
+    fn var_index(&self, r: &ComponentRef) -> Option<usize> {
+        let mut buf = self.buf.borrow_mut();
+        var_key_into(&mut buf, &r.parts);
+        self.vars.get(buf.as_str()).map(|&i| i as usize)
+    }
+
     /// The dimensions and type of the variable `r` names.
     fn var(&self, r: &ComponentRef) -> Option<(&[usize], Ty)> {
         let mut buf = self.buf.borrow_mut();
@@ -191,7 +200,49 @@ impl Checker<'_> {
         }
     }
 
+    /// Operators applied to variables of the wrong type (spec 3.7): `der` of an
+    /// Integer, Boolean, String or enumeration variable, `edge` of a variable that is
+    /// not Boolean (`E2020`).
+    fn operators(&mut self, e: &Expr) {
+        let mut found: Vec<(String, String, &'static str, Span)> = Vec::new();
+        crate::flat::for_each_call(e, &mut |_| {}, &mut |func, args| {
+            let op = func.to_dotted();
+            if !matches!(op.as_str(), "der" | "edge") {
+                return;
+            }
+            let Some(Expr {
+                kind: ExprKind::Ref(r),
+                span,
+            }) = args.positional.first()
+            else {
+                return;
+            };
+            let Some(i) = self.var_index(r) else { return };
+            let ty = &self.all[i].ty;
+            let bad = match (op.as_str(), ty) {
+                ("der", FlatType::Real) => None,
+                ("der", _) => Some("a Real variable"),
+                ("edge", FlatType::Boolean) => None,
+                ("edge", _) => Some("a Boolean variable"),
+                _ => None,
+            };
+            if let Some(needs) = bad {
+                found.push((op.clone(), crate::flat::type_name(ty), needs, *span));
+            }
+        });
+        for (op, ty, needs, span) in found {
+            self.diags.push(
+                Diagnostic::error(
+                    "E2020",
+                    format!("`{op}` needs {needs}; this one is of type {ty}"),
+                )
+                .at(span, "wrong type"),
+            );
+        }
+    }
+
     fn subscripts(&mut self, e: &Expr) {
+        self.operators(e);
         let mut found = Vec::new();
         crate::flat::for_each_ref(e, &mut |r| {
             let n = r.parts.last().map_or(0, |p| p.subscripts.len());
