@@ -146,3 +146,12 @@ fn syntax_corpus_passes_the_back_end() {
     assert!(failing.is_empty(), "{stderr}");
     assert!(out.status.success(), "{stderr}");
 }
+
+/// `unimo emit --stage tape`: the compiled tapes of the bouncing ball (its zero
+/// crossing, `when` with `reinit`, symbolic Jacobian).
+#[test]
+fn tape_dump_of_the_bouncing_ball() {
+    let (code, out, err) = emit("tape", Path::new("models/BouncingBall.mo"));
+    assert_eq!(code, Some(0), "{err}");
+    insta::assert_snapshot!("tape_BouncingBall", out);
+}

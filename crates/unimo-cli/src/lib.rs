@@ -258,6 +258,8 @@ enum Stage {
     Dae,
     /// The structural analysis and causal plan.
     Structure,
+    /// The compiled model: every tape the simulator runs, one instruction a line.
+    Tape,
 }
 
 /// Runs the command line and returns the process exit code.
@@ -319,6 +321,7 @@ fn run_on_this_thread() -> i32 {
             Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
             Stage::Dae => stages::emit_dae(&files, model.as_deref(), &libs, color),
             Stage::Structure => stages::emit_structure(&files, model.as_deref(), &libs, color),
+            Stage::Tape => stages::emit_tape(&files, model.as_deref(), &libs, color),
         },
     }
 }

@@ -32,6 +32,24 @@ pub fn emit_dae(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color:
     })
 }
 
+pub fn emit_tape(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color: bool) -> i32 {
+    with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
+        match unimo_dae::analyze_model(flat) {
+            Ok((dae, analysis)) => {
+                let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+                let names: Vec<String> = dae.ids().map(|s| dae.name(s)).collect();
+                println!("tape {}", dae.name);
+                print!("{}", unimo_runtime::dump::tape_dump(&compiled, &names));
+                EXIT_OK
+            }
+            Err(diags) => {
+                render_stage(&diags, map, color);
+                EXIT_MODEL_ERROR
+            }
+        }
+    })
+}
+
 pub fn emit_structure(
     files: &[PathBuf],
     model: Option<&str>,
