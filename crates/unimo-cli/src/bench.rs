@@ -136,8 +136,8 @@ fn measure(
 }
 
 pub fn bench(a: &BenchArgs, color: bool) -> i32 {
-    if a.tolerances.iter().any(|&t| !positive(t)) {
-        eprintln!("error: tolerances must be positive");
+    if a.tolerances.iter().any(|&t| !positive(t)) || !positive(a.atol_factor) {
+        eprintln!("error: tolerances and the atol factor must be positive");
         return EXIT_USAGE;
     }
     let mut all = Vec::new();
@@ -163,18 +163,25 @@ pub fn bench(a: &BenchArgs, color: bool) -> i32 {
                     }
                 };
                 let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
-                let ex = &dae.experiment;
-                let start = ex.start_time.unwrap_or(0.0);
-                let stop = a.stop_time.or(ex.stop_time).unwrap_or(1.0);
-                let interval = (stop - start) / a.points.max(1) as f64;
-                let options = |m: MethodArg, rtol: f64, atol: f64| SimOptions {
-                    start,
-                    stop,
-                    rtol,
-                    atol,
-                    method: method(m),
-                    interval,
-                    every_step: false,
+                // The same resolution of the experiment's settings as `simulate`, with
+                // the benchmark's tolerances and output points.
+                let resolved = |m: MethodArg, rtol: f64, atol: f64| {
+                    let o = unimo_runtime::sim::Overrides {
+                        stop: a.stop_time,
+                        rtol: Some(rtol),
+                        atol: Some(atol),
+                        points: Some(a.points),
+                        ..Default::default()
+                    };
+                    SimOptions::resolve(&dae.experiment, &o, method(m), false)
+                };
+                // Tolerances are checked above: only the times can be wrong here.
+                if let Err(msg) = resolved(MethodArg::Bdf, 1e-6, 1e-8) {
+                    eprintln!("error: {msg}");
+                    return EXIT_USAGE;
+                }
+                let options = |m: MethodArg, rtol: f64, atol: f64| {
+                    resolved(m, rtol, atol).expect("times checked above, tolerances positive")
                 };
                 let reference = match &a.reference {
                     Some(p) => match reference_from_csv(p) {

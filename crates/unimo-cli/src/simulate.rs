@@ -1,6 +1,5 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
-use crate::bench::positive;
 use crate::check::{render_stage, with_flat_model};
 use crate::{
     MethodArg, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE,
@@ -129,35 +128,27 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
             }
             let compiled = unimo_runtime::model::compile(&dae, &plan);
             let compile_ms = started.elapsed().as_secs_f64() * 1e3;
-            let ex = &dae.experiment;
-            let start = a.start.or(ex.start_time).unwrap_or(0.0);
-            let stop = a.stop_time.or(ex.stop_time).unwrap_or(1.0);
-            if !(stop - start).is_finite() || stop < start {
-                eprintln!("error: the stop time {stop} is before the start time {start}");
-                return EXIT_USAGE;
-            }
-            let rtol = a.tolerance.or(ex.tolerance).unwrap_or(1e-6);
-            let atol = a.atol.unwrap_or(rtol / 100.0);
-            let interval = match (a.interval, a.points) {
-                (Some(dt), _) => dt,
-                (None, Some(n)) => (stop - start) / n.max(1) as f64,
-                (None, None) => ex.interval.unwrap_or((stop - start) / 500.0),
+            let overrides = unimo_runtime::sim::Overrides {
+                start: a.start,
+                stop: a.stop_time,
+                rtol: a.tolerance,
+                atol: a.atol,
+                interval: a.interval,
+                points: a.points,
             };
-            // A zero-length interval writes the initial values only.
-            let interval = if stop == start { 1.0 } else { interval };
-            if !positive(interval) || !positive(rtol) || atol.is_nan() || atol < 0.0 {
-                eprintln!("error: the interval and tolerances must be positive");
-                return EXIT_USAGE;
-            }
-            let options = SimOptions {
-                start,
-                stop,
-                rtol,
-                atol,
-                method: method(a.method),
-                interval,
-                every_step: a.every_step,
+            let options = match SimOptions::resolve(
+                &dae.experiment,
+                &overrides,
+                method(a.method),
+                a.every_step,
+            ) {
+                Ok(o) => o,
+                Err(msg) => {
+                    eprintln!("error: {msg}");
+                    return EXIT_USAGE;
+                }
             };
+            let (start, stop) = (options.start, options.stop);
             let sim_started = Instant::now();
             // A progress bar on stderr for runs longer than a moment, when it is a
             // terminal (never in pipes, files or CI logs).

@@ -33,6 +33,63 @@ pub struct SimOptions {
     pub every_step: bool,
 }
 
+/// What a caller sets of a run (the command line's options); `None` leaves it to the
+/// model's `experiment` annotation, then to the default ([`SimOptions::resolve`]).
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    pub start: Option<f64>,
+    pub stop: Option<f64>,
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+    pub interval: Option<f64>,
+    /// Output points over the run (an interval of `(stop - start) / points`).
+    pub points: Option<usize>,
+}
+
+impl SimOptions {
+    /// The settings of a run, in one place for every command: the override, else the
+    /// `experiment` annotation, else the default — StartTime 0, StopTime 1, Tolerance
+    /// 1e-6, absolute tolerance rtol / 100, Interval (stop - start) / 500. A
+    /// zero-length run writes the initial values only. Err: a message for the user
+    /// (stop before start, tolerances or interval not positive).
+    pub fn resolve(
+        ex: &unimo_dae::dae::Experiment,
+        o: &Overrides,
+        method: Method,
+        every_step: bool,
+    ) -> Result<SimOptions, String> {
+        let start = o.start.or(ex.start_time).unwrap_or(0.0);
+        let stop = o.stop.or(ex.stop_time).unwrap_or(1.0);
+        if !(stop - start).is_finite() || stop < start {
+            return Err(format!(
+                "the stop time {stop} is before the start time {start}"
+            ));
+        }
+        let rtol = o.rtol.or(ex.tolerance).unwrap_or(1e-6);
+        let atol = o.atol.unwrap_or(rtol / 100.0);
+        let interval = match (o.interval, o.points) {
+            (Some(dt), _) => dt,
+            (None, Some(n)) => (stop - start) / n.max(1) as f64,
+            (None, None) => ex.interval.unwrap_or((stop - start) / 500.0),
+        };
+        // A zero-length interval writes the initial values only.
+        let interval = if stop == start { 1.0 } else { interval };
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        if !positive(interval) || !positive(rtol) || atol.is_nan() || atol < 0.0 {
+            return Err("the interval and tolerances must be positive".into());
+        }
+        Ok(SimOptions {
+            start,
+            stop,
+            rtol,
+            atol,
+            method,
+            interval,
+            every_step,
+        })
+    }
+}
+
 /// Why a simulation stopped early.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SimError {
