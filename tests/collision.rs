@@ -213,3 +213,18 @@ fn a_placement_computed_by_the_model_is_refused() {
     assert_eq!(e.code(), "E4001");
     assert!(e.message().contains("height"), "{}", e.message());
 }
+
+/// A direct `collisionBody` call with a damping-law code that does not exist is a
+/// compile error naming the argument, not a silent fallback to another law.
+#[test]
+fn an_unknown_damping_law_code_is_refused() {
+    let e = match unimo_cli::load_model(
+        &[common::root().join("tests/collision/UnknownLaw.mo")],
+        None,
+    ) {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e,
+    };
+    assert!(e.contains("E3019"), "{e}");
+    assert!(e.contains("7 is not a damping law code"), "{e}");
+}

@@ -1016,6 +1016,25 @@ impl<'m> Lowerer<'m> {
                         span,
                     ));
                 }
+                // The codes of the shape and the damping law (the library passes its
+                // enumerations; a direct call may pass anything).
+                for (at, what, valid) in [(0usize, "shape", 1..=7), (25, "damping law", 1..=3)] {
+                    if let Some(code) = self.const_value(flat[at]) {
+                        if code.fract() != 0.0 || !valid.contains(&(code as i64)) {
+                            return Err(DaeError::new(
+                                "E3019",
+                                format!(
+                                    "`collisionBody`: {code} is not a {what} code ({}..{}); \
+                                     use `Unimo.Collision.CollisionBody`, whose enumerations \
+                                     give valid codes",
+                                    valid.start(),
+                                    valid.end()
+                                ),
+                                span,
+                            ));
+                        }
+                    }
+                }
                 let site = self.dae.collision.len() as u32;
                 self.dae
                     .collision
