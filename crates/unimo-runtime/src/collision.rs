@@ -382,24 +382,25 @@ impl CollisionState {
             };
             let k = v.mean(a, b, A_K);
             let nexp = v.mean(a, b, A_N);
-            let damping =
-                match v.arg(a, A_LAW).round() as i64 {
-                    1 => Damping::Clipped {
-                        d: v.mean(a, b, A_D),
-                    },
-                    2 => Damping::HuntCrossley {
-                        e: v.mean(a, b, A_E),
-                    },
-                    3 => Damping::Flores {
-                        e: v.mean(a, b, A_E),
-                    },
-                    k => return Err(CollisionFailure {
+            let damping = match v.arg(a, A_LAW).round() as i64 {
+                1 => Damping::Clipped {
+                    d: v.mean(a, b, A_D),
+                },
+                2 => Damping::HuntCrossley {
+                    e: v.mean(a, b, A_E),
+                },
+                3 => Damping::Flores {
+                    e: v.mean(a, b, A_E),
+                },
+                k => {
+                    return Err(CollisionFailure {
                         body: v.m.bodies[a].name.clone(),
                         reason: format!(
                             "unknown damping law code {k} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
                         ),
-                    }),
-                };
+                    })
+                }
+            };
             let friction = Friction {
                 mu_static: v.mean(a, b, A_MU_STATIC),
                 mu_sliding: v.mean(a, b, A_MU_SLIDING),

@@ -11,6 +11,10 @@ const MAX_NEWTON_ITERATIONS: usize = 50;
 /// whose equations hold relations, at an event.
 const MAX_MODE_ROUNDS: usize = 16;
 
+/// Most relations of one block whose combinations are searched when its rounds cycle
+/// (2^8 = 256 solves at most).
+const MAX_SEARCHED_RELATIONS: usize = 8;
+
 /// A block whose Newton iteration did not converge.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BlockFailure {
@@ -105,6 +109,8 @@ fn newton(
     }
     // Decide the relations at the current iterate (the previous mode), then iterate.
     b.residual_tape.run(r, ev);
+    let start: Vec<f64> = b.iteration.iter().map(|&g| r[g as usize]).collect();
+    let mut switched = vec![false; ev.relations.len()];
     for _ in 0..MAX_MODE_ROUNDS {
         w.relations.clear();
         w.relations.extend_from_slice(&ev.relations);
@@ -122,6 +128,41 @@ fn newton(
         if norm <= 1e-10 {
             return Ok(());
         }
+        for (k, s) in switched.iter_mut().enumerate() {
+            *s |= w.relations[k] != ev.relations[k];
+        }
+    }
+    // The rounds cycle (friction: stuck implies sliding and sliding implies stuck,
+    // starting from the previous mode). Search: the outcomes that kept switching are
+    // frozen in every combination, fewest true first, until one agrees with its own
+    // solution (the combinatorial mixed-system search of Modelica tools).
+    let flips: Vec<usize> = (0..switched.len()).filter(|&k| switched[k]).collect();
+    if !flips.is_empty() && flips.len() <= MAX_SEARCHED_RELATIONS {
+        let base = ev.relations.clone();
+        let mut masks: Vec<u32> = (0..1u32 << flips.len()).collect();
+        masks.sort_by_key(|m| m.count_ones());
+        for mask in masks {
+            let mut frozen = base.clone();
+            for (i, &z) in flips.iter().enumerate() {
+                frozen[z] = f64::from(mask >> i & 1 == 1);
+            }
+            ev.relations.copy_from_slice(&frozen);
+            for (k, &g) in b.iteration.iter().enumerate() {
+                r[g as usize] = start[k];
+            }
+            ev.event_mode = false;
+            let solved = newton_smooth(b, r, ev, w);
+            ev.event_mode = true;
+            if solved.is_err() {
+                continue;
+            }
+            b.residual_tape.run(r, ev);
+            if flips.iter().all(|&z| ev.relations[z] == frozen[z]) {
+                return Ok(());
+            }
+        }
+        w.relations.clear();
+        w.relations.extend_from_slice(&base);
     }
     let flipping: Vec<String> = (0..ev.relations.len())
         .filter(|&k| w.relations[k] != ev.relations[k])

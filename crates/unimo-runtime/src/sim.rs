@@ -635,14 +635,25 @@ impl<'a> Simulator<'a> {
         }
         // `when` conditions fire at initialization only through `initial()`: their
         // values with initial() false are the baseline the edges are taken against.
+        // Only the conditions are kept: the discrete values that evaluation computes
+        // (a friction's mode, locked without `initial()`) would otherwise become the
+        // `pre` values of the initial event.
+        let initialized = self.ode.regs.clone();
+        let relations = self.ode.ev.relations.clone();
         self.ode.regs[layout.initial as usize] = 0.0;
-        self.eval_plan()?;
+        let baseline = self.eval_plan();
         let m = self.m();
         m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
         for &c in &m.conditions {
             self.cond_prev[c as usize] = self.ode.regs[c as usize];
         }
+        self.ode.regs.copy_from_slice(&initialized);
+        self.ode.ev.relations = relations;
+        baseline?;
+        // The values of initialization, consistent with its `pre` values (an initial
+        // equation `pre(y) = true`): the initial event starts from them.
         self.ode.regs[layout.initial as usize] = 1.0;
+        self.eval_plan()?;
         self.event_iteration(t0, true)?;
         self.ode.regs[layout.initial as usize] = 0.0;
         if self.m().equations_read_initial {
