@@ -7,7 +7,7 @@
 
 mod common;
 
-use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_runtime::sim::SimResult;
 use unimo_solve::Method;
 
 fn load(file: &str, model: &str) -> unimo_cli::LoadedModel {
@@ -16,22 +16,7 @@ fn load(file: &str, model: &str) -> unimo_cli::LoadedModel {
 }
 
 fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop: 0.02,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval: 1e-4,
-        every_step: false,
-    };
-    let r = simulate(&m.compiled, &o);
-    assert!(
-        r.error.is_none(),
-        "{:?}",
-        r.error.as_ref().map(|e| e.message())
-    );
-    r
+    common::run_ok(m, method, rtol, 0.02, 1e-4)
 }
 
 fn column(r: &SimResult, name: &str) -> Vec<f64> {

@@ -28,22 +28,7 @@ fn run(
     stop: f64,
     interval: f64,
 ) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval,
-        every_step: false,
-    };
-    let r = simulate(&m.compiled, &o);
-    assert!(
-        r.error.is_none(),
-        "{:?}",
-        r.error.as_ref().map(|e| e.message())
-    );
-    r
+    common::run_ok(m, method, rtol, stop, interval)
 }
 
 fn column<'a>(r: &'a SimResult, name: &str) -> impl Iterator<Item = f64> + 'a {

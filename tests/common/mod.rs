@@ -45,3 +45,30 @@ pub fn rendered_codes(stderr: &str) -> Vec<String> {
         })
         .collect()
 }
+
+/// Simulates `m` from 0 to `stop` at `rtol` (atol = rtol / 100, the command line's
+/// default) with output every `interval`; panics with the error message on failure.
+pub fn run_ok(
+    m: &unimo_cli::LoadedModel,
+    method: unimo_solve::Method,
+    rtol: f64,
+    stop: f64,
+    interval: f64,
+) -> unimo_runtime::sim::SimResult {
+    let o = unimo_runtime::sim::SimOptions {
+        start: 0.0,
+        stop,
+        rtol,
+        atol: rtol / 100.0,
+        method,
+        interval,
+        every_step: false,
+    };
+    let r = unimo_runtime::sim::simulate(&m.compiled, &o);
+    assert!(
+        r.error.is_none(),
+        "{:?}",
+        r.error.as_ref().map(|e| e.message())
+    );
+    r
+}

@@ -820,6 +820,25 @@ impl<'a> Simulator<'a> {
                 .map(|&r| me.ode.regs[r as usize])
                 .collect())
         };
+        // Finite differences of the residuals `rows` in the registers `regs` (row-major).
+        let jacobian = |me: &mut Self,
+                        regs: &[usize],
+                        rows: &[usize],
+                        f: &[f64]|
+         -> Result<Vec<f64>, SimError> {
+            let mut jac = vec![0.0; rows.len() * regs.len()];
+            for (j, &reg) in regs.iter().enumerate() {
+                let x = me.ode.regs[reg];
+                let h = 1e-7 * x.abs().max(1e-3);
+                me.ode.regs[reg] = x + h;
+                let fp = residual(me)?;
+                me.ode.regs[reg] = x;
+                for (ii, &i) in rows.iter().enumerate() {
+                    jac[ii * regs.len() + j] = (fp[i] - f[i]) / h;
+                }
+            }
+            Ok(jac)
+        };
         // The initial equations of the free parameters alone (`cr = ...`, `r = -cr*w`
         // of a filter) first: the states' equations may be singular until they hold
         // (a steady state `der(x) = r*(x - u)` with r still 0).
@@ -837,37 +856,14 @@ impl<'a> Simulator<'a> {
                     break;
                 }
                 let (nr, nc) = (parameter_rows.len(), parameter_unknowns.len());
-                let mut jac = vec![0.0; nr * nc];
-                for (j, &k) in parameter_unknowns.iter().enumerate() {
-                    let reg = unknowns[k].0;
-                    let x = self.ode.regs[reg];
-                    let h = 1e-7 * x.abs().max(1e-3);
-                    self.ode.regs[reg] = x + h;
-                    let fp = residual(self)?;
-                    self.ode.regs[reg] = x;
-                    for (ii, &i) in parameter_rows.iter().enumerate() {
-                        jac[ii * nc + j] = (fp[i] - f[i]) / h;
-                    }
-                }
+                let regs: Vec<usize> = parameter_unknowns.iter().map(|&k| unknowns[k].0).collect();
+                let jac = jacobian(self, &regs, &parameter_rows, &f)?;
                 let (rows, cols) = independent_rows_and_columns(&jac, nr, nc);
-                let k = rows.len();
-                if k == 0 {
+                let Some(dx) = newton_update(&jac, nc, &rows, &cols, &fr) else {
                     break;
-                }
-                let mut a = vec![0.0; k * k];
-                for (ii, &i) in rows.iter().enumerate() {
-                    for (jj, &j) in cols.iter().enumerate() {
-                        a[ii * k + jj] = jac[i * nc + j];
-                    }
-                }
-                let mut b: Vec<f64> = rows.iter().map(|&i| -fr[i]).collect();
-                let mut perm = vec![0; k];
-                if !crate::eval::lu_solve(k, &mut a, &mut b, &mut perm) {
-                    break;
-                }
+                };
                 for (jj, &j) in cols.iter().enumerate() {
-                    let reg = unknowns[parameter_unknowns[j]].0;
-                    self.ode.regs[reg] += b[jj];
+                    self.ode.regs[regs[j]] += dx[jj];
                 }
             }
         }
@@ -880,18 +876,9 @@ impl<'a> Simulator<'a> {
                 return Ok(());
             }
             // Finite-difference Jacobian over the free states.
-            let mut jac = vec![0.0; n_eq * free.len()];
-            for (j, &k) in free.iter().enumerate() {
-                let reg = unknowns[k].0;
-                let x = self.ode.regs[reg];
-                let h = 1e-7 * x.abs().max(1e-3);
-                self.ode.regs[reg] = x + h;
-                let fp = residual(self)?;
-                self.ode.regs[reg] = x;
-                for i in 0..n_eq {
-                    jac[i * free.len() + j] = (fp[i] - f[i]) / h;
-                }
-            }
+            let regs: Vec<usize> = free.iter().map(|&k| unknowns[k].0).collect();
+            let all: Vec<usize> = (0..n_eq).collect();
+            let jac = jacobian(self, &regs, &all, &f)?;
             let (rows, cols) = chosen.get_or_insert_with(|| {
                 if n_eq > free.len() {
                     independent_rows_in_order(&jac, n_eq, free.len(), &m.initial_orders)
@@ -919,28 +906,18 @@ impl<'a> Simulator<'a> {
                 chosen = None;
             }
             let (rows, cols) = (&rows, &cols);
-            let k = rows.len();
-            if k == 0 {
+            if rows.is_empty() {
                 return Err(too_many(&f, &[]));
             }
-            let mut a = vec![0.0; k * k];
-            for (ii, &i) in rows.iter().enumerate() {
-                for (jj, &j) in cols.iter().enumerate() {
-                    a[ii * k + jj] = jac[i * free.len() + j];
-                }
-            }
-            let mut b: Vec<f64> = rows.iter().map(|&i| -f[i]).collect();
-            let mut perm = vec![0; k];
-            if !crate::eval::lu_solve(k, &mut a, &mut b, &mut perm) {
+            let Some(dx) = newton_update(&jac, free.len(), rows, cols, &f) else {
                 return Err(failed(
                     "the initial equations have a singular Jacobian",
                     &f,
                     rows,
                 ));
-            }
+            };
             for (jj, &j) in cols.iter().enumerate() {
-                let reg = unknowns[free[j]].0;
-                self.ode.regs[reg] += b[jj];
+                self.ode.regs[regs[j]] += dx[jj];
             }
         }
         let f = residual(self)?;
@@ -1652,16 +1629,7 @@ fn independent_rows_in_order(
             chosen_rows.push(i);
         }
     }
-    chosen_rows.sort_unstable();
-    let sub: Vec<f64> = chosen_rows
-        .iter()
-        .flat_map(|&i| a[i * cols..(i + 1) * cols].iter().copied())
-        .collect();
-    let chosen_cols = pick_columns(&sub, chosen_rows.len(), cols);
-    if chosen_cols.len() < chosen_rows.len() {
-        return (Vec::new(), Vec::new());
-    }
-    (chosen_rows, chosen_cols)
+    with_columns(a, cols, chosen_rows)
 }
 
 fn independent_rows_and_columns(a: &[f64], rows: usize, cols: usize) -> (Vec<usize>, Vec<usize>) {
@@ -1671,7 +1639,37 @@ fn independent_rows_and_columns(a: &[f64], rows: usize, cols: usize) -> (Vec<usi
             transposed[j * rows + i] = a[i * cols + j];
         }
     }
-    let mut chosen_rows = pick_columns(&transposed, cols, rows);
+    with_columns(a, cols, pick_columns(&transposed, cols, rows))
+}
+
+/// The Newton step for the unknowns `cols` from the residuals `rows`: the solution of
+/// `J[rows, cols] dx = -f[rows]` (`J` row-major with `ncols` columns); None when that
+/// square matrix is singular or empty.
+fn newton_update(
+    jac: &[f64],
+    ncols: usize,
+    rows: &[usize],
+    cols: &[usize],
+    f: &[f64],
+) -> Option<Vec<f64>> {
+    let k = rows.len();
+    if k == 0 || cols.len() != k {
+        return None;
+    }
+    let mut a = vec![0.0; k * k];
+    for (ii, &i) in rows.iter().enumerate() {
+        for (jj, &j) in cols.iter().enumerate() {
+            a[ii * k + jj] = jac[i * ncols + j];
+        }
+    }
+    let mut b: Vec<f64> = rows.iter().map(|&i| -f[i]).collect();
+    let mut perm = vec![0; k];
+    crate::eval::lu_solve(k, &mut a, &mut b, &mut perm).then_some(b)
+}
+
+/// The chosen rows (sorted) with as many columns that make them regular, or nothing
+/// when there are not as many.
+fn with_columns(a: &[f64], cols: usize, mut chosen_rows: Vec<usize>) -> (Vec<usize>, Vec<usize>) {
     chosen_rows.sort_unstable();
     let sub: Vec<f64> = chosen_rows
         .iter()
