@@ -293,6 +293,30 @@ impl Instantiator<'_, '_> {
                 }
                 StatementKind::Break => return Ok(Flow::Break),
                 StatementKind::Return => return Ok(Flow::Return),
+                // `assert(condition, message)` in a function evaluated at compile time:
+                // checked here (a failing one stops the evaluation with its message).
+                StatementKind::Call(Expr {
+                    kind: ExprKind::Call { func, args },
+                    ..
+                }) if func.to_dotted() == "assert" && !args.positional.is_empty() => {
+                    let holds = self
+                        .eval_local(&args.positional[0], scope, locals)?
+                        .as_bool()
+                        .ok_or_else(|| EvalError::Unsupported {
+                            span: st.span,
+                            what: "an assertion whose condition is not Boolean".into(),
+                        })?;
+                    if !holds {
+                        let message = match args.positional.get(1).map(|m| &m.kind) {
+                            Some(ExprKind::String(text)) => text.to_string(),
+                            _ => "an assertion".into(),
+                        };
+                        return Err(EvalError::Unsupported {
+                            span: st.span,
+                            what: format!("this call: its assertion \"{message}\" fails"),
+                        });
+                    }
+                }
                 StatementKind::Call(_)
                 | StatementKind::MultiAssign { .. }
                 | StatementKind::When { .. } => {
