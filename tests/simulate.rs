@@ -566,3 +566,16 @@ fn conditional_return_and_break_are_inlined() {
         assert!((value(&r, "y") - y).abs() < 1e-12, "y at {stop}");
     }
 }
+
+/// `connect(r.p, a)` over an array of components (`tests/flatten/ok/
+/// component_array_connect.mo`): three sources of 1, 2, 3 V across three 2 Ω resistors
+/// give 0.5, 1, 1.5 A.
+#[test]
+fn connects_over_arrays_of_components_connect_each_element() {
+    let m = load("tests/flatten/ok/component_array_connect.mo");
+    let r = run(&m, Method::Radau5, 1e-10, 1e-12, 1.0, 1);
+    for (k, want) in [(1, 0.5), (2, 1.0), (3, 1.5)] {
+        let i = value(&r, &format!("bank.r[{k}].p.i"));
+        assert!((i - want).abs() < 1e-12, "r[{k}]: {i}");
+    }
+}

@@ -8,7 +8,7 @@ use crate::instantiate::Connect;
 use rustc_hash::FxHashMap as HashMap;
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::{
-    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart,
+    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart, Subscript,
 };
 
 /// A node of the connection graph: a primitive variable (or one element of an array
@@ -185,6 +185,14 @@ pub fn equations(
     connects: &[Connect],
     absent: &[String],
 ) -> (Vec<Equation>, Vec<Diagnostic>) {
+    let expanded;
+    let connects = match expand_component_arrays(model, connects) {
+        Some(c) => {
+            expanded = c;
+            expanded.as_slice()
+        }
+        None => connects,
+    };
     let mut diags = Vec::new();
     let mut nodes: Vec<Node> = Vec::new();
     // Node of (variable, outside) at `2 * var + outside`; `usize::MAX`: none yet.
@@ -545,6 +553,109 @@ fn same_kind(a: &crate::flat::FlatType, b: &crate::flat::FlatType) -> bool {
         (T::Enumeration { name: x, .. }, T::Enumeration { name: y, .. }) => x == y,
         _ => false,
     }
+}
+
+/// `connect(c.p, plug.pin)` where `c` is an array of components: the connector array
+/// `c.p` has `c`'s dimension (spec 9.1.3), so the connect is one per element,
+/// `connect(c[i].p, plug.pin[i])`. None when no side needs it (the common case: a
+/// side whose name some variable starts with is left alone).
+fn expand_component_arrays(model: &FlatModel, connects: &[Connect]) -> Option<Vec<Connect>> {
+    let mut names: Vec<&str> = model.vars.iter().map(|v| v.name.as_str()).collect();
+    names.sort_unstable();
+    let has_members = |k: &str| {
+        let from = names.partition_point(|n| *n < k);
+        names[from..]
+            .iter()
+            .take_while(|n| n.starts_with(k))
+            .any(|n| matches!(n.as_bytes().get(k.len()), None | Some(b'.') | Some(b'[')))
+    };
+    let unmatched =
+        |c: &Connect| !has_members(&var_key_full(&c.a)) || !has_members(&var_key_full(&c.b));
+    if !connects.iter().any(unmatched) {
+        return None;
+    }
+    // Highest index of every array prefix: `c[3].p.v` counts 3 for `c`.
+    let mut sizes: HashMap<String, usize> = HashMap::default();
+    for n in &names {
+        for (at, _) in n.match_indices('[') {
+            let rest = &n[at + 1..];
+            let Some(close) = rest.find(']') else {
+                continue;
+            };
+            if let Ok(i) = rest[..close].parse::<usize>() {
+                let e = sizes.entry(n[..at].to_owned()).or_insert(0);
+                *e = (*e).max(i);
+            }
+        }
+    }
+    // An array of primitive connectors (`RealOutput i[3]`) is one variable with dims.
+    for v in &model.vars {
+        if let Some(&n) = v.dims.first() {
+            let e = sizes.entry(v.name.clone()).or_insert(0);
+            *e = (*e).max(n);
+        }
+    }
+    let index = |i: usize, span: Span| {
+        Subscript::Expr(Expr {
+            kind: ExprKind::Integer(i as i64),
+            span,
+        })
+    };
+    // The elements of a side: over the first part, from the left, that names an array
+    // of components without a subscript; else over its last part when that is an
+    // array of connectors.
+    let elements = |r: &ComponentRef, component: bool| -> Option<Vec<ComponentRef>> {
+        let mut prefix = String::new();
+        for (j, p) in r.parts.iter().enumerate() {
+            if j > 0 {
+                prefix.push('.');
+            }
+            prefix.push_str(&p.name.text);
+            let last = j + 1 == r.parts.len();
+            if p.subscripts.is_empty() && (component != last) {
+                if let Some(&n) = sizes.get(&prefix) {
+                    return Some(
+                        (1..=n)
+                            .map(|i| {
+                                let mut e = r.clone();
+                                e.parts[j].subscripts.push(index(i, r.span));
+                                e
+                            })
+                            .collect(),
+                    );
+                }
+            }
+            if !p.subscripts.is_empty() {
+                prefix.push_str(&unimo_syntax::print::subscripts(&p.subscripts));
+            }
+        }
+        None
+    };
+    let mut out = Vec::with_capacity(connects.len());
+    for c in connects {
+        let (ka, kb) = (var_key_full(&c.a), var_key_full(&c.b));
+        let (ma, mb) = (has_members(&ka), has_members(&kb));
+        if ma && mb {
+            out.push(c.clone());
+            continue;
+        }
+        let side = |r: &ComponentRef, members: bool| {
+            if members {
+                elements(r, false)
+            } else {
+                elements(r, true)
+            }
+        };
+        match (side(&c.a, ma), side(&c.b, mb)) {
+            (Some(ea), Some(eb)) if ea.len() == eb.len() => {
+                for (a, b) in ea.into_iter().zip(eb) {
+                    out.push(Connect { a, b, ..c.clone() });
+                }
+            }
+            _ => out.push(c.clone()),
+        }
+    }
+    Some(out)
 }
 
 fn var_key_full(r: &ComponentRef) -> String {
