@@ -37,12 +37,7 @@ fn ok(file: &str, o: &SimOptions) -> SimResult {
 }
 
 fn column(r: &SimResult, name: &str) -> Vec<f64> {
-    let k = r
-        .names
-        .iter()
-        .position(|n| n == name)
-        .unwrap_or_else(|| panic!("no {name}"));
-    r.rows.iter().map(|row| row[k]).collect()
+    common::column(r, name)
 }
 
 fn last(r: &SimResult, name: &str) -> f64 {

@@ -20,12 +20,7 @@ fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64) -> SimResult {
 }
 
 fn column(r: &SimResult, name: &str) -> Vec<f64> {
-    let k = r
-        .names
-        .iter()
-        .position(|n| n == name)
-        .unwrap_or_else(|| panic!("no {name}"));
-    r.rows.iter().map(|row| row[k]).collect()
+    common::column(r, name)
 }
 
 #[test]

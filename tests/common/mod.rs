@@ -72,3 +72,13 @@ pub fn run_ok(
     );
     r
 }
+
+/// The values of output `name` over the rows of `r`; panics when there is no such output.
+pub fn column(r: &unimo_runtime::sim::SimResult, name: &str) -> Vec<f64> {
+    let k = r
+        .names
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("no {name}"));
+    r.rows.iter().map(|row| row[k]).collect()
+}
