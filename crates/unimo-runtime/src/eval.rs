@@ -1,11 +1,10 @@
-//! Evaluating the compiled plan: explicit steps in order, Newton on each block with its
-//! symbolic Jacobian and a small dense LU.
+//! Evaluating the compiled plan: explicit steps in order, Newton on each block (the
+//! solve crate's, on the block's residual and symbolic Jacobian tapes).
+
+use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
 
 use crate::model::{CompiledBlock, CompiledModel, CompiledStep};
 use crate::tape::EventState;
-
-/// Iterations of Newton's method on a block before it fails.
-const MAX_NEWTON_ITERATIONS: usize = 50;
 
 /// Rounds of "solve with the relations frozen, then decide them again" for a block
 /// whose equations hold relations, at an event.
@@ -80,15 +79,16 @@ fn collide(m: &CompiledModel, r: &mut [f64], ev: &mut EventState) -> Result<(), 
     })
 }
 
-/// Scratch memory for Newton (allocated once per simulation).
+/// Scratch memory for Newton (allocated once per simulation) and the tolerances its
+/// solutions are accepted with.
 #[derive(Default, Debug)]
 pub struct Workspace {
     relations: Vec<f64>,
-    matrix: Vec<f64>,
-    rhs: Vec<f64>,
-    perm: Vec<usize>,
-    /// The iterate before a Newton step (for the line search).
-    saved: Vec<f64>,
+    /// A block's iteration variables.
+    x: Vec<f64>,
+    newton: NewtonWork,
+    /// The simulation's tolerances (the solver's defaults until a run sets them).
+    pub tolerance: NewtonTolerance,
 }
 
 /// Solves a block. Outside events its relations are frozen (they change only at
@@ -180,119 +180,60 @@ fn newton(
     })
 }
 
+/// Newton on a block with its relations frozen: the solve crate's damped Newton
+/// (`unimo_solve::newton`, converged at rounding, accepted within the simulation's
+/// tolerances) on the block's residual and Jacobian tapes.
 fn newton_smooth(
     b: &CompiledBlock,
     r: &mut [f64],
     ev: &mut EventState,
     w: &mut Workspace,
 ) -> Result<(), BlockFailure> {
-    let n = b.iteration.len();
-    w.matrix.resize(n * n, 0.0);
-    w.rhs.resize(n, 0.0);
-    w.perm.resize(n, 0);
-    let fail = |reason: &str, res: f64| BlockFailure {
-        variables: b.names.clone(),
-        residual: res,
-        reason: reason.to_owned(),
-    };
-    let mut last_norm = f64::INFINITY;
-    // Whether the residual tape already ran at the current iterate (the line search's
-    // last trial).
-    let mut evaluated = false;
-    for it in 0..MAX_NEWTON_ITERATIONS {
-        if !evaluated {
-            b.residual_tape.run(r, ev);
-        }
-        let mut norm = 0.0f64;
-        for (k, &reg) in b.residuals.iter().enumerate() {
-            let f = r[reg as usize];
-            w.rhs[k] = -f;
-            norm = norm.max(f.abs());
-        }
-        if !norm.is_finite() {
-            return Err(fail("the residual is not finite", norm));
-        }
-        if norm == 0.0 {
-            return Ok(());
-        }
-        b.jacobian_tape.run(r, ev);
-        for (k, &reg) in b.jacobian.iter().enumerate() {
-            w.matrix[k] = r[reg as usize];
-        }
-        if !lu_solve(n, &mut w.matrix, &mut w.rhs, &mut w.perm) {
-            return Err(fail("the block's Jacobian is singular", norm));
-        }
-        let lambda = line_search(b, r, ev, w, norm);
-        evaluated = lambda.is_some();
-        let lambda = lambda.unwrap_or(1.0);
-        let mut converged = true;
-        for (k, &reg) in b.iteration.iter().enumerate() {
-            let x = w.saved[k];
-            let dx = lambda * w.rhs[k];
-            r[reg as usize] = x + dx;
-            if dx.abs() > 1e-13 * (1.0 + x.abs()) {
-                converged = false;
-            }
-        }
-        if b.linear && it >= 1 && norm >= last_norm {
-            // A linear block is solved by the first step; more is rounding.
-            b.residual_tape.run(r, ev);
-            return Ok(());
-        }
-        if converged {
-            // Bring the inner (torn) variables up to date with the final iterate.
-            b.residual_tape.run(r, ev);
-            return Ok(());
-        }
-        last_norm = norm;
+    w.x.clear();
+    w.x.extend(b.iteration.iter().map(|&g| r[g as usize]));
+    let mut problem = BlockProblem { b, r, ev };
+    match newton::solve(&mut problem, &mut w.x, &w.tolerance, &mut w.newton) {
+        Ok(_) => Ok(()),
+        Err(e) => Err(BlockFailure {
+            variables: b.names.clone(),
+            residual: e.residual(),
+            reason: e.reason(),
+        }),
     }
-    b.residual_tape.run(r, ev);
-    let norm = residual_norm(b, r);
-    if norm <= 1e-10 {
-        return Ok(());
-    }
-    Err(fail(
-        "Newton's method did not converge in 50 iterations",
-        norm,
-    ))
 }
 
-/// Damped Newton (Armijo backtracking): the step `w.rhs` from the iterate is halved
-/// until the residual's largest component decreases, so that a residual with kinks and
-/// saturations (a limited op-amp: slope 1e4 in a band 1e-3 wide, 0 outside) does not
-/// send the iterates back and forth between its flat parts. Returns the step length
-/// taken with the residual tape run at the new iterate, or `None` for a full step
-/// left to the caller (linear blocks, iterates already at rounding level, and
-/// directions along which the residual does not decrease at all).
-fn line_search(
-    b: &CompiledBlock,
-    r: &mut [f64],
-    ev: &mut EventState,
-    w: &mut Workspace,
-    norm: f64,
-) -> Option<f64> {
-    w.saved.clear();
-    w.saved
-        .extend(b.iteration.iter().map(|&reg| r[reg as usize]));
-    if b.linear || norm <= 1e-10 {
-        return None;
+/// A block's equations as a Newton problem on the registers: the iteration variables
+/// are written into their registers, the residual tape computes the torn variables and
+/// the residuals, the Jacobian tape the symbolic Jacobian at the same point.
+struct BlockProblem<'a> {
+    b: &'a CompiledBlock,
+    r: &'a mut [f64],
+    ev: &'a mut EventState,
+}
+
+impl NewtonProblem for BlockProblem<'_> {
+    fn size(&self) -> usize {
+        self.b.iteration.len()
     }
-    let mut lambda = 1.0;
-    loop {
-        for (k, &reg) in b.iteration.iter().enumerate() {
-            r[reg as usize] = w.saved[k] + lambda * w.rhs[k];
+
+    fn is_linear(&self) -> bool {
+        self.b.linear
+    }
+
+    fn residual(&mut self, x: &[f64], f: &mut [f64]) {
+        for (k, &g) in self.b.iteration.iter().enumerate() {
+            self.r[g as usize] = x[k];
         }
-        b.residual_tape.run(r, ev);
-        let trial = residual_norm(b, r);
-        if trial.is_finite() && trial <= (1.0 - 1e-4 * lambda) * norm {
-            return Some(lambda);
+        self.b.residual_tape.run(self.r, self.ev);
+        for (k, &g) in self.b.residuals.iter().enumerate() {
+            f[k] = self.r[g as usize];
         }
-        lambda *= 0.5;
-        if lambda < 1e-6 {
-            // No decrease along the Newton direction (a flat part, or a loop with
-            // several solutions such as a Schmitt trigger): the full step, as plain
-            // Newton takes it.
-            return None;
+    }
+
+    fn jacobian(&mut self, j: &mut [f64]) {
+        self.b.jacobian_tape.run(self.r, self.ev);
+        for (k, &g) in self.b.jacobian.iter().enumerate() {
+            j[k] = self.r[g as usize];
         }
     }
 }
@@ -303,53 +244,6 @@ fn residual_norm(b: &CompiledBlock, r: &[f64]) -> f64 {
         .iter()
         .map(|&g| r[g as usize].abs())
         .fold(0.0, f64::max)
-}
-
-/// Solves `a x = b` in place (LU with partial pivoting); false when singular.
-pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> bool {
-    for (i, p) in perm.iter_mut().enumerate().take(n) {
-        *p = i;
-    }
-    for k in 0..n {
-        let mut piv = k;
-        let mut best = a[k * n + k].abs();
-        for i in k + 1..n {
-            let v = a[i * n + k].abs();
-            if v > best {
-                best = v;
-                piv = i;
-            }
-        }
-        if best == 0.0 || !best.is_finite() {
-            return false;
-        }
-        if piv != k {
-            for j in 0..n {
-                a.swap(k * n + j, piv * n + j);
-            }
-            b.swap(k, piv);
-            perm.swap(k, piv);
-        }
-        let d = a[k * n + k];
-        for i in k + 1..n {
-            let f = a[i * n + k] / d;
-            if f != 0.0 {
-                a[i * n + k] = f;
-                for j in k + 1..n {
-                    a[i * n + j] -= f * a[k * n + j];
-                }
-                b[i] -= f * b[k];
-            }
-        }
-    }
-    for k in (0..n).rev() {
-        let mut s = b[k];
-        for j in k + 1..n {
-            s -= a[k * n + j] * b[j];
-        }
-        b[k] = s / a[k * n + k];
-    }
-    true
 }
 
 /// Evaluates a compiled model's right-hand side outside a simulation (benchmarks,

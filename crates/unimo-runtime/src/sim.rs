@@ -7,6 +7,10 @@ use crate::eval::{eval_steps, eval_steps_lenient, BlockFailure, Workspace};
 use crate::model::{Action, CompiledModel};
 use crate::tape::EventState;
 use unimo_dae::expr::RelOp;
+use unimo_solve::dense::{
+    abs_det, independent_rows_and_columns, independent_rows_in_order, newton_step, pick_columns,
+};
+use unimo_solve::newton::NewtonTolerance;
 use unimo_solve::{Direction, EvalError, Method, Options, SolveError, Solver, StopReason, System};
 
 mod crossings;
@@ -859,7 +863,7 @@ impl<'a> Simulator<'a> {
                 let regs: Vec<usize> = parameter_unknowns.iter().map(|&k| unknowns[k].0).collect();
                 let jac = jacobian(self, &regs, &parameter_rows, &f)?;
                 let (rows, cols) = independent_rows_and_columns(&jac, nr, nc);
-                let Some(dx) = newton_update(&jac, nc, &rows, &cols, &fr) else {
+                let Some(dx) = newton_step(&jac, nc, &rows, &cols, &fr) else {
                     break;
                 };
                 for (jj, &j) in cols.iter().enumerate() {
@@ -869,6 +873,7 @@ impl<'a> Simulator<'a> {
         }
         let mut chosen: Option<(Vec<usize>, Vec<usize>)> = None;
         let mut deficient_steps = 0;
+        let mut last_accepted = false;
         for _ in 0..50 {
             let f = residual(self)?;
             let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -909,20 +914,31 @@ impl<'a> Simulator<'a> {
             if rows.is_empty() {
                 return Err(too_many(&f, &[]));
             }
-            let Some(dx) = newton_update(&jac, free.len(), rows, cols, &f) else {
+            let Some(dx) = newton_step(&jac, free.len(), rows, cols, &f) else {
                 return Err(failed(
                     "the initial equations have a singular Jacobian",
                     &f,
                     rows,
                 ));
             };
+            last_accepted = true;
             for (jj, &j) in cols.iter().enumerate() {
-                self.ode.regs[regs[j]] += dx[jj];
+                let x = self.ode.regs[regs[j]];
+                last_accepted &= self.ode.work.tolerance.accepts(x, dx[jj]);
+                self.ode.regs[regs[j]] = x + dx[jj];
             }
         }
         let f = residual(self)?;
         let norm = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        if norm <= 1e-9 {
+        // Not converged to rounding in 50 steps: accepted when the last step was within
+        // the simulation's tolerances (unimo_solve::newton's rule) and the redundant
+        // equations, which take no step, hold.
+        let redundant = chosen.as_ref().map_or(0.0, |(rows, _)| {
+            (0..n_eq)
+                .filter(|i| !rows.contains(i))
+                .fold(0.0f64, |a, i| a.max(f[i].abs()))
+        });
+        if last_accepted && norm.is_finite() && redundant <= 1e-9 {
             return Ok(());
         }
         if let Some((rows, _)) = &chosen {
@@ -1132,6 +1148,7 @@ impl<'a> Simulator<'a> {
     pub fn run_with_progress(mut self, o: &SimOptions, progress: &mut dyn FnMut(f64)) -> SimResult {
         let m = self.m();
         self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
+        self.ode.work.tolerance = NewtonTolerance::new(o.rtol, o.atol);
         if let Err(e) = self.initialize(o.start) {
             self.result.error = Some(e);
             return self.result;
@@ -1552,170 +1569,4 @@ impl<'a> Simulator<'a> {
 /// Convenience: compile-time model in, results out.
 pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
     Simulator::new(m).run(o)
-}
-
-/// `|det|` of the square submatrix of the `rows x cols` matrix `a` made of `columns`
-/// (Gaussian elimination with partial pivoting).
-fn abs_det(a: &[f64], rows: usize, cols: usize, columns: &[usize]) -> f64 {
-    let n = columns.len();
-    if n != rows {
-        return 0.0;
-    }
-    let mut b: Vec<f64> = (0..n)
-        .flat_map(|i| columns.iter().map(move |&j| a[i * cols + j]))
-        .collect();
-    let mut det = 1.0;
-    for c in 0..n {
-        let p = (c..n)
-            .max_by(|&i, &j| b[i * n + c].abs().total_cmp(&b[j * n + c].abs()))
-            .unwrap_or(c);
-        let pivot = b[p * n + c];
-        if pivot == 0.0 {
-            return 0.0;
-        }
-        if p != c {
-            for j in 0..n {
-                b.swap(p * n + j, c * n + j);
-            }
-        }
-        det *= pivot;
-        for i in c + 1..n {
-            let f = b[i * n + c] / pivot;
-            for j in c..n {
-                b[i * n + j] -= f * b[c * n + j];
-            }
-        }
-    }
-    det.abs()
-}
-
-/// Picks `k` columns of the `rows x cols` matrix `a` that make it best conditioned
-/// (greedy Gaussian elimination with complete pivoting on the columns).
-/// Independent equations (rows) of the initial equations' Jacobian `a` (`rows` x
-/// `cols`), and as many unknowns (columns) they determine, both by pivoting.
-/// Like [`independent_rows_and_columns`], but the rows are taken greedily in
-/// decreasing `order` (ties by index), each when it is independent of those taken.
-fn independent_rows_in_order(
-    a: &[f64],
-    rows: usize,
-    cols: usize,
-    order: &[u32],
-) -> (Vec<usize>, Vec<usize>) {
-    let mut sequence: Vec<usize> = (0..rows).collect();
-    sequence.sort_by_key(|&i| std::cmp::Reverse(order.get(i).copied().unwrap_or(u32::MAX)));
-    let mut basis: Vec<Vec<f64>> = Vec::new();
-    let mut chosen_rows = Vec::new();
-    for i in sequence {
-        if basis.len() == cols {
-            break;
-        }
-        let mut r = a[i * cols..(i + 1) * cols].to_vec();
-        let norm = r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if norm == 0.0 || !norm.is_finite() {
-            continue;
-        }
-        for b in &basis {
-            let p = b
-                .iter()
-                .enumerate()
-                .fold(0, |k, (j, x)| if x.abs() > b[k].abs() { j } else { k });
-            let f = r[p] / b[p];
-            for (x, y) in r.iter_mut().zip(b) {
-                *x -= f * y;
-            }
-        }
-        if r.iter().fold(0.0f64, |m, x| m.max(x.abs())) > 1e-10 * norm {
-            basis.push(r);
-            chosen_rows.push(i);
-        }
-    }
-    with_columns(a, cols, chosen_rows)
-}
-
-fn independent_rows_and_columns(a: &[f64], rows: usize, cols: usize) -> (Vec<usize>, Vec<usize>) {
-    let mut transposed = vec![0.0; rows * cols];
-    for i in 0..rows {
-        for j in 0..cols {
-            transposed[j * rows + i] = a[i * cols + j];
-        }
-    }
-    with_columns(a, cols, pick_columns(&transposed, cols, rows))
-}
-
-/// The Newton step for the unknowns `cols` from the residuals `rows`: the solution of
-/// `J[rows, cols] dx = -f[rows]` (`J` row-major with `ncols` columns); None when that
-/// square matrix is singular or empty.
-fn newton_update(
-    jac: &[f64],
-    ncols: usize,
-    rows: &[usize],
-    cols: &[usize],
-    f: &[f64],
-) -> Option<Vec<f64>> {
-    let k = rows.len();
-    if k == 0 || cols.len() != k {
-        return None;
-    }
-    let mut a = vec![0.0; k * k];
-    for (ii, &i) in rows.iter().enumerate() {
-        for (jj, &j) in cols.iter().enumerate() {
-            a[ii * k + jj] = jac[i * ncols + j];
-        }
-    }
-    let mut b: Vec<f64> = rows.iter().map(|&i| -f[i]).collect();
-    let mut perm = vec![0; k];
-    crate::eval::lu_solve(k, &mut a, &mut b, &mut perm).then_some(b)
-}
-
-/// The chosen rows (sorted) with as many columns that make them regular, or nothing
-/// when there are not as many.
-fn with_columns(a: &[f64], cols: usize, mut chosen_rows: Vec<usize>) -> (Vec<usize>, Vec<usize>) {
-    chosen_rows.sort_unstable();
-    let sub: Vec<f64> = chosen_rows
-        .iter()
-        .flat_map(|&i| a[i * cols..(i + 1) * cols].iter().copied())
-        .collect();
-    let chosen_cols = pick_columns(&sub, chosen_rows.len(), cols);
-    if chosen_cols.len() < chosen_rows.len() {
-        return (Vec::new(), Vec::new());
-    }
-    (chosen_rows, chosen_cols)
-}
-
-fn pick_columns(a: &[f64], rows: usize, cols: usize) -> Vec<usize> {
-    let mut a = a.to_vec();
-    let mut chosen = Vec::new();
-    let mut used = vec![false; cols];
-    let mut used_row = vec![false; rows];
-    for _ in 0..rows {
-        let mut best = (0.0, usize::MAX, usize::MAX);
-        for i in 0..rows {
-            if used_row[i] {
-                continue;
-            }
-            for j in 0..cols {
-                if !used[j] && a[i * cols + j].abs() > best.0 {
-                    best = (a[i * cols + j].abs(), i, j);
-                }
-            }
-        }
-        if best.1 == usize::MAX || best.0 < 1e-14 {
-            break;
-        }
-        let (_, pi, pj) = best;
-        used[pj] = true;
-        used_row[pi] = true;
-        chosen.push(pj);
-        let p = a[pi * cols + pj];
-        for i in 0..rows {
-            if i != pi {
-                let f = a[i * cols + pj] / p;
-                for j in 0..cols {
-                    a[i * cols + j] -= f * a[pi * cols + j];
-                }
-            }
-        }
-    }
-    chosen.sort();
-    chosen
 }

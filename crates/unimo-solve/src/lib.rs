@@ -73,6 +73,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod bdf;
+pub mod dense;
 mod dense_output;
 mod dopri5;
 mod error;
@@ -80,6 +81,7 @@ mod evaluate;
 mod integrator;
 mod jacobian;
 mod linear;
+pub mod newton;
 mod norm;
 mod options;
 mod radau5;
@@ -94,6 +96,7 @@ pub use dense_output::DenseOutput;
 pub use dopri5::{Dopri5, Dopri5DenseOutput};
 pub use error::{EvalError, SolveError, WorstComponents};
 pub use integrator::Integrator;
+pub use newton::{NewtonError, NewtonProblem, NewtonTolerance, NewtonWork};
 pub use options::{LinearSolverChoice, Method, Options, Tolerance, SPARSE_AUTO_THRESHOLD};
 pub use radau5::{Radau5, Radau5DenseOutput};
 pub use roots::Direction;
