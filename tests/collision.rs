@@ -228,3 +228,80 @@ fn an_unknown_damping_law_code_is_refused() {
     assert!(e.contains("E3019"), "{e}");
     assert!(e.contains("7 is not a damping law code"), "{e}");
 }
+
+/// The library's `CollisionBody` and the compiler agree on `collisionBody`'s arguments:
+/// the call passes the parameters of `COLLISION_BODY_PARAMS` in order, each declared
+/// with that many scalars; the enumerations list the shape and law codes in order; and
+/// a compiled ball's named position, velocity and angular velocity are its states.
+#[test]
+fn the_library_and_the_runtime_agree_on_collision_arguments() {
+    use unimo_dae::collision_args::{LawCode, ShapeCode, COLLISION_BODY_PARAMS};
+    let text =
+        std::fs::read_to_string(common::root().join("stdlib/Unimo/Collision/package.mo")).unwrap();
+    let body =
+        &text[text.find("model CollisionBody").unwrap()..text.find("end CollisionBody;").unwrap()];
+    let call = &body[body.find("collisionBody(").unwrap() + "collisionBody(".len()..];
+    let call = &call[..call.find(");").unwrap()];
+    let names: Vec<String> = call
+        .split(',')
+        .map(|a| {
+            let a = a.trim();
+            a.strip_prefix("Integer(")
+                .and_then(|x| x.strip_suffix(')'))
+                .unwrap_or(a)
+                .to_string()
+        })
+        .collect();
+    let expected: Vec<&str> = COLLISION_BODY_PARAMS.iter().map(|p| p.0).collect();
+    assert_eq!(names, expected);
+    // Each argument's declared size: `Real dims[3]`, `Real R[3, 3]`, scalars.
+    for (name, size) in COLLISION_BODY_PARAMS {
+        let decl = body
+            .lines()
+            .find(|l| {
+                let l = l.trim();
+                !l.starts_with("cat(")
+                    && (l.contains(&format!(" {name} ")) || l.contains(&format!(" {name}[")))
+                    && !l.contains("collisionBody")
+            })
+            .unwrap_or_else(|| panic!("no declaration of {name}"));
+        let declared = match decl.split_once(&format!(" {name}[")) {
+            Some((_, dims)) => dims[..dims.find(']').unwrap()]
+                .split(',')
+                .map(|d| d.trim().parse::<usize>().unwrap())
+                .product(),
+            None => 1,
+        };
+        assert_eq!(declared, size, "{name}: {decl}");
+    }
+    // Enumeration literals in code order.
+    let literals = |ty: &str| -> Vec<String> {
+        let e = &text[text.find(&format!("type {ty} = enumeration(")).unwrap()..];
+        let e = &e[..e.find(");").unwrap()];
+        e.lines()
+            .skip(1)
+            .map(|l| l.trim().split(' ').next().unwrap().to_string())
+            .collect()
+    };
+    let shapes: Vec<String> = ShapeCode::ALL.iter().map(|c| format!("{c:?}")).collect();
+    assert_eq!(literals("ShapeType"), shapes);
+    let laws: Vec<String> = LawCode::ALL.iter().map(|c| format!("{c:?}")).collect();
+    assert_eq!(literals("DampingLaw"), laws);
+    for (k, c) in ShapeCode::ALL.iter().enumerate() {
+        assert_eq!(*c as usize, k + 1);
+    }
+    // The compiled ball reads its states through the named arguments.
+    let m = load("models/CollisionBouncingBall.mo", None);
+    let args = m.dae.collision[0].args;
+    let name = |e| {
+        m.dae
+            .arena
+            .vars(e)
+            .iter()
+            .map(|&s| m.dae.name(s))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(name(args.position[2]), ["ball.r[3]"]);
+    assert_eq!(name(args.velocity[0]), ["ball.v[1]"]);
+    assert_eq!(name(args.angular_velocity[1]), ["ball.w[2]"]);
+}

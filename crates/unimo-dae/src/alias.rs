@@ -211,14 +211,12 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     for a in &mut dae.assertions {
         a.condition = dae.arena.substitute(a.condition, &lookup, &mut memo);
     }
-    for site in dae
-        .collision
-        .iter_mut()
-        .chain(dae.collision_world.iter_mut())
-    {
-        for x in &mut site.args {
-            *x = dae.arena.substitute(*x, &lookup, &mut memo);
-        }
+    for k in 0..dae.collision.len() {
+        let args = dae.collision[k].args;
+        dae.collision[k].args = args.map(|x| dae.arena.substitute(x, &lookup, &mut memo));
+    }
+    if let Some(w) = dae.collision_world.as_mut() {
+        w.args = w.args.map(|x| dae.arena.substitute(x, &lookup, &mut memo));
     }
     stats
 }

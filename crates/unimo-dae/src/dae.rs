@@ -173,9 +173,9 @@ pub struct Dae {
     pub experiment: Experiment,
     /// Collision bodies (`collisionBody(...)` calls), numbered by the compiler in
     /// instantiation order: site `k` of `Node::External(k, _)`.
-    pub collision: Vec<CollisionSite>,
+    pub collision: Vec<CollisionBody>,
     /// The collision world's settings (`collisionGaps(margin, tolerance, broadphase, sweep)`).
-    pub collision_world: Option<CollisionSite>,
+    pub collision_world: Option<CollisionWorld>,
     /// External objects (the MSL's tables), made after the parameters: the handle of
     /// object `k` is the constant `k` (`crate::external`).
     pub external_objects: Vec<crate::external::ExternalObjectSite>,
@@ -184,24 +184,23 @@ pub struct Dae {
     pub uses_terminal: bool,
 }
 
-/// One collision body: the arguments of its `collisionBody(...)` call, flattened.
+pub use crate::collision_args::{
+    CollisionBodyArgs, CollisionWorldArgs, COLLISION_BODY_ARGS, COLLISION_WORLD_ARGS,
+};
+
+/// One collision body: the arguments of its `collisionBody(...)` call, by name.
 #[derive(Clone, Debug)]
-pub struct CollisionSite {
-    pub args: Vec<ExprId>,
+pub struct CollisionBody {
+    pub args: CollisionBodyArgs<ExprId>,
     pub span: Span,
 }
 
-/// Scalar arguments of `collisionBody`, in order: shape code (1 sphere, 2 box,
-/// 3 capsule, 4 cylinder, 5 cone, 6 ellipsoid, 7 half-space), dimensions (3), position
-/// (3), rotation matrix body-to-world row-major (9), velocity (3), angular velocity in
-/// world coordinates (3), dynamic flag, K, n, damping law (1 clipped, 2 Hunt-Crossley,
-/// 3 Flores), D, e, static and sliding friction coefficients, switching velocity,
-/// friction cap, impulse flag, mass, principal inertia (3), group.
-pub const COLLISION_BODY_ARGS: usize = 38;
-
-/// Arguments of `collisionGaps`: margin, contact tolerance, broadphase (0 automatic,
-/// 1 all pairs, 2 sweep and prune), sweep test on (1) or off (0).
-pub const COLLISION_WORLD_ARGS: usize = 4;
+/// The collision world: the arguments of its `collisionGaps(...)` call, by name.
+#[derive(Clone, Debug)]
+pub struct CollisionWorld {
+    pub args: CollisionWorldArgs<ExprId>,
+    pub span: Span,
+}
 
 /// Site index of the collision world's gaps (`collisionGaps(...)`).
 pub const COLLISION_GAPS_SITE: u32 = u32::MAX;

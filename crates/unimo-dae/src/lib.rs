@@ -8,6 +8,7 @@
 pub mod algo;
 pub mod alias;
 pub mod analysis;
+pub mod collision_args;
 pub mod dae;
 pub mod diff;
 pub mod dump;

@@ -1004,7 +1004,7 @@ impl<'m> Lowerer<'m> {
                 for e in &args.positional {
                     flat.extend(self.expr(e)?.data);
                 }
-                if flat.len() != crate::dae::COLLISION_BODY_ARGS {
+                let Some(named) = crate::dae::CollisionBodyArgs::from_flat(&flat) else {
                     return Err(DaeError::new(
                         "E3019",
                         format!(
@@ -1015,20 +1015,30 @@ impl<'m> Lowerer<'m> {
                         ),
                         span,
                     ));
-                }
+                };
                 // The codes of the shape and the damping law (the library passes its
                 // enumerations; a direct call may pass anything).
-                for (at, what, valid) in [(0usize, "shape", 1..=7), (25, "damping law", 1..=3)] {
-                    if let Some(code) = self.const_value(flat[at]) {
-                        if code.fract() != 0.0 || !valid.contains(&(code as i64)) {
+                use crate::collision_args::{LawCode, ShapeCode};
+                let shape_ok = |x: f64| ShapeCode::from_value(x).is_some();
+                let law_ok = |x: f64| LawCode::from_value(x).is_some();
+                let checks = [
+                    (
+                        named.shape,
+                        "shape",
+                        ShapeCode::ALL.len(),
+                        &shape_ok as &dyn Fn(f64) -> bool,
+                    ),
+                    (named.law, "damping law", LawCode::ALL.len(), &law_ok),
+                ];
+                for (arg, what, count, valid) in checks {
+                    if let Some(code) = self.const_value(arg) {
+                        if !valid(code) {
                             return Err(DaeError::new(
                                 "E3019",
                                 format!(
-                                    "`collisionBody`: {code} is not a {what} code ({}..{}); \
+                                    "`collisionBody`: {code} is not a {what} code (1..{count}); \
                                      use `Unimo.Collision.CollisionBody`, whose enumerations \
-                                     give valid codes",
-                                    valid.start(),
-                                    valid.end()
+                                     give valid codes"
                                 ),
                                 span,
                             ));
@@ -1038,7 +1048,7 @@ impl<'m> Lowerer<'m> {
                 let site = self.dae.collision.len() as u32;
                 self.dae
                     .collision
-                    .push(crate::dae::CollisionSite { args: flat, span });
+                    .push(crate::dae::CollisionBody { args: named, span });
                 let data = (0..6).map(|k| self.dae.arena.external(site, k)).collect();
                 Tensor {
                     dims: vec![6],
@@ -1050,9 +1060,8 @@ impl<'m> Lowerer<'m> {
                 for e in &args.positional {
                     flat.extend(self.expr(e)?.data);
                 }
-                if flat.len() != crate::dae::COLLISION_WORLD_ARGS
-                    || self.dae.collision_world.is_some()
-                {
+                let named = crate::dae::CollisionWorldArgs::from_flat(&flat);
+                let Some(named) = named.filter(|_| self.dae.collision_world.is_none()) else {
                     return Err(DaeError::new(
                         "E3019",
                         format!(
@@ -1062,8 +1071,8 @@ impl<'m> Lowerer<'m> {
                         ),
                         span,
                     ));
-                }
-                self.dae.collision_world = Some(crate::dae::CollisionSite { args: flat, span });
+                };
+                self.dae.collision_world = Some(crate::dae::CollisionWorld { args: named, span });
                 let g = crate::dae::COLLISION_GAPS_SITE;
                 let data = (0..2).map(|k| self.dae.arena.external(g, k)).collect();
                 Tensor {

@@ -18,18 +18,18 @@
 
 use crate::tape::{Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
+use unimo_dae::collision_args::{CollisionBodyArgs, CollisionWorldArgs, LawCode, ShapeCode};
 use unimo_geometry::laws::{self, Damping, Friction};
 use unimo_geometry::{
     aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Placement, Scratch, Shape,
     ShapeKind, SweepAndPrune,
 };
 
-/// Per body: argument registers (layout of `unimo_dae::dae::COLLISION_BODY_ARGS`),
-/// output registers (force, torque) and, when the velocities are plain states, their
-/// registers (for impulses).
+/// Per body: argument registers by name, output registers (force, torque) and, when
+/// the velocities are plain states, their registers (for impulses).
 #[derive(Clone, Debug)]
 pub struct CollisionBodyRegs {
-    pub args: Vec<Reg>,
+    pub args: CollisionBodyArgs<Reg>,
     pub outputs: [Reg; 6],
     pub velocity_states: Option<[Reg; 6]>,
     pub name: String,
@@ -41,34 +41,12 @@ pub struct CollisionModel {
     /// Computes the argument registers from states and parameters.
     pub inputs: Tape,
     pub bodies: Vec<CollisionBodyRegs>,
-    /// margin, contact tolerance, broadphase, sweep.
-    pub world_args: [Reg; 4],
+    pub world_args: CollisionWorldArgs<Reg>,
     pub gaps: [Reg; 2],
     /// Arguments that read variables computed by the plan (not states or parameters):
     /// the world runs before the plan, so such a model is refused.
     pub problems: Vec<String>,
 }
-
-const A_SHAPE: usize = 0;
-const A_DIMS: usize = 1;
-const A_R: usize = 4;
-const A_ROT: usize = 7;
-const A_V: usize = 16;
-const A_W: usize = 19;
-const A_DYNAMIC: usize = 22;
-const A_K: usize = 23;
-const A_N: usize = 24;
-const A_LAW: usize = 25;
-const A_D: usize = 26;
-const A_E: usize = 27;
-const A_MU_STATIC: usize = 28;
-const A_MU_SLIDING: usize = 29;
-const A_V_SWITCH: usize = 30;
-const A_F_MAX: usize = 31;
-const A_IMPULSE: usize = 32;
-const A_MASS: usize = 33;
-const A_INERTIA: usize = 34;
-const A_GROUP: usize = 37;
 
 /// Counters for reports.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -155,46 +133,57 @@ struct View<'a> {
     r: &'a [f64],
 }
 
+/// A field (or three) of a body's arguments.
+type Field = fn(&CollisionBodyArgs<Reg>) -> Reg;
+type Field3 = fn(&CollisionBodyArgs<Reg>) -> [Reg; 3];
+
 impl View<'_> {
-    fn arg(&self, b: usize, k: usize) -> f64 {
-        self.r[self.m.bodies[b].args[k] as usize]
+    fn arg(&self, b: usize, f: Field) -> f64 {
+        self.r[f(&self.m.bodies[b].args) as usize]
     }
-    fn v3(&self, b: usize, k: usize) -> [f64; 3] {
-        [self.arg(b, k), self.arg(b, k + 1), self.arg(b, k + 2)]
+    fn v3(&self, b: usize, f: Field3) -> [f64; 3] {
+        f(&self.m.bodies[b].args).map(|x| self.r[x as usize])
+    }
+    fn rotation(&self, b: usize) -> [[f64; 3]; 3] {
+        let rot = self.m.bodies[b].args.rotation;
+        std::array::from_fn(|i| std::array::from_fn(|j| self.r[rot[3 * i + j] as usize]))
     }
     fn velocity_at(&self, b: usize, p: [f64; 3], r: [f64; 3]) -> [f64; 3] {
-        let v = self.v3(b, A_V);
-        let w = self.v3(b, A_W);
+        let v = self.v3(b, |a| a.velocity);
+        let w = self.v3(b, |a| a.angular_velocity);
         let c = cross(w, sub(p, r));
         [v[0] + c[0], v[1] + c[1], v[2] + c[2]]
     }
-    fn mean(&self, a: usize, b: usize, k: usize) -> f64 {
-        0.5 * (self.arg(a, k) + self.arg(b, k))
+    fn mean(&self, a: usize, b: usize, f: Field) -> f64 {
+        0.5 * (self.arg(a, f) + self.arg(b, f))
     }
 }
 
 fn shape_of(v: &View<'_>, b: usize) -> Result<Shape, String> {
-    let d = v.v3(b, A_DIMS);
-    let kind = match v.arg(b, A_SHAPE).round() as i64 {
-        1 => ShapeKind::Sphere { radius: d[0] },
-        2 => ShapeKind::Box {
+    let d = v.v3(b, |a| a.dims);
+    let code = v.arg(b, |a| a.shape);
+    let Some(code) = ShapeCode::from_value(code) else {
+        return Err(format!("unknown shape code {code}"));
+    };
+    let kind = match code {
+        ShapeCode::Sphere => ShapeKind::Sphere { radius: d[0] },
+        ShapeCode::Box => ShapeKind::Box {
             half: [d[0] / 2.0, d[1] / 2.0, d[2] / 2.0],
         },
-        3 => ShapeKind::Capsule {
+        ShapeCode::Capsule => ShapeKind::Capsule {
             half_height: d[1] / 2.0,
             radius: d[0],
         },
-        4 => ShapeKind::Cylinder {
+        ShapeCode::Cylinder => ShapeKind::Cylinder {
             half_height: d[1] / 2.0,
             radius: d[0],
         },
-        5 => ShapeKind::Cone {
+        ShapeCode::Cone => ShapeKind::Cone {
             half_height: d[1] / 2.0,
             radius: d[0],
         },
-        6 => ShapeKind::Ellipsoid { semi_axes: d },
-        7 => ShapeKind::HalfSpace,
-        k => return Err(format!("unknown shape code {k}")),
+        ShapeCode::Ellipsoid => ShapeKind::Ellipsoid { semi_axes: d },
+        ShapeCode::HalfSpace => ShapeKind::HalfSpace,
     };
     Shape::new(kind).map_err(|e| e.0)
 }
@@ -210,9 +199,9 @@ impl CollisionState {
                 reason,
             })?;
             self.shapes.push(s);
-            self.dynamic.push(v.arg(b, A_DYNAMIC) != 0.0);
+            self.dynamic.push(v.arg(b, |a| a.dynamic) != 0.0);
         }
-        let choice = v.r[v.m.world_args[2] as usize].round() as i64;
+        let choice = v.r[v.m.world_args.broadphase as usize].round() as i64;
         let bounded = self.shapes.iter().filter(|s| s.is_bounded()).count();
         // Two bodies (or fewer bounded ones) leave the broadphase nothing to save.
         self.broadphase = Some(if choice == 1 || (choice == 0 && n <= 2) || bounded <= 1 {
@@ -236,17 +225,20 @@ impl CollisionState {
         if self.shapes.len() != n {
             self.build(&View { m, r })?;
         }
-        let margin = r[m.world_args[0] as usize].max(0.0);
-        let tol = r[m.world_args[1] as usize].max(0.0);
-        let sweep = r[m.world_args[3] as usize] != 0.0;
+        let margin = r[m.world_args.margin as usize].max(0.0);
+        let tol = r[m.world_args.tolerance as usize].max(0.0);
+        let sweep = r[m.world_args.sweep as usize] != 0.0;
         {
             let v = View { m, r };
             self.placements.clear();
             for b in 0..n {
-                let rot = [v.v3(b, A_ROT), v.v3(b, A_ROT + 3), v.v3(b, A_ROT + 6)];
+                let rot = v.rotation(b);
                 let det = dot(rot[0], cross(rot[1], rot[2]));
-                let finite = m.bodies[b].args[A_R..A_DYNAMIC]
-                    .iter()
+                let a = &m.bodies[b].args;
+                let finite = (a.position.iter())
+                    .chain(&a.rotation)
+                    .chain(&a.velocity)
+                    .chain(&a.angular_velocity)
                     .all(|&x| r[x as usize].is_finite());
                 if !finite || (det - 1.0).abs() > 0.1 {
                     return Err(CollisionFailure {
@@ -258,7 +250,7 @@ impl CollisionState {
                     });
                 }
                 self.placements.push(Placement {
-                    r: v.v3(b, A_R),
+                    r: v.v3(b, |a| a.position),
                     rot,
                 });
             }
@@ -292,8 +284,8 @@ impl CollisionState {
             if !self.dynamic[a] && !self.dynamic[b] {
                 continue;
             }
-            let ga = v.arg(a, A_GROUP).round() as i64;
-            if ga != 0 && ga == v.arg(b, A_GROUP).round() as i64 {
+            let ga = v.arg(a, |a| a.group).round() as i64;
+            if ga != 0 && ga == v.arg(b, |a| a.group).round() as i64 {
                 continue;
             }
             self.stats.narrowphase_pairs += 1;
@@ -315,7 +307,10 @@ impl CollisionState {
                         })
                         .unwrap_or(0.0);
                     self.contact.insert(key, approach);
-                    if v.arg(a, A_IMPULSE) == 0.0 && v.arg(b, A_IMPULSE) == 0.0 && approach > 0.0 {
+                    if v.arg(a, |a| a.impulses) == 0.0
+                        && v.arg(b, |a| a.impulses) == 0.0
+                        && approach > 0.0
+                    {
                         let thin = self.shapes[a]
                             .half_thickness
                             .min(self.shapes[b].half_thickness);
@@ -361,13 +356,13 @@ impl CollisionState {
                     g_new = g_new.min(g);
                 }
             }
-            if v.arg(a, A_IMPULSE) != 0.0 || v.arg(b, A_IMPULSE) != 0.0 {
+            if v.arg(a, |a| a.impulses) != 0.0 || v.arg(b, |a| a.impulses) != 0.0 {
                 continue;
             }
             // Penalty forces at every penetrating point.
             let mass = |x: usize| {
                 if self.dynamic[x] {
-                    v.arg(x, A_MASS)
+                    v.arg(x, |a| a.mass)
                 } else {
                     f64::INFINITY
                 }
@@ -380,32 +375,33 @@ impl CollisionState {
             } else {
                 ma * mb / (ma + mb)
             };
-            let k = v.mean(a, b, A_K);
-            let nexp = v.mean(a, b, A_N);
-            let damping = match v.arg(a, A_LAW).round() as i64 {
-                1 => Damping::Clipped {
-                    d: v.mean(a, b, A_D),
+            let k = v.mean(a, b, |a| a.stiffness);
+            let nexp = v.mean(a, b, |a| a.exponent);
+            let law = v.arg(a, |a| a.law);
+            let damping = match LawCode::from_value(law) {
+                Some(LawCode::Clipped) => Damping::Clipped {
+                    d: v.mean(a, b, |a| a.damping),
                 },
-                2 => Damping::HuntCrossley {
-                    e: v.mean(a, b, A_E),
+                Some(LawCode::HuntCrossley) => Damping::HuntCrossley {
+                    e: v.mean(a, b, |a| a.restitution),
                 },
-                3 => Damping::Flores {
-                    e: v.mean(a, b, A_E),
+                Some(LawCode::Flores) => Damping::Flores {
+                    e: v.mean(a, b, |a| a.restitution),
                 },
-                k => {
+                None => {
                     return Err(CollisionFailure {
                         body: v.m.bodies[a].name.clone(),
                         reason: format!(
-                            "unknown damping law code {k} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
+                            "unknown damping law code {law} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
                         ),
                     })
                 }
             };
             let friction = Friction {
-                mu_static: v.mean(a, b, A_MU_STATIC),
-                mu_sliding: v.mean(a, b, A_MU_SLIDING),
-                v_switch: v.mean(a, b, A_V_SWITCH).max(f64::MIN_POSITIVE),
-                f_max: v.mean(a, b, A_F_MAX),
+                mu_static: v.mean(a, b, |a| a.mu_static),
+                mu_sliding: v.mean(a, b, |a| a.mu_sliding),
+                v_switch: v.mean(a, b, |a| a.v_switch).max(f64::MIN_POSITIVE),
+                f_max: v.mean(a, b, |a| a.f_max),
             };
             for c in &self.points {
                 if c.dist >= 0.0 {
@@ -478,11 +474,7 @@ impl CollisionState {
         tol: f64,
     ) -> Result<(), CollisionFailure> {
         let n = m.bodies.len();
-        if !m
-            .bodies
-            .iter()
-            .any(|b| r[b.args[A_IMPULSE] as usize] != 0.0)
-        {
+        if !m.bodies.iter().any(|b| r[b.args.impulses as usize] != 0.0) {
             return Ok(());
         }
         // Candidate pairs from the current placements.
@@ -502,11 +494,11 @@ impl CollisionState {
                     continue;
                 }
                 let v = View { m, r };
-                if v.arg(a, A_IMPULSE) == 0.0 && v.arg(b, A_IMPULSE) == 0.0 {
+                if v.arg(a, |a| a.impulses) == 0.0 && v.arg(b, |a| a.impulses) == 0.0 {
                     continue;
                 }
-                let ga = v.arg(a, A_GROUP).round() as i64;
-                if ga != 0 && ga == v.arg(b, A_GROUP).round() as i64 {
+                let ga = v.arg(a, |a| a.group).round() as i64;
+                if ga != 0 && ga == v.arg(b, |a| a.group).round() as i64 {
                     continue;
                 }
                 self.pair_contacts(m, a, b, 2.0 * tol)?;
@@ -525,14 +517,14 @@ impl CollisionState {
                 if vn <= 1e-12 * (dot(rel, rel).sqrt() + 1.0) {
                     continue;
                 }
-                let e = v.mean(a, b, A_E);
+                let e = v.mean(a, b, |a| a.restitution);
                 let inv = |body: usize, arm: [f64; 3]| -> (f64, [f64; 3], [f64; 3]) {
                     if !self.dynamic[body] {
                         return (0.0, [0.0; 3], [0.0; 3]);
                     }
-                    let im = 1.0 / v.arg(body, A_MASS);
+                    let im = 1.0 / v.arg(body, |a| a.mass);
                     let pl = &self.placements[body];
-                    let ib = v.v3(body, A_INERTIA);
+                    let ib = v.v3(body, |a| a.inertia);
                     // I^-1 (arm x n) in world coordinates.
                     let an = pl.unrotate(cross(arm, c.normal));
                     let x = pl.rotate([an[0] / ib[0], an[1] / ib[1], an[2] / ib[2]]);

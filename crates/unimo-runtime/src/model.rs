@@ -1030,26 +1030,25 @@ fn compile_collision(
     };
     let mut bodies = Vec::new();
     for (k, site) in dae.collision.iter().enumerate() {
-        let args: Vec<Reg> = site
-            .args
-            .iter()
-            .map(|&e| {
-                check(e, &mut problems);
-                c.expr(e, &mut inputs, &mut memo)
-            })
-            .collect();
-        let state_reg = |i: usize| match dae.arena.node(site.args[i]) {
+        let args = site.args.map(|e| {
+            check(e, &mut problems);
+            c.expr(e, &mut inputs, &mut memo)
+        });
+        let state_reg = |e: ExprId| match dae.arena.node(e) {
             Node::Var(s) if states.contains(&s) => Some(layout.var(s)),
             _ => None,
         };
-        let velocity_states = (16..22)
-            .map(state_reg)
+        let (v, w) = (site.args.velocity, site.args.angular_velocity);
+        let velocity_states = v
+            .iter()
+            .chain(&w)
+            .map(|&e| state_reg(e))
             .collect::<Option<Vec<Reg>>>()
             .map(|v| std::array::from_fn(|i| v[i]));
         // Name the body by the position variable it reads, else by its number.
         let name = dae
             .arena
-            .vars(site.args[4])
+            .vars(site.args.position[0])
             .first()
             .map(|&s| {
                 let n = dae.name(s);
@@ -1064,10 +1063,15 @@ fn compile_collision(
         });
     }
     let world_args = match &dae.collision_world {
-        Some(w) => std::array::from_fn(|i| c.expr(w.args[i], &mut inputs, &mut memo)),
+        Some(w) => w.args.map(|e| c.expr(e, &mut inputs, &mut memo)),
         None => {
             problems.push("(no Unimo.Collision.CollisionWorld: collision bodies need one)".into());
-            [layout.time; 4]
+            unimo_dae::collision_args::CollisionWorldArgs {
+                margin: layout.time,
+                tolerance: layout.time,
+                broadphase: layout.time,
+                sweep: layout.time,
+            }
         }
     };
     Some(CollisionModel {
