@@ -74,13 +74,8 @@ impl Names<'_> {
                 n(args[2])
             ),
             Op::Held(r, d, a, k) => format!("{} = {r:?}({})  (held {k})", n(*d), n(*a)),
-            Op::HeldBounds(r, lo, a, k) => {
-                format!(
-                    "{}, {} = bounds of {r:?}({})  (held {k})",
-                    n(*lo),
-                    n(lo + 1),
-                    n(*a)
-                )
+            Op::HeldBounds(r, lo, hi, k) => {
+                format!("{}, {} = bounds of {r:?}  (held {k})", n(*lo), n(*hi))
             }
         }
     }

@@ -6,3 +6,4 @@ pub mod model;
 pub mod sim;
 pub mod tables;
 pub mod tape;
+pub mod verify;

@@ -53,7 +53,7 @@ pub struct CompiledWhen {
 pub type SymbolicJacobian = (Tape, Vec<(usize, usize, Reg)>);
 
 /// Everything the simulator runs.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct CompiledModel {
     pub layout: Layout,
     /// Registers holding constants, written once before anything runs.
@@ -892,6 +892,11 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         equations_read_initial: reads_initial(dae),
     };
     m.relation_held = held_relations(&m);
+    if cfg!(debug_assertions) {
+        if let Err(e) = crate::verify::verify_compiled(&m) {
+            panic!("{e}");
+        }
+    }
     m.ops_total = m
         .steps
         .iter()

@@ -90,7 +90,7 @@ impl Rounding {
 }
 
 /// Where special values live in the register file.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Layout {
     pub n_scalars: u32,
     /// Registers `pre_base + s` hold `pre(s)`.
