@@ -155,3 +155,51 @@ fn tape_dump_of_the_bouncing_ball() {
     assert_eq!(code, Some(0), "{err}");
     insta::assert_snapshot!("tape_BouncingBall", out);
 }
+
+/// The DAE and plan verifiers (`unimo_dae::verify`) accept what the pipeline builds
+/// and name what a broken plan or DAE does wrong.
+#[test]
+fn verifiers_accept_built_plans_and_reject_broken_ones() {
+    use unimo_dae::plan::PlanStep;
+    use unimo_dae::verify::{verify_dae, verify_plan};
+    for file in [
+        "models/Pendulum.mo",
+        "models/FlySlideRoll.mo",
+        "models/FourBar.mo",
+    ] {
+        let m = common::load(file, None);
+        assert_eq!(verify_dae(&m.dae), Ok(()), "{file}");
+        assert_eq!(verify_plan(&m.dae, &m.analysis.plan), Ok(()), "{file}");
+    }
+    let m = common::load("models/Pendulum.mo", None);
+    let plan = &m.analysis.plan;
+    // The steps in reverse: the first step that reads a later one's result is named.
+    let mut reversed = plan.clone();
+    reversed.steps.reverse();
+    let e = verify_plan(&m.dae, &reversed).unwrap_err();
+    assert!(e.message.contains("before any step computes it"), "{e}");
+    // A step twice.
+    let mut twice = plan.clone();
+    let first = twice.steps[0].clone();
+    twice.steps.push(first);
+    let e = verify_plan(&m.dae, &twice).unwrap_err();
+    assert!(e.message.contains("already computed"), "{e}");
+    // A state computed by a step.
+    let mut state = plan.clone();
+    if let PlanStep::Assign { var, .. } = &mut state.steps[0] {
+        *var = plan.states[0];
+    }
+    let e = verify_plan(&m.dae, &state).unwrap_err();
+    assert!(e.message.contains("already computed"), "{e}");
+    // Derivatives out of order.
+    let mut swapped = plan.clone();
+    swapped.derivatives.swap(0, 1);
+    let e = verify_plan(&m.dae, &swapped).unwrap_err();
+    assert!(e.message.contains("as its derivative"), "{e}");
+    // A broken derivative link in the DAE.
+    let mut dae = m.dae.clone();
+    let d = dae.scalars[plan.states[0].index()].derivative.unwrap();
+    dae.scalars[d.index()].derivative_of = None;
+    let e = verify_dae(&dae).unwrap_err();
+    assert!(e.message.contains("does not name it back"), "{e}");
+}

@@ -23,6 +23,7 @@ pub mod prune;
 mod records;
 pub mod singular;
 pub mod tensor;
+pub mod verify;
 
 pub use dae::Dae;
 pub use equations::lower;
@@ -40,5 +41,11 @@ pub fn analyze_model(
     let mut a = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()])?;
     a.plan.stats.aliases_removed = aliases.aliases;
     a.plan.stats.constants_removed = aliases.constants;
+    if cfg!(debug_assertions) {
+        let checked = verify::verify_dae(&dae).and_then(|_| verify::verify_plan(&dae, &a.plan));
+        if let Err(e) = checked {
+            panic!("{} ({e})", dae.name);
+        }
+    }
     Ok((dae, a))
 }
