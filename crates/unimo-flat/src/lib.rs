@@ -28,6 +28,7 @@ mod semantic;
 pub mod tree;
 pub mod typecheck;
 mod values;
+pub mod verify;
 
 pub use error::FlatError;
 pub use flat::{FlatModel, FlatVar, VarId};
@@ -120,6 +121,11 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
         }
         fixed.append(&mut rest);
         model.vars = fixed;
+    }
+    if cfg!(debug_assertions) && !diags.iter().any(|d| d.is_error()) {
+        if let Err(e) = verify::verify_flat(&model) {
+            panic!("{e}");
+        }
     }
     (model, diags)
 }
