@@ -609,3 +609,17 @@ fn algebraic_loops_reach_the_requested_tolerance() {
     }
     eprintln!("algebraic loops at rtol 1e-12: largest relative error {worst:.1e}");
 }
+
+/// An if-expression with a parameter condition takes its branch at compile time: the
+/// `der(y)` of the branch not taken is no derivative to reduce the index for (before,
+/// the equation of y was differentiated and der(y) made a dummy derivative).
+#[test]
+fn parameter_conditions_of_if_expressions_are_decided_at_compile_time() {
+    let m = load("tests/simulate/ParameterIf.mo");
+    let dump = &m.analysis.dump;
+    assert!(!dump.contains("der(y)"), "{dump}");
+    assert!(dump.contains("(0 differentiated)"), "{dump}");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 1.0, 10);
+    assert_eq!(value(&r, "y1"), 0.0);
+    assert!((value(&r, "y") - 1f64.sin()).abs() < 1e-12);
+}

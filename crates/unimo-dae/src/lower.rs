@@ -98,21 +98,10 @@ impl<'m> Lowerer<'m> {
         branches: &'e [(Expr, Expr)],
         otherwise: &'e Expr,
     ) -> DaeResult<Option<&'e Expr>> {
-        let all_lower = {
-            let mut ok = self.expr(otherwise).map(|t| t.dims);
-            for (_, v) in branches {
-                let d = self.expr(v).map(|t| t.dims);
-                ok = match (ok, d) {
-                    (Ok(a), Ok(b)) if a == b => Ok(a),
-                    (Err(e), _) | (_, Err(e)) => Err(e),
-                    (Ok(a), Ok(_)) => Ok(a).and(Err(unsupported("", otherwise.span))),
-                };
-            }
-            ok.is_ok()
-        };
-        if all_lower {
-            return Ok(None);
-        }
+        // Conditions known at compile time (parameters only, as for `if`-equations in
+        // flattening): the branch taken, so that what the other branches hold never
+        // reaches the structure (`y1 = if use_pder then der(y) else 0` with `use_pder`
+        // false has no `der(y)`).
         for (c, v) in branches {
             let c = self.scalar(c)?;
             match self.const_value(c) {
@@ -667,9 +656,10 @@ impl<'m> Lowerer<'m> {
                 branches,
                 otherwise,
             } => {
-                // A branch whose condition is known at compile time (parameters only)
-                // and that cannot be combined with the others (different sizes, or a
-                // value the back end does not have, such as a String): the branch taken.
+                // A branch whose condition is known at compile time (parameters only):
+                // the branch taken (branches of different sizes, values the back end does
+                // not have such as Strings, and a `der` in a branch not taken never reach
+                // the structure).
                 if let Some(e) = self.structural_if(branches, otherwise)? {
                     return self.expr(e);
                 }

@@ -158,7 +158,27 @@ impl Shapes<'_> {
                 }
                 d
             }
-            ExprKind::Matrix(rows) => vec![rows.len(), rows.first().map_or(0, |r| r.len())],
+            // `[a, b; c, d]`: each element is promoted to a matrix (a scalar 1 x 1, a
+            // vector n x 1), a row concatenates along columns, the rows along rows
+            // (spec 10.4.2): `[u1; u2; u3]` of scalars is 3 x 1, of 2-vectors 6 x 1.
+            ExprKind::Matrix(rows) => {
+                let as_matrix = |d: Vec<usize>| match d.len() {
+                    0 => (1, 1),
+                    1 => (d[0], 1),
+                    _ => (d[0], d[1..].iter().product()),
+                };
+                let mut height = 0;
+                let mut width = 0;
+                for (k, row) in rows.iter().enumerate() {
+                    let shapes: Vec<(usize, usize)> =
+                        row.iter().map(|x| as_matrix(self.of(x))).collect();
+                    height += shapes.first().map_or(0, |s| s.0);
+                    if k == 0 {
+                        width = shapes.iter().map(|s| s.1).sum();
+                    }
+                }
+                vec![height, width]
+            }
             ExprKind::If { branches, .. } => branches
                 .first()
                 .map(|(_, v)| self.of(v))
