@@ -623,3 +623,20 @@ fn parameter_conditions_of_if_expressions_are_decided_at_compile_time() {
     assert_eq!(value(&r, "y1"), 0.0);
     assert!((value(&r, "y") - 1f64.sin()).abs() < 1e-12);
 }
+
+/// `when trig` with `trig = sample(0.1, 0.1)` fires at every instant, as
+/// `when sample(0.1, 0.1)` does: 10 instants in (0, 1] (the last at the stop time).
+#[test]
+fn a_boolean_defined_by_sample_fires_at_every_instant() {
+    let m = load("tests/simulate/SampleDefinedBoolean.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 1.0, 10);
+    assert_eq!(value(&r, "m"), 10.0);
+    assert_eq!(value(&r, "n"), 10.0);
+    // Between the instants trig is false.
+    let trig = common::column(&r, "trig");
+    assert!(r
+        .times
+        .iter()
+        .zip(&trig)
+        .any(|(&t, &b)| (t - 0.55).abs() < 0.06 && b == 0.0));
+}

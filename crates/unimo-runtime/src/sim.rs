@@ -1518,8 +1518,16 @@ impl<'a> Simulator<'a> {
         for s in self.ode.ev.samples.iter_mut() {
             *s = 0.0;
         }
-        // The sample conditions are false again right after the instant: record that,
-        // so the next instant is an edge.
+        // The sample conditions are false again right after the instant, and so is a
+        // discrete variable the plan computes from them (`trig = sample(0, 0.1)`): its
+        // value between the instants is the left limit `pre(trig)` at the next one.
+        // Record that, so the next instant is an edge of `when trig`.
+        if r.is_ok() && self.eval_plan().is_ok() {
+            let pre_base = m.layout.pre_base;
+            for &d in &m.discretes {
+                self.ode.regs[(pre_base + d) as usize] = self.ode.regs[d as usize];
+            }
+        }
         m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
         for &c in &m.conditions {
             self.cond_prev[c as usize] = self.ode.regs[c as usize];
