@@ -640,3 +640,28 @@ fn a_boolean_defined_by_sample_fires_at_every_instant() {
         .zip(&trig)
         .any(|(&t, &b)| (t - 0.55).abs() < 0.06 && b == 0.0));
 }
+
+/// A held rounding whose step no requested output needs still updates at its events:
+/// `mod(phi, 2 pi)` with only `phi` requested runs 20 s with its 3 wrap events (it
+/// chattered at the first: E4006).
+#[test]
+fn pruning_keeps_the_steps_of_held_roundings() {
+    let m = load("tests/simulate/PrunedWrap.mo");
+    let phi = m.dae.ids().find(|&s| m.dae.name(s) == "phi").unwrap();
+    let mut plan = m.analysis.plan.clone();
+    unimo_dae::prune::prune(&m.dae, &mut plan, &[phi]);
+    let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+    let o = SimOptions {
+        start: 0.0,
+        stop: 20.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.5,
+        every_step: false,
+    };
+    let r = simulate(&compiled, &o);
+    assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
+    assert_eq!(r.stats.events, 3);
+    assert!((value(&r, "phi") - 20.0).abs() < 1e-6);
+}

@@ -4,7 +4,7 @@
 
 use crate::dae::{Dae, WhenAction};
 use crate::events::zero_crossings;
-use crate::expr::ScalarId;
+use crate::expr::{ExprId, ScalarId};
 use crate::plan::{Plan, PlanStep};
 use rustc_hash::FxHashSet as HashSet;
 
@@ -69,18 +69,45 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
             needed.insert(s);
         }
     }
+    // A held rounding (`floor`, `mod`, ... with events) takes its new value where the
+    // step computing it runs, in event mode: that step must stay, or after an event its
+    // zero crossings would be crossed again at once (chattering).
+    let held: HashSet<ExprId> = zc.held.iter().copied().collect();
+    let holds = |roots: &mut dyn Iterator<Item = ExprId>| -> bool {
+        if held.is_empty() {
+            return false;
+        }
+        let mut stack: Vec<ExprId> = roots.collect();
+        let mut seen = HashSet::default();
+        while let Some(x) = stack.pop() {
+            if held.contains(&x) {
+                return true;
+            }
+            if seen.insert(x) {
+                stack.extend(dae.arena.children(x));
+            }
+        }
+        false
+    };
     let mut keep = vec![false; plan.steps.len()];
     for (k, step) in plan.steps.iter().enumerate().rev() {
         match step {
             PlanStep::Assign { var, value, .. } => {
-                if needed.contains(var) {
+                if needed.contains(var) || holds(&mut std::iter::once(*value)) {
                     keep[k] = true;
                     add(&mut needed, *value);
                 }
             }
             PlanStep::Block(b) => {
                 let used = b.iteration_vars.iter().any(|v| needed.contains(v))
-                    || b.inner.iter().any(|(v, _)| needed.contains(v));
+                    || b.inner.iter().any(|(v, _)| needed.contains(v))
+                    || holds(
+                        &mut b
+                            .residuals
+                            .iter()
+                            .copied()
+                            .chain(b.inner.iter().map(|i| i.1)),
+                    );
                 if used {
                     keep[k] = true;
                     for &r in &b.residuals {
