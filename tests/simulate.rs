@@ -665,3 +665,42 @@ fn pruning_keeps_the_steps_of_held_roundings() {
     assert_eq!(r.stats.events, 3);
     assert!((value(&r, "phi") - 20.0).abs() < 1e-6);
 }
+
+/// A `while` loop whose condition depends on variables runs (unrolled, with a check
+/// that it ended): the table search gives floor(t) + 2 with its events at the whole
+/// seconds; a search that would need more than the unrolled iterations stops with an
+/// assertion error (E4004) at the instant it would, not with a wrong index.
+#[test]
+fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
+    let file = common::root().join("tests/simulate/WhileLoops.mo");
+    let m = unimo_cli::load_model(std::slice::from_ref(&file), Some("WhileLoops.Search")).unwrap();
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 4.5, 9);
+    for (t, k) in r.times.iter().zip(common::column(&r, "k")) {
+        let mid = (t.fract() - 0.5).abs() < 1e-9;
+        if mid {
+            assert_eq!(k, t.floor() + 2.0, "t = {t}");
+        }
+    }
+    assert_eq!(value(&r, "k"), 6.0);
+    let m = unimo_cli::load_model(&[file], Some("WhileLoops.TooLong")).unwrap();
+    let o = SimOptions {
+        start: 0.0,
+        stop: 1.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.1,
+        every_step: false,
+    };
+    let r = simulate(&m.compiled, &o);
+    let e = r.error.expect("the loop needs more than 64 iterations");
+    assert_eq!(e.code(), "E4004");
+    assert!(
+        e.message().contains("more than 64 iterations"),
+        "{}",
+        e.message()
+    );
+    // 100 t passes table[65] = 64/99 there.
+    let t = *r.times.last().unwrap();
+    assert!((t - 0.0064646).abs() < 1e-4, "{t}");
+}

@@ -11,9 +11,14 @@ for d in "$shared/msl" "$shared/msl-reference" "$shared/tools/msl-check"; do
 done
 cargo build --release --quiet
 results="$(mktemp -d)/results.csv"
+# A row after every solver step besides the experiment's grid (see the results page).
+cmd='{unimo} simulate {msl}/Modelica/package.mo --model {model} --lib {msl} --vars {vars} --every-step --output {csv}'
 python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
-  --ref "$shared/msl-reference" --results "$results" "$@" | tee "${results%.csv}.txt"
-python3 bench/msl/report.py "$results" > docs/results/msl.md
+  --ref "$shared/msl-reference" --results "$results" --cmd "$cmd" "$@" | tee "${results%.csv}.txt"
+# The same with msl-check's default command (the experiment's output grid alone).
+python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
+  --ref "$shared/msl-reference" --results "${results%.csv}.grid.csv" "$@" > /dev/null
+python3 bench/msl/report.py "$results" "$shared/msl-reference" "${results%.csv}.grid.csv" > docs/results/msl.md
 echo "wrote docs/results/msl.md"
 # Names: every file of the MSL through the name check (syntax errors must be 0).
 target/release/unimo check --no-balance --lib "$shared/msl" "$shared/msl" > "${results%.csv}.check" 2>&1 || true

@@ -16,6 +16,10 @@ use unimo_syntax::ast::*;
 /// Iterations of one `while` loop before it is given up.
 const MAX_WHILE_ITERATIONS: usize = 1_000_000;
 
+/// Copies of a `while` loop whose condition depends on variables (see
+/// `unrolled_while`).
+const UNROLLED_WHILE: usize = 64;
+
 pub(crate) enum Flow {
     Next,
     Break,
@@ -159,12 +163,7 @@ impl Lowerer<'_> {
                     match self.const_value(c) {
                         Some(0.0) => return Ok(Flow::Next),
                         Some(_) => {}
-                        None => return Err(DaeError::new(
-                            "E3015",
-                            "a `while` loop whose condition depends on variables cannot be inlined",
-                            condition.span,
-                        )
-                        .help("write the loop with a `for` over a fixed range")),
+                        None => return self.unrolled_while(condition, body),
                     }
                     match self.exec_block(body)? {
                         Flow::Next => {}
@@ -179,6 +178,72 @@ impl Lowerer<'_> {
                 ))
             }
         }
+    }
+
+    /// A `while` loop whose condition depends on variables (a table search
+    /// `while next < nrow and t >= table[next, 1] loop next := next + 1; end while;`):
+    /// unrolled [`UNROLLED_WHILE`] times as `if not condition then break; body`, the
+    /// breaks merged as conditional exits. Past the last copy the condition must be
+    /// false: a run-time assertion stops a simulation that would need more iterations
+    /// instead of going on with a wrong value.
+    fn unrolled_while(&mut self, condition: &Expr, body: &[Statement]) -> DaeResult<Flow> {
+        let sp = condition.span;
+        let stmt = |kind| Statement {
+            kind,
+            comment: Comment::default(),
+            span: sp,
+        };
+        let not_condition = Expr {
+            kind: ExprKind::Unary {
+                op: UnaryOp::Not,
+                operand: Box::new(condition.clone()),
+            },
+            span: sp,
+        };
+        let mut guarded = vec![stmt(StatementKind::If {
+            branches: vec![(not_condition, vec![stmt(StatementKind::Break)])],
+            otherwise: Vec::new(),
+        })];
+        guarded.extend(body.iter().cloned());
+        let once = stmt(StatementKind::If {
+            branches: vec![(
+                Expr {
+                    kind: ExprKind::Bool(true),
+                    span: sp,
+                },
+                guarded,
+            )],
+            otherwise: Vec::new(),
+        });
+        for _ in 0..UNROLLED_WHILE {
+            match self.exec_block(std::slice::from_ref(&once))? {
+                Flow::Next => {}
+                Flow::Break => return Ok(Flow::Next),
+                Flow::Return => return Ok(Flow::Return),
+            }
+        }
+        let c = self.scalar(condition)?;
+        let ended = self.dae.arena.not(c);
+        let message = format!(
+            "a `while` loop needed more than {UNROLLED_WHILE} iterations (unimo unrolls a loop \
+             whose condition depends on variables that many times)"
+        );
+        match &mut self.when_actions {
+            Some(actions) => actions.push((
+                WhenAction::Assert {
+                    condition: ended,
+                    message,
+                },
+                sp,
+            )),
+            None => self.dae.assertions.push(Assertion {
+                condition: ended,
+                message,
+                warning: false,
+                origin: sp,
+            }),
+        }
+        Ok(Flow::Next)
     }
 
     fn exec_if(
