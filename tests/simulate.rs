@@ -704,3 +704,51 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
     let t = *r.times.last().unwrap();
     assert!((t - 0.0064646).abs() < 1e-4, "{t}");
 }
+
+/// At initialization a discrete variable whose `pre` the initial equations set equals
+/// it (its `when` is not active): s = {3, 4}, then {4, 7} at t = 0, {7, 11} at 0.1 and
+/// {11, 18} at 0.2; a clause reading `s` sees the value the other clause assigns at the
+/// same instant, whichever comes first (twice = 2 s[2] = 36 after t = 0.2).
+#[test]
+fn when_clauses_of_one_instant_see_each_other() {
+    let file = common::root().join("tests/simulate/DiscreteInstants.mo");
+    let m = unimo_cli::load_model(
+        std::slice::from_ref(&file),
+        Some("DiscreteInstants.Fibonacci"),
+    )
+    .unwrap();
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.25, 5);
+    let at = |name: &str, t: f64| {
+        let k = r.names.iter().position(|n| n == name).unwrap();
+        // The last row at or before t.
+        r.times
+            .iter()
+            .zip(&r.rows)
+            .rfind(|(ti, _)| **ti <= t + 1e-12)
+            .unwrap()
+            .1[k]
+    };
+    assert_eq!(
+        r.rows[0][r.names.iter().position(|n| n == "s[2]").unwrap()],
+        4.0
+    );
+    assert_eq!((at("s[1]", 0.05), at("s[2]", 0.05)), (4.0, 7.0));
+    assert_eq!((at("s[1]", 0.15), at("s[2]", 0.15)), (7.0, 11.0));
+    assert_eq!(at("r", 0.15), 4.0);
+    assert_eq!(at("twice", 0.05), 14.0);
+    assert_eq!(value(&r, "s[2]"), 18.0);
+    assert_eq!(value(&r, "twice"), 36.0);
+}
+
+/// An Integer parameter with fixed = false solved from 67867967 (a difference step of
+/// 1e-10 from 0 is lost in its rounding; the Jacobian entry comes from a larger step):
+/// x(1) = e^-1 + k 1e-9 (1 - e^-1) with k = 2 seed.
+#[test]
+fn initialization_solves_for_large_integer_parameters() {
+    let file = common::root().join("tests/simulate/DiscreteInstants.mo");
+    let m = unimo_cli::load_model(&[file], Some("DiscreteInstants.LargeSeed")).unwrap();
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
+    let e = (-1.0f64).exp();
+    let exact = e + 2.0 * 67_867_967.0 * 1e-9 * (1.0 - e);
+    assert!((value(&r, "x") - exact).abs() < 1e-8, "{}", value(&r, "x"));
+}

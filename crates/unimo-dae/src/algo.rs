@@ -71,6 +71,7 @@ impl Lowerer<'_> {
                 name: t.name,
                 value,
                 record: t.record,
+                text: t.text,
             });
         }
         self.locals = locals;
@@ -349,6 +350,7 @@ impl Lowerer<'_> {
                 name: first.name.text.to_string(),
                 value: Some(v),
                 record: None,
+                text: None,
             });
             let f = self.exec_for_indices(rest, body);
             self.locals.pop();
@@ -638,9 +640,11 @@ impl Lowerer<'_> {
             return Err(unsupported(format!("external function `{}`", f.name), span));
         }
         let mut given: Vec<Option<Tensor>> = vec![None; f.inputs.len()];
-        // An external function's String inputs (a table's file name) have no value
-        // here: unimo's implementations do not read them.
-        let skip = |k: usize| f.external_call.is_some() && f.inputs[k].base == "String";
+        let mut texts: Vec<Option<String>> = vec![None; f.inputs.len()];
+        // String inputs have no numeric value: their text is kept where it is known
+        // (a literal, `getInstanceName()`, another String input) for the functions
+        // unimo provides that read it (a hash); a table's file name is not read.
+        let skip = |k: usize| f.inputs[k].base == "String";
         for (k, a) in args.positional.iter().enumerate() {
             if k >= given.len() {
                 return Err(DaeError::new(
@@ -651,6 +655,7 @@ impl Lowerer<'_> {
             }
             if skip(k) {
                 given[k] = Some(Tensor::default());
+                texts[k] = self.text_value(a);
                 continue;
             }
             given[k] = Some(self.expr(a)?);
@@ -664,6 +669,7 @@ impl Lowerer<'_> {
                 ));
             };
             given[k] = Some(if skip(k) {
+                texts[k] = self.text_value(&a.value);
                 Tensor::default()
             } else {
                 self.expr(&a.value)?
@@ -674,7 +680,7 @@ impl Lowerer<'_> {
         let saved_actions = self.when_actions.take();
         let saved_exits = std::mem::take(&mut self.exits);
         self.inline_depth += 1;
-        let r = self.run_function(f, given, span);
+        let r = self.run_function(f, given, texts, span);
         self.inline_depth -= 1;
         self.locals = saved_locals;
         self.assigned = saved_assigned;
@@ -687,6 +693,29 @@ impl Lowerer<'_> {
                 e.note(format!("while inlining `{}`", f.name))
             }
         })
+    }
+
+    /// The text of a String expression where it is known at compile time: a literal,
+    /// a String input bound to one, or a concatenation of such.
+    pub(crate) fn text_value(&self, e: &Expr) -> Option<String> {
+        match &e.kind {
+            ExprKind::String(s) => Some(s.clone()),
+            ExprKind::Ref(r) if r.parts.len() == 1 && r.parts[0].subscripts.is_empty() => {
+                let name = r.parts[0].name.text.as_str();
+                self.locals
+                    .iter()
+                    .rev()
+                    .find(|l| l.name == name)?
+                    .text
+                    .clone()
+            }
+            ExprKind::Binary {
+                op: BinaryOp::Add,
+                lhs,
+                rhs,
+            } => Some(self.text_value(lhs)? + &self.text_value(rhs)?),
+            _ => None,
+        }
     }
 
     /// The sizes of a function's output or local, its size expressions evaluated with
@@ -715,12 +744,19 @@ impl Lowerer<'_> {
         &mut self,
         f: &FlatFunction,
         given: Vec<Option<Tensor>>,
+        texts: Vec<Option<String>>,
         span: Span,
     ) -> DaeResult<Vec<Tensor>> {
-        for (input, value) in f.inputs.iter().zip(given) {
+        for ((input, value), text) in f.inputs.iter().zip(given).zip(texts) {
+            let string = input.base == "String";
+            let text = match (&input.default, string, text) {
+                (_, _, Some(t)) => Some(t),
+                (Some(d), true, None) => self.text_value(d),
+                _ => None,
+            };
             let value = match value {
                 Some(v) => v,
-                None if f.external_call.is_some() && input.base == "String" => Tensor::default(),
+                None if string => Tensor::default(),
                 None => match &input.default {
                     Some(d) => self.expr(d)?,
                     None => {
@@ -736,6 +772,7 @@ impl Lowerer<'_> {
                 name: input.name.clone(),
                 value: Some(value),
                 record: input.record.clone(),
+                text,
             });
         }
         for v in f.outputs.iter().chain(&f.locals) {
@@ -764,6 +801,7 @@ impl Lowerer<'_> {
                 name: v.name.clone(),
                 value,
                 record: v.record.clone(),
+                text: None,
             });
         }
         match &f.external_call {

@@ -64,12 +64,13 @@ fn derivative_node(
         // A table's value: its slope times the derivative of its input (the last
         // operand); the handle and column are constants. Piecewise constant functions
         // (bounds, next event) have derivative zero.
-        Node::Ext(f, object, x, y) => {
+        Node::Ext(f, ops) => {
+            let [_, x, y, _] = ops;
             let input = if f.arity() == 2 { y } else { x };
             match f.slope() {
                 Some(slope) if f.arity() == 2 => {
                     let dinput = d(a, input, seed);
-                    let s = a.intern(Node::Ext(slope, object, x, y));
+                    let s = a.intern(Node::Ext(slope, ops));
                     a.mul(s, dinput)
                 }
                 // The slope of a slope is not provided: an index reduction that needs

@@ -120,6 +120,7 @@ impl Lowerer<'_> {
                 name: first.name.text.to_string(),
                 value: Some(v),
                 record: None,
+                text: None,
             });
             let r = self.for_rows(rest, body);
             self.locals.pop();
@@ -366,6 +367,7 @@ impl Lowerer<'_> {
                         name: first.name.text.to_string(),
                         value: Some(v),
                         record: None,
+                        text: None,
                     });
                     let mut r = Ok(());
                     for e in body {

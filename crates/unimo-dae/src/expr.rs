@@ -238,9 +238,10 @@ pub enum Node {
     /// torque, or the collision world's gaps): computed by the runtime from states and
     /// parameters before each pass of the plan; a leaf for the symbolic layer.
     External(u32, u32),
-    /// An external object's function (a table lookup, [`crate::external::ExtFn`]) of
-    /// the object handle and up to two operands (unused ones are 0).
-    Ext(crate::external::ExtFn, ExprId, ExprId, ExprId),
+    /// A function unimo provides for external C code ([`crate::external::ExtFn`]): a
+    /// table lookup of an object handle and up to two operands, or a random number
+    /// generator's step of up to four state words (unused operands are 0).
+    Ext(crate::external::ExtFn, [ExprId; 4]),
 }
 
 /// The arena. Nodes are immutable; constructors simplify and share.
@@ -527,6 +528,9 @@ impl ExprArena {
 
     /// The operands of a node, in order.
     pub fn children(&self, id: ExprId) -> impl Iterator<Item = ExprId> {
+        if let Node::Ext(_, ops) = self.node(id) {
+            return ops.map(Some).into_iter().flatten();
+        }
         let (a, b, c): (Option<ExprId>, Option<ExprId>, Option<ExprId>) = match self.node(id) {
             Node::Const(_)
             | Node::Var(_)
@@ -547,9 +551,11 @@ impl ExprArena {
             | Node::And(x, y)
             | Node::Or(x, y)
             | Node::Sample(x, y) => (Some(x), Some(y), None),
-            Node::If(c, x, y) | Node::Ext(_, c, x, y) => (Some(c), Some(x), Some(y)),
+            Node::If(c, x, y) => (Some(c), Some(x), Some(y)),
+            // Returned above with its four operands.
+            Node::Ext(..) => (None, None, None),
         };
-        a.into_iter().chain(b).chain(c)
+        [a, b, c, None].into_iter().flatten()
     }
 
     /// Every variable (`Var`, not `Pre`) occurring in `id`, each once, in order of
@@ -639,7 +645,13 @@ impl ExprArena {
             Node::If(..) => self.if_(k[0], k[1], k[2]),
             Node::NoEvent(_) => self.no_event(k[0]),
             Node::Sample(..) => self.sample(k[0], k[1]),
-            Node::Ext(f, ..) => self.intern(Node::Ext(f, k[0], k[1], k[2])),
+            Node::Ext(f, _) => {
+                let ops = [k[0], k[1], k[2], k[3]];
+                match f.eval_pure(ops.map(|x| self.as_const(x))) {
+                    Some(v) => self.constant(v),
+                    None => self.intern(Node::Ext(f, ops)),
+                }
+            }
         }
     }
 
@@ -692,6 +704,7 @@ impl ExprArena {
             Node::NoEvent(a) => e(a),
             Node::Sample(..) => 0.0,
             // Not known to the symbolic layer (computed by the runtime).
+            Node::Ext(f, ops) if f.is_pure() => f.apply_pure(ops.map(e)),
             Node::External(..) | Node::Ext(..) => f64::NAN,
         }
     }
@@ -856,10 +869,10 @@ impl ExprArena {
                 w(b, 0, out)?;
                 out.push(')');
             }
-            Node::Ext(f, a, b, c) => {
+            Node::Ext(f, [a, b, c, d]) => {
                 write!(out, "{}(", f.name())?;
                 w(a, 0, out)?;
-                for x in [b, c].into_iter().take(f.arity()) {
+                for x in [b, c, d].into_iter().take(f.arity()) {
                     out.push_str(", ");
                     w(x, 0, out)?;
                 }

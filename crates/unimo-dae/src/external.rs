@@ -1,6 +1,6 @@
 //! External functions and objects that unimo implements itself: the Modelica Standard
 //! Library's tables (`ModelicaStandardTables`, written in C by the MSL and in Rust by
-//! us). Lowering turns the MSL's `external "C"` calls into [`Node::Ext`] nodes and the
+//! us), its random number generators and string hash (`random.rs`). Lowering turns the MSL's `external "C"` calls into [`Node::Ext`] nodes and the
 //! table constructors into [`ExternalObjectSite`]s; the runtime builds the objects
 //! after the parameters and evaluates the nodes (`unimo_runtime::tables`). An external
 //! function unimo does not provide is a coded error naming it.
@@ -13,7 +13,9 @@ use crate::tensor::Tensor;
 use unimo_flat::functions::{ExternalCall, FlatFunction};
 use unimo_source::Span;
 
-/// A function of an external object, evaluated by the runtime: `Ext(f, object, a, b)`.
+/// A function unimo provides for external C code: a function of an external object,
+/// evaluated by the runtime (`Ext(f, [object, a, b, _])`), or a pure function of its
+/// operands (a random number generator's step, `Ext(f, [s1, s2, s3, s4])`).
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub enum ExtFn {
     /// 1-D table: value of column `icol` at abscissa `u`: `(table, icol, u)`.
@@ -32,7 +34,22 @@ pub enum ExtFn {
     TimeTableMax,
     /// The next time event after `t`: `(table, t)`.
     TimeTableNextEvent,
+    /// Output `k` of one xorshift64* step of the state `(s1, s2)`: 0 the random number,
+    /// 1 and 2 the new state.
+    Xorshift64Star(u8),
+    /// Output `k` of one xorshift128+ step of the state `(s1, .., s4)`: 0 the random
+    /// number, 1 to 4 the new state.
+    Xorshift128Plus(u8),
 }
+
+const XORSHIFT64: [&str; 3] = ["xorshift64star", "xorshift64star_s1", "xorshift64star_s2"];
+const XORSHIFT128: [&str; 5] = [
+    "xorshift128plus",
+    "xorshift128plus_s1",
+    "xorshift128plus_s2",
+    "xorshift128plus_s3",
+    "xorshift128plus_s4",
+];
 
 impl ExtFn {
     pub fn name(self) -> &'static str {
@@ -46,12 +63,56 @@ impl ExtFn {
             ExtFn::TimeTableMin => "timeTableMin",
             ExtFn::TimeTableMax => "timeTableMax",
             ExtFn::TimeTableNextEvent => "timeTableNextEvent",
+            ExtFn::Xorshift64Star(k) => XORSHIFT64[usize::from(k).min(2)],
+            ExtFn::Xorshift128Plus(k) => XORSHIFT128[usize::from(k).min(4)],
         }
     }
 
-    /// How many operands after the object handle it reads.
+    /// Whether the value is a function of the operands alone (no object, no state).
+    pub fn is_pure(self) -> bool {
+        matches!(self, ExtFn::Xorshift64Star(_) | ExtFn::Xorshift128Plus(_))
+    }
+
+    /// The value of a pure function at `ops`.
+    pub fn apply_pure(self, ops: [f64; 4]) -> f64 {
+        match self {
+            ExtFn::Xorshift64Star(k) => {
+                let (r, s) = crate::random::xorshift64star([ops[0], ops[1]]);
+                if k == 0 {
+                    r
+                } else {
+                    s[usize::from(k - 1).min(1)]
+                }
+            }
+            ExtFn::Xorshift128Plus(k) => {
+                let (r, s) = crate::random::xorshift128plus(ops);
+                if k == 0 {
+                    r
+                } else {
+                    s[usize::from(k - 1).min(3)]
+                }
+            }
+            _ => f64::NAN,
+        }
+    }
+
+    /// The value of a pure function whose operands are all known constants.
+    pub fn eval_pure(self, ops: [Option<f64>; 4]) -> Option<f64> {
+        if !self.is_pure() {
+            return None;
+        }
+        let mut known = [0.0; 4];
+        for (k, v) in ops.iter().enumerate().take(1 + self.arity()) {
+            known[k] = (*v)?;
+        }
+        Some(self.apply_pure(known))
+    }
+
+    /// How many operands it reads after the first (the object handle of a table).
     pub fn arity(self) -> usize {
         match self {
+            ExtFn::Xorshift64Star(_) => 1,
+            ExtFn::Xorshift128Plus(_) => 3,
             ExtFn::Table1DMin | ExtFn::Table1DMax | ExtFn::TimeTableMin | ExtFn::TimeTableMax => 0,
             ExtFn::TimeTableNextEvent => 1,
             _ => 2,
@@ -110,6 +171,13 @@ enum Foreign {
     Derivative(ExtFn, &'static [usize], usize),
     /// Releases an object: nothing to do.
     Destructor,
+    /// One step of a random number generator with `n` state entries: the call's
+    /// arguments are (state in, state out, random number).
+    Random(fn(u8) -> ExtFn, usize),
+    /// The hash of its String argument, known at compile time.
+    HashString,
+    /// A seed from the clock and the process id (different in every run).
+    AutomaticGlobalSeed,
 }
 
 fn foreign(name: &str) -> Option<Foreign> {
@@ -140,6 +208,10 @@ fn foreign(name: &str) -> Option<Foreign> {
         }
         "ModelicaStandardTables_CombiTable1D_close"
         | "ModelicaStandardTables_CombiTimeTable_close" => Destructor,
+        "ModelicaRandom_xorshift64star" => Random(ExtFn::Xorshift64Star, 2),
+        "ModelicaRandom_xorshift128plus" => Random(ExtFn::Xorshift128Plus, 4),
+        "ModelicaStrings_hashString" => HashString,
+        "ModelicaRandom_automaticGlobalSeed" => AutomaticGlobalSeed,
         _ => return None,
     })
 }
@@ -179,6 +251,26 @@ impl Lowerer<'_> {
                 self.dae.arena.mul(slope, du)
             }
             Foreign::Constructor(kind, at, time) => self.construct(kind, ext, at, time, span)?,
+            Foreign::Random(func, n) => return self.random_step(f, ext, func, n, span),
+            Foreign::HashString => {
+                let text = ext.args.first().and_then(|a| self.text_value(a));
+                let Some(text) = text else {
+                    return Err(DaeError::new(
+                        "E3020",
+                        format!(
+                            "`{}` needs a String known at compile time (a literal or getInstanceName())",
+                            f.name
+                        ),
+                        span,
+                    ));
+                };
+                let h = crate::random::hash_string(&text);
+                self.dae.arena.constant(f64::from(h))
+            }
+            Foreign::AutomaticGlobalSeed => {
+                let seed = automatic_global_seed();
+                self.dae.arena.constant(f64::from(seed))
+            }
         };
         let output = ext
             .output
@@ -189,16 +281,71 @@ impl Lowerer<'_> {
             name: output,
             value: Some(Tensor::scalar(value)),
             record: None,
+            text: None,
         });
+        Ok(())
+    }
+
+    /// One step of a random number generator: the state in is the call's first
+    /// argument; the random number and the new state are the outputs the call's other
+    /// two arguments name, each entry one node of the generator's output.
+    fn random_step(
+        &mut self,
+        f: &FlatFunction,
+        ext: &ExternalCall,
+        func: fn(u8) -> ExtFn,
+        n: usize,
+        span: Span,
+    ) -> Result<(), DaeError> {
+        let state = self.foreign_arg(ext, 0, span)?;
+        if state.data.len() < n {
+            return Err(DaeError::new(
+                "E3020",
+                format!(
+                    "`{}` needs a state vector of {n} Integers, not {}",
+                    f.name,
+                    state.data.len()
+                ),
+                span,
+            ));
+        }
+        let words = &state.data[..n];
+        let number = self.ext_node(func(0), words);
+        let next: Vec<ExprId> = (1..=n)
+            .map(|k| self.ext_node(func(k as u8), words))
+            .collect();
+        let name = |k: usize| match ext.args.get(k).map(|a| &a.kind) {
+            Some(unimo_syntax::ast::ExprKind::Ref(r)) if r.parts.len() == 1 => {
+                Some(r.parts[0].name.text.to_string())
+            }
+            _ => None,
+        };
+        let (Some(state_out), Some(result)) = (name(1), name(2)) else {
+            return Err(DaeError::new(
+                "E3020",
+                format!("`{}` must pass its outputs to `{}`", f.name, ext.function),
+                span,
+            ));
+        };
+        for (name, value) in [
+            (state_out, Tensor::vector(next)),
+            (result, Tensor::scalar(number)),
+        ] {
+            self.locals.push(Local {
+                name,
+                value: Some(value),
+                record: None,
+                text: None,
+            });
+        }
         Ok(())
     }
 
     fn ext_node(&mut self, func: ExtFn, args: &[ExprId]) -> ExprId {
         let zero = self.dae.arena.zero();
         let get = |k: usize| args.get(k).copied().unwrap_or(zero);
-        self.dae
-            .arena
-            .intern(Node::Ext(func, get(0), get(1), get(2)))
+        let ops = [get(0), get(1), get(2), get(3)];
+        self.dae.arena.rebuild(Node::Ext(func, ops), &ops)
     }
 
     /// The scalar arguments at positions `at` of the external call.
@@ -289,4 +436,19 @@ impl Lowerer<'_> {
         });
         Ok(self.dae.arena.constant(index as f64))
     }
+}
+
+/// `ModelicaRandom_automaticGlobalSeed`: 1 + the time of day in milliseconds (UTC) +
+/// 6007 times the process id, as the MSL's C code forms it: a different seed in every
+/// run, which is what the function is for.
+fn automatic_global_seed() -> i32 {
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap_or_default();
+    let ms = i64::from(now.subsec_millis());
+    let secs = now.as_secs() as i64;
+    let (sec, min, hour) = (secs % 60, (secs / 60) % 60, (secs / 3600) % 24);
+    let pid = i64::from(std::process::id());
+    let seed = 1 + ms + 1000 * sec + 60_000 * min + 3_600_000 * hour + 6007 * pid;
+    seed as i32
 }

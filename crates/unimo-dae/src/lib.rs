@@ -20,6 +20,7 @@ pub mod external;
 pub mod lower;
 pub mod plan;
 pub mod prune;
+pub mod random;
 mod records;
 pub mod singular;
 pub mod tensor;

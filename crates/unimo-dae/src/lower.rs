@@ -25,6 +25,9 @@ pub(crate) struct Local {
     /// The record type of a function's record input, output or local: its value is
     /// the fields side by side (see `records.rs`).
     pub record: Option<String>,
+    /// The value of a String input (`getInstanceName()`, a literal): Strings have no
+    /// numeric value; only the functions unimo provides read them (a hash).
+    pub text: Option<String>,
 }
 
 pub struct Lowerer<'m> {
@@ -770,6 +773,7 @@ impl<'m> Lowerer<'m> {
                 name: first.name.text.to_string(),
                 value: Some(v),
                 record: None,
+                text: None,
             });
             let r = self.comprehension(body, rest);
             self.locals.pop();

@@ -140,6 +140,20 @@ pub(crate) fn instance_key(path: &[RefPart]) -> String {
     k
 }
 
+/// `getInstanceName()` in the instance at `prefix` of model `model` (spec 3.7.4.6): the
+/// model's name and the instance's path, `Model.sub.noise`.
+fn instance_name(model: &str, prefix: &[RefPart], span: Span) -> Expr {
+    let mut text = model.to_owned();
+    if !prefix.is_empty() {
+        text.push('.');
+        text.push_str(&instance_key(prefix));
+    }
+    Expr {
+        kind: ExprKind::String(text),
+        span,
+    }
+}
+
 /// The instance key of a path, without the last part's subscripts.
 fn instance_key_no_subs(path: &[RefPart]) -> String {
     eval::var_key_parts(path)
@@ -1453,6 +1467,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             ExprKind::Call { func, args } => {
                 // `.asin(u)` names the built-in from the global scope.
                 let simple = func.parts.len() == 1;
+                if simple && func.parts[0].text == "getInstanceName" && args.positional.is_empty() {
+                    return instance_name(&self.model.name, &scope.prefix, span);
+                }
                 let func = if simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()) {
                     Name {
                         global: false,

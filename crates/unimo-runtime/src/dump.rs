@@ -66,13 +66,10 @@ impl Names<'_> {
                 format!("{} = if {} then {} else {}", n(*d), n(*c), n(*a), n(*b))
             }
             Op::Sample(d, k) => format!("{} = sample {k}", n(*d)),
-            Op::Ext(f, d, args) => format!(
-                "{} = {f:?}({}, {}, {})",
-                n(*d),
-                n(args[0]),
-                n(args[1]),
-                n(args[2])
-            ),
+            Op::Ext(f, d, args) => {
+                let args: Vec<String> = args.iter().take(1 + f.arity()).map(|a| n(*a)).collect();
+                format!("{} = {f:?}({})", n(*d), args.join(", "))
+            }
             Op::Held(r, d, a, k) => format!("{} = {r:?}({})  (held {k})", n(*d), n(*a)),
             Op::HeldBounds(r, lo, hi, k) => {
                 format!("{}, {} = bounds of {r:?}  (held {k})", n(*lo), n(*hi))

@@ -128,8 +128,10 @@ pub struct CompiledModel {
     pub fixed_constraints: Vec<FixedConstraint>,
     /// Discrete variables `initial_tape` assigns (register, name).
     pub initial_assigned: Vec<(Reg, String)>,
-    /// Whether `initial_tape` sets `pre` values (`initial equation pre(y) = y0`).
-    pub initial_pre_assigned: bool,
+    /// The discrete variables whose `pre` values `initial_tape` sets (`initial
+    /// equation pre(y) = y0`): at initialization, where their `when` is not active,
+    /// they equal those values.
+    pub initial_pre_assigned: Vec<Reg>,
     pub ops_total: usize,
     /// Relations whose value some tape holds between events (a relation that only an
     /// assertion reads is compared literally and never held).
@@ -628,7 +630,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         }
     }
     let mut initial_assigned = Vec::new();
-    let mut initial_pre_assigned = false;
+    let mut initial_pre_assigned = Vec::new();
     for (l, r) in pairs.drain(..) {
         // `d = expr` for a discrete `d` that `expr` does not mention is an assignment
         // (what an initial algorithm's `d := expr` lowers to): executed, not solved.
@@ -652,7 +654,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
                 };
                 initial_tape.ops.push(crate::tape::Op::Copy(reg, rr));
                 if pre {
-                    initial_pre_assigned = true;
+                    initial_pre_assigned.push(layout.var(d));
                 } else {
                     initial_assigned.push((layout.var(d), dae.name(d)));
                 }

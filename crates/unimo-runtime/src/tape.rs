@@ -41,7 +41,7 @@ pub enum Op {
     Sample(Reg, u32),
     /// `dst = f(object, a, b)`: a function of the external object whose handle is in
     /// the first register (a table lookup, `crate::tables`).
-    Ext(ExtFn, Reg, [Reg; 3]),
+    Ext(ExtFn, Reg, [Reg; 4]),
     /// An event-generating rounding (`floor`, `ceil`, `integer`, and the quotient of
     /// `div`, `mod`, `rem`) of the argument register, held value `k`: computed and
     /// stored in event mode, read between events (MLS 3.7.2).
@@ -210,7 +210,10 @@ impl Tape {
                     }
                 }
                 Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
-                Op::Ext(f, d, [o, a, b]) => {
+                Op::Ext(f, d, ops) if f.is_pure() => {
+                    r[d as usize] = f.apply_pure(ops.map(|k| r[k as usize]));
+                }
+                Op::Ext(f, d, [o, a, b, _]) => {
                     let object = r[o as usize];
                     r[d as usize] = match ev.objects.get(object as usize) {
                         Some(t) if object >= 0.0 => t.eval(f, r[a as usize], r[b as usize]),
@@ -429,7 +432,7 @@ impl<'a> Compiler<'a> {
                     Node::Or(a, b) => Ok(Op::Or(0, g(a), g(b))),
                     Node::Not(a) => Ok(Op::Not(0, g(a))),
                     Node::If(c, a, b) => Ok(Op::Select(0, g(c), g(a), g(b))),
-                    Node::Ext(f, o, a, b) => Ok(Op::Ext(f, 0, [g(o), g(a), g(b)])),
+                    Node::Ext(f, ops) => Ok(Op::Ext(f, 0, ops.map(g))),
                     Node::Sample(..) => Ok(Op::Sample(
                         0,
                         self.sample_index.get(&x).copied().unwrap_or(0),
