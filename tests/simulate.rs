@@ -752,3 +752,21 @@ fn initialization_solves_for_large_integer_parameters() {
     let exact = e + 2.0 * 67_867_967.0 * 1e-9 * (1.0 - e);
     assert!((value(&r, "x") - exact).abs() < 1e-8, "{}", value(&r, "x"));
 }
+
+/// A parameter with `annotation(Evaluate = true)` and one bound to it alone are fixed
+/// at translation: `C * der(v2)` with C = 0 vanishes, v2 = 2/3 x = 2/3 e^-t; the DAE
+/// keeps the other parameter.
+#[test]
+fn evaluated_parameters_fold_into_the_equations() {
+    let m = load("tests/simulate/EvaluatedParameters.mo");
+    let dae = unimo_dae::dump::dump(&m.dae, &|_| String::new());
+    assert!(dae.contains("i = 0"), "{dae}");
+    assert!(dae.contains("R2"), "{dae}");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
+    let exact = 2.0 / 3.0 * (-1.0f64).exp();
+    assert!(
+        (value(&r, "v2") - exact).abs() < 1e-8,
+        "{}",
+        value(&r, "v2")
+    );
+}

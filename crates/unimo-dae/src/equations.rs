@@ -18,6 +18,7 @@ pub fn lower(model: &FlatModel) -> (Dae, Vec<Diagnostic>) {
     let mut l = Lowerer::new(model);
     l.declare_vars();
     l.var_attributes();
+    l.evaluate_parameters();
     for eq in &model.equations {
         match l.equation_rows(eq) {
             Ok(rows) => l.dae.equations.extend(rows),

@@ -46,6 +46,9 @@ pub struct Lowerer<'m> {
     pub(crate) when_actions: Option<Vec<(WhenAction, Span)>>,
     /// Values of parameters evaluated at compile time (NaN: not evaluable).
     pub(crate) parameter_values: HashMap<ScalarId, f64>,
+    /// Parameters fixed at translation (`annotation(Evaluate = true)` and the
+    /// parameters bound to them alone): equations read their values as constants.
+    pub(crate) evaluated: HashMap<ScalarId, ExprId>,
     pub(crate) errors: Vec<DaeError>,
     /// Conditional `return`/`break` exits of the algorithm being executed.
     pub(crate) exits: Vec<crate::algo::Exit>,
@@ -85,6 +88,7 @@ impl<'m> Lowerer<'m> {
             end_stack: Vec::new(),
             when_actions: None,
             parameter_values: HashMap::default(),
+            evaluated: HashMap::default(),
             errors: Vec::new(),
             exits: Vec::new(),
         }
@@ -130,6 +134,69 @@ impl<'m> Lowerer<'m> {
         let env = ParameterEnv(values);
         let v = self.dae.arena.eval(e, &env);
         v.is_finite().then_some(v)
+    }
+
+    /// A model variable in an expression: its value where it is fixed at translation.
+    pub(crate) fn var_value(&mut self, s: ScalarId) -> ExprId {
+        match self.evaluated.get(&s) {
+            Some(&c) => c,
+            None => self.dae.arena.var(s),
+        }
+    }
+
+    /// The parameters fixed at translation: those declared with `annotation(Evaluate =
+    /// true)` whose value is known, then every parameter whose binding reads such
+    /// parameters and constants alone (a capacitor's `final C = CapVal`), so that
+    /// `0 * der(v)` leaves the equations as the tool that wrote the model meant.
+    pub(crate) fn evaluate_parameters(&mut self) {
+        for v in &self.model.vars {
+            if !(v.evaluate && v.variability == Variability::Parameter) {
+                continue;
+            }
+            let Some(&(first, ref dims)) = self.vars.get(&v.name) else {
+                continue;
+            };
+            for k in 0..dims.iter().product::<usize>() {
+                let s = ScalarId(first.0 + k as u32);
+                if let Some(x) = self.parameter_value(s, 0) {
+                    let c = self.dae.arena.constant(x);
+                    self.evaluated.insert(s, c);
+                }
+            }
+        }
+        if self.evaluated.is_empty() {
+            return;
+        }
+        loop {
+            let mut grew = false;
+            for k in 0..self.dae.scalars.len() {
+                let s = ScalarId(k as u32);
+                let sc = &self.dae.scalars[k];
+                if sc.kind != ScalarKind::Parameter
+                    || sc.fixed == Some(false)
+                    || self.evaluated.contains_key(&s)
+                {
+                    continue;
+                }
+                let Some(b) = sc.binding else { continue };
+                let vars = self.dae.arena.vars(b);
+                let reads_evaluated = vars.iter().any(|v| self.evaluated.contains_key(v));
+                let only_fixed = vars.iter().all(|v| {
+                    self.evaluated.contains_key(v)
+                        || self.dae.scalars[v.index()].kind == ScalarKind::Constant
+                });
+                if reads_evaluated && only_fixed {
+                    if let Some(x) = self.parameter_value(s, 0) {
+                        let c = self.dae.arena.constant(x);
+                        self.evaluated.insert(s, c);
+                        grew = true;
+                    }
+                }
+            }
+            if !grew {
+                break;
+            }
+        }
     }
 
     /// Whether every leaf of `e` is a constant or a parameter (no time, `pre`, ...).
@@ -436,7 +503,7 @@ impl<'m> Lowerer<'m> {
                 let s = ScalarId(first.0 + k as u32);
                 let e = match self.assigned.as_ref().and_then(|m| m.get(&s)) {
                     Some(&e) => e,
-                    None => self.dae.arena.var(s),
+                    None => self.var_value(s),
                 };
                 return Ok(Tensor::scalar(e));
             }
@@ -447,7 +514,7 @@ impl<'m> Lowerer<'m> {
                 let s = ScalarId(first.0 + k as u32);
                 match self.assigned.as_ref().and_then(|m| m.get(&s)) {
                     Some(&e) => e,
-                    None => self.dae.arena.var(s),
+                    None => self.var_value(s),
                 }
             })
             .collect();

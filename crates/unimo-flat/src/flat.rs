@@ -65,6 +65,9 @@ pub struct FlatVar {
     pub description: Option<String>,
     /// Declared in the top-level class (its inputs are known from outside).
     pub top_level: bool,
+    /// A parameter declared with `annotation(Evaluate = true)`: its value is fixed at
+    /// translation (a capacitance of 0 removes the capacitor's derivative).
+    pub evaluate: bool,
     pub origin: Span,
 }
 

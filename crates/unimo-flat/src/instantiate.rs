@@ -154,6 +154,26 @@ fn instance_name(model: &str, prefix: &[RefPart], span: Span) -> Expr {
     }
 }
 
+/// Whether an annotation sets `flag = true` (`annotation(Evaluate = true)`).
+fn annotation_is_true(annotation: Option<&ClassModification>, flag: &str) -> bool {
+    annotation.is_some_and(|a| {
+        a.args.iter().any(|arg| match arg {
+            Argument::Modify {
+                name,
+                modification: Some(m),
+                ..
+            } => {
+                name.to_dotted() == flag
+                    && matches!(
+                        m.binding.as_ref().map(|b| &b.kind),
+                        Some(ExprKind::Bool(true))
+                    )
+            }
+            _ => false,
+        })
+    })
+}
+
 /// The instance key of a path, without the last part's subscripts.
 fn instance_key_no_subs(path: &[RefPart]) -> String {
     eval::var_key_parts(path)
@@ -1024,6 +1044,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             each_attributes,
             description: d.comment.description.clone(),
             top_level: top,
+            evaluate: annotation_is_true(d.comment.annotation.as_ref(), "Evaluate"),
             origin: d.span,
         }
     }
