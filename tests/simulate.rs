@@ -770,3 +770,14 @@ fn evaluated_parameters_fold_into_the_equations() {
         value(&r, "v2")
     );
 }
+
+/// A signal an expandable connector declares but nothing uses is not part of the model
+/// (spec 9.1.3): the model balances and z = 2 t + 1.
+#[test]
+fn unused_signals_of_an_expandable_connector_are_left_out() {
+    let file = common::root().join("tests/simulate/ExpandableBus.mo");
+    let m = unimo_cli::load_model(&[file], Some("ExpandableBus.Use")).unwrap();
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
+    assert!((value(&r, "z") - 3.0).abs() < 1e-9, "{}", value(&r, "z"));
+    assert!(!r.names.iter().any(|n| n == "bus.unused"), "{:?}", r.names);
+}

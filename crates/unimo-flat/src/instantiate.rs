@@ -66,6 +66,9 @@ pub(crate) struct Instantiator<'t, 'p> {
     ancestors: Vec<ClassId>,
     /// Paths of conditional components that are absent.
     pub absent: Vec<String>,
+    /// Instance keys of the expandable connectors (their declared members are only
+    /// potentially present, see `expandable.rs`).
+    pub expandable: Vec<String>,
     /// Element names declared so far in the instances being instantiated (one level
     /// per [`Self::class_body`], shared with its bases), with where; innermost last.
     /// `None`: the class is known to declare no name twice (checked at its first
@@ -219,6 +222,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             pending_own: Vec::new(),
             ancestors: Vec::new(),
             absent: Vec::new(),
+            expandable: Vec::new(),
             declared: Vec::new(),
             declared_pool: Vec::new(),
             duplicate_found: Vec::new(),
@@ -942,6 +946,9 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 // those of the top-level model's connectors are the model's interface.
                 let saved = self.inherited_causality;
                 self.inherited_causality = cc.prefix.causality.or(saved);
+                if self.tree.get(c).def.prefixes.expandable {
+                    self.expandable.push(key.clone());
+                }
                 let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
                 if dims.is_empty() {
                     self.class_body(c, &path, &merged, variability, top);

@@ -13,6 +13,7 @@ pub mod balance;
 pub mod connect;
 pub mod error;
 pub mod eval;
+mod expandable;
 mod external;
 pub mod flat;
 pub mod functions;
@@ -49,6 +50,7 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     inst.run(class);
     let connects = std::mem::take(&mut inst.connects);
     let absent = std::mem::take(&mut inst.absent);
+    let buses = std::mem::take(&mut inst.expandable);
     inst.collect_functions();
     let mut model = std::mem::take(&mut inst.model);
     diags.append(&mut inst.diags);
@@ -90,6 +92,7 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
         })
     };
     model.equations.extend(conn_eqs);
+    expandable::remove_unused_members(&mut model, &buses);
     let connect_failed = !conn_diags.is_empty();
     diags.extend(conn_diags);
     // Sizes and types, once the connections are sound.
