@@ -781,3 +781,19 @@ fn unused_signals_of_an_expandable_connector_are_left_out() {
     assert!((value(&r, "z") - 3.0).abs() < 1e-9, "{}", value(&r, "z"));
     assert!(!r.names.iter().any(|n| n == "bus.unused"), "{:?}", r.names);
 }
+
+/// `x'' + 3 x' + 2 x = 1` from rest in controller form (x[2] the position): x(t) =
+/// 1/2 - e^-t + e^-2t / 2, with the parameter declared after the binding that needs
+/// it and `a[2:na] * x` counted as one equation.
+#[test]
+fn parameters_bound_to_later_ones_and_parameter_slices() {
+    let m = load("tests/simulate/ParameterOrder.mo");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
+    let t = 1.0f64;
+    let exact = 0.5 - (-t).exp() + (-2.0 * t).exp() / 2.0;
+    assert!(
+        (value(&r, "x[2]") - exact).abs() < 1e-8,
+        "{}",
+        value(&r, "x[2]")
+    );
+}

@@ -8,7 +8,7 @@ use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, Fn1, Fn2, Node, RelOp, ScalarId};
 use crate::tensor::{self, Tensor};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
-use unimo_flat::flat::{FlatType, Variability};
+use unimo_flat::flat::{FlatType, FlatVar, Variability};
 use unimo_flat::functions::FlatFunction;
 use unimo_flat::FlatModel;
 use unimo_source::Span;
@@ -326,37 +326,74 @@ impl<'m> Lowerer<'m> {
 
     /// Lowers bindings and attributes; bindings of non-parameters become equations.
     pub(crate) fn var_attributes(&mut self) {
+        // A parameter binding that needs another parameter's value declared further
+        // down (`x_start[nx] = zeros(nx)` before `nx = size(a, 1) - 1`) is tried again
+        // once the others are known.
+        let mut deferred = Vec::new();
         for v in &self.model.vars {
             let Some(&(first, ref dims)) = self.vars.get(&v.name) else {
                 continue;
             };
             let dims = dims.clone();
             let n = dims.iter().product::<usize>();
-            if let Some(b) = &v.binding {
-                match self.expr(b).and_then(|t| broadcast(t, &dims, b.span)) {
-                    Ok(t) => {
-                        let parameter = matches!(
-                            v.variability,
-                            Variability::Parameter | Variability::Constant
-                        );
-                        for (k, &e) in t.data.iter().enumerate() {
-                            let s = ScalarId(first.0 + k as u32);
-                            if parameter {
-                                self.dae.scalars[s.index()].binding = Some(e);
-                            } else {
-                                let lhs = self.dae.arena.var(s);
-                                self.dae.equations.push(crate::dae::Equation {
-                                    lhs,
-                                    rhs: e,
-                                    origin: b.span,
-                                    derivative_of: None,
-                                });
-                            }
-                        }
-                    }
-                    Err(e) => self.errors.push(e),
+            if let Err(e) = self.var_binding(v, first, &dims) {
+                let parameter = matches!(
+                    v.variability,
+                    Variability::Parameter | Variability::Constant
+                );
+                if parameter && e.code == "E3002" {
+                    deferred.push((v, first, dims.clone(), e));
+                } else {
+                    self.errors.push(e);
                 }
             }
+            self.attributes_of(v, first, &dims, n);
+        }
+        while !deferred.is_empty() {
+            self.parameter_values.retain(|_, x| x.is_finite());
+            let before = deferred.len();
+            let mut still = Vec::new();
+            for (v, first, dims, _) in deferred {
+                if let Err(e) = self.var_binding(v, first, &dims) {
+                    still.push((v, first, dims, e));
+                }
+            }
+            deferred = still;
+            if deferred.len() == before {
+                self.errors.extend(deferred.drain(..).map(|(.., e)| e));
+            }
+        }
+    }
+
+    /// A variable's binding: a parameter's value, or an equation.
+    fn var_binding(&mut self, v: &FlatVar, first: ScalarId, dims: &[usize]) -> DaeResult<()> {
+        if let Some(b) = &v.binding {
+            let t = self.expr(b).and_then(|t| broadcast(t, dims, b.span))?;
+            let parameter = matches!(
+                v.variability,
+                Variability::Parameter | Variability::Constant
+            );
+            for (k, &e) in t.data.iter().enumerate() {
+                let s = ScalarId(first.0 + k as u32);
+                if parameter {
+                    self.dae.scalars[s.index()].binding = Some(e);
+                } else {
+                    let lhs = self.dae.arena.var(s);
+                    self.dae.equations.push(crate::dae::Equation {
+                        lhs,
+                        rhs: e,
+                        origin: b.span,
+                        derivative_of: None,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A variable's attributes (`start`, `fixed`, `nominal`, ...).
+    fn attributes_of(&mut self, v: &FlatVar, first: ScalarId, dims: &[usize], n: usize) {
+        {
             for (name, value) in &v.attributes {
                 let which = name.as_str();
                 if !matches!(
@@ -367,7 +404,7 @@ impl<'m> Lowerer<'m> {
                 }
                 let t = match self
                     .expr(value)
-                    .and_then(|t| broadcast(t, &dims, value.span))
+                    .and_then(|t| broadcast(t, dims, value.span))
                 {
                     Ok(t) => t,
                     Err(e) => {

@@ -26,9 +26,62 @@ struct Shapes<'m> {
     buf: std::cell::RefCell<String>,
     /// Record types by full name: a constructor call has the size of its fields.
     records: HashMap<&'m str, &'m crate::functions::FlatRecord>,
+    /// Bindings of the Integer parameters and constants (slice bounds `a[2:na]`).
+    integers: HashMap<&'m str, &'m Expr>,
 }
 
 impl Shapes<'_> {
+    /// The value of an Integer expression of literals, Integer parameters and `size`
+    /// of arrays (`size(a, 1) - 1`), where the structure fixes it.
+    fn int_value(&self, e: &Expr, depth: u32) -> Option<i64> {
+        if depth > 16 {
+            return None;
+        }
+        match &e.kind {
+            ExprKind::Integer(n) => Some(*n),
+            ExprKind::Ref(r) if r.parts.iter().all(|p| p.subscripts.is_empty()) => {
+                let b = self.integers.get(var_key(r).as_str())?;
+                self.int_value(b, depth + 1)
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let (a, b) = (
+                    self.int_value(lhs, depth + 1)?,
+                    self.int_value(rhs, depth + 1)?,
+                );
+                match op {
+                    BinaryOp::Add => a.checked_add(b),
+                    BinaryOp::Sub => a.checked_sub(b),
+                    BinaryOp::Mul => a.checked_mul(b),
+                    _ => None,
+                }
+            }
+            ExprKind::Call { func, args } if args.positional.len() == 2 => {
+                let name = func.to_dotted();
+                let (x, y) = (&args.positional[0], &args.positional[1]);
+                match name.as_str() {
+                    "size" => {
+                        let ExprKind::Ref(r) = &x.kind else {
+                            return None;
+                        };
+                        let k = self.int_value(y, depth + 1)?;
+                        let d = self.dims.get(var_key(r).as_str())?;
+                        d.get(usize::try_from(k - 1).ok()?).map(|&n| n as i64)
+                    }
+                    "max" => Some(
+                        self.int_value(x, depth + 1)?
+                            .max(self.int_value(y, depth + 1)?),
+                    ),
+                    "min" => Some(
+                        self.int_value(x, depth + 1)?
+                            .min(self.int_value(y, depth + 1)?),
+                    ),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+
     fn of(&self, e: &Expr) -> Vec<usize> {
         match &e.kind {
             ExprKind::Ref(r) => {
@@ -68,8 +121,8 @@ impl Shapes<'_> {
                                 stop,
                             } = &x.kind
                             {
-                                if let (ExprKind::Integer(a), ExprKind::Integer(b)) =
-                                    (&start.kind, &stop.kind)
+                                if let (Some(a), Some(b)) =
+                                    (self.int_value(start, 0), self.int_value(stop, 0))
                                 {
                                     out.push((b - a + 1).max(0) as usize);
                                 }
@@ -324,6 +377,19 @@ pub fn count(model: &FlatModel) -> Balance {
         record_sizes,
         buf: Default::default(),
         records: model.records.iter().map(|r| (r.name.as_str(), r)).collect(),
+        integers: model
+            .vars
+            .iter()
+            .filter(|v| {
+                v.ty == crate::flat::FlatType::Integer
+                    && v.dims.is_empty()
+                    && matches!(
+                        v.variability,
+                        crate::flat::Variability::Parameter | crate::flat::Variability::Constant
+                    )
+            })
+            .filter_map(|v| Some((v.name.as_str(), v.binding.as_deref()?)))
+            .collect(),
     };
     let unknowns = model
         .vars

@@ -144,9 +144,14 @@ pub(crate) fn instance_key(path: &[RefPart]) -> String {
 }
 
 /// `getInstanceName()` in the instance at `prefix` of model `model` (spec 3.7.4.6): the
-/// model's name and the instance's path, `Model.sub.noise`.
+/// model's own name (without its package, as the specification's example
+/// `Vehicle.engine.controller` of `MyLib.Vehicle` shows) and the instance's path.
 fn instance_name(model: &str, prefix: &[RefPart], span: Span) -> Expr {
-    let mut text = model.to_owned();
+    let mut text = crate::flat::split_name(model)
+        .last()
+        .copied()
+        .unwrap_or(model)
+        .to_owned();
     if !prefix.is_empty() {
         text.push('.');
         text.push_str(&instance_key(prefix));

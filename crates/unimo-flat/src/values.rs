@@ -52,6 +52,35 @@ impl Instantiator<'_, '_> {
                 Some(if a.len() >= b.len() { a } else { b })
             }
             ExprKind::If { otherwise, .. } => self.shape_of(otherwise),
+            // `[a; b]`: rows add up down the blocks, columns across the first block
+            // row; a scalar or vector block is promoted to a matrix (spec 10.4.2).
+            ExprKind::Matrix(rows) => {
+                let mut height = 0;
+                let mut width = None;
+                for row in rows {
+                    let mut h = None;
+                    let mut w = 0;
+                    for item in row {
+                        let mut d = self.shape_of(item)?;
+                        d.resize(2.max(d.len()), 1);
+                        h.get_or_insert(d[0]);
+                        w += d[1];
+                    }
+                    height += h?;
+                    width.get_or_insert(w);
+                }
+                Some(vec![height, width?])
+            }
+            // `vector(x)`: all of x's elements in one dimension.
+            ExprKind::Call { func, args }
+                if !func.global
+                    && func.parts.len() == 1
+                    && func.parts[0].text == "vector"
+                    && args.positional.len() == 1 =>
+            {
+                let d = self.shape_of(&args.positional[0])?;
+                Some(vec![d.iter().product()])
+            }
             ExprKind::Call { func, args } if func.global => self
                 .call_shape(func, args)
                 .or_else(|| eval::eval(e, self, &mut Vec::new()).ok().map(|v| v.dims())),
