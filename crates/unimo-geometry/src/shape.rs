@@ -119,6 +119,30 @@ fn bounded_points(what: &str, points: &[V3]) -> Result<(), ShapeError> {
     }
 }
 
+/// The radius of the largest sphere a shape surely holds (0 where no cheap bound is
+/// known).
+fn half_thickness(kind: &ShapeKind) -> f64 {
+    match kind {
+        ShapeKind::Sphere { radius } => *radius,
+        ShapeKind::Box { half } => half.iter().fold(f64::INFINITY, |m, &h| m.min(h)),
+        ShapeKind::Capsule { radius, .. } => *radius,
+        ShapeKind::Cylinder {
+            half_height,
+            radius,
+        }
+        | ShapeKind::Cone {
+            half_height,
+            radius,
+        } => half_height.min(*radius),
+        ShapeKind::Ellipsoid { semi_axes } => {
+            semi_axes.iter().fold(f64::INFINITY, |m, &a| m.min(a))
+        }
+        ShapeKind::HalfSpace => f64::INFINITY,
+        // Hulls and meshes: no cheap inradius; a mesh may be a single sheet.
+        ShapeKind::ConvexHull { .. } | ShapeKind::TriMesh { .. } => 0.0,
+    }
+}
+
 impl Shape {
     pub fn new(kind: ShapeKind) -> Result<Shape, ShapeError> {
         let (parry, ellipsoid, radius) = match &kind {
@@ -203,25 +227,7 @@ impl Shape {
                 (Some(s), None, r)
             }
         };
-        let half_thickness = match &kind {
-            ShapeKind::Sphere { radius } => *radius,
-            ShapeKind::Box { half } => half.iter().fold(f64::INFINITY, |m, &h| m.min(h)),
-            ShapeKind::Capsule { radius, .. } => *radius,
-            ShapeKind::Cylinder {
-                half_height,
-                radius,
-            }
-            | ShapeKind::Cone {
-                half_height,
-                radius,
-            } => half_height.min(*radius),
-            ShapeKind::Ellipsoid { semi_axes } => {
-                semi_axes.iter().fold(f64::INFINITY, |m, &a| m.min(a))
-            }
-            ShapeKind::HalfSpace => f64::INFINITY,
-            // Hulls and meshes: no cheap inradius; a mesh may be a single sheet.
-            ShapeKind::ConvexHull { .. } | ShapeKind::TriMesh { .. } => 0.0,
-        };
+        let half_thickness = half_thickness(&kind);
         Ok(Shape {
             kind,
             parry,

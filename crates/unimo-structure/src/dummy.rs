@@ -137,21 +137,7 @@ pub fn select_dummy_derivatives_with_sets(
         .eqs()
         .filter(|&e| chains.eq_derivative(e).is_none() && chains.eq_integral(e).is_some())
         .collect();
-    // Derivatives that occur in an equation of the input (not only in equations made by
-    // index reduction): the model's own states. At equal priority the derivatives that
-    // index reduction introduced become dummies first, so the model's states stay states
-    // (the usual "natural states" rule). Without it the order by id prefers the input's
-    // derivatives as dummies: a body's position then becomes algebraic and is solved
-    // from the velocity of a contact point, v_P = v + omega x (r_P - r), whose Jacobian
-    // in r is singular.
-    let mut in_input = vec![false; n_vars];
-    for e in graph.eqs() {
-        if chains.eq_integral(e).is_none() {
-            for &v in graph.eq_vars(e) {
-                in_input[v.index()] = true;
-            }
-        }
-    }
+    let in_input = in_input(graph, pantelides);
     let mut selector = LevelSelector::new(n_vars);
     let mut result = DummyDerivatives {
         is_dummy: vec![false; n_vars],
@@ -216,6 +202,25 @@ pub fn select_dummy_derivatives_with_sets(
     }
     classify_variables(graph, pantelides, &mut result);
     Ok(result)
+}
+
+/// The variables that occur in an equation of the input (not only in equations made by
+/// index reduction): the model's own states. At equal priority the derivatives that
+/// index reduction introduced become dummies first, so the model's states stay states
+/// (the usual "natural states" rule). Without it the order by id prefers the input's
+/// derivatives as dummies: a body's position then becomes algebraic and is solved from
+/// the velocity of a contact point, v_P = v + omega x (r_P - r), whose Jacobian in r is
+/// singular.
+fn in_input(graph: &BipartiteGraph, pantelides: &PantelidesResult) -> Vec<bool> {
+    let mut in_input = vec![false; graph.n_vars()];
+    for e in graph.eqs() {
+        if pantelides.chains.eq_integral(e).is_none() {
+            for &v in graph.eq_vars(e) {
+                in_input[v.index()] = true;
+            }
+        }
+    }
+    in_input
 }
 
 /// The connected components of a level's graph (equations × candidates, candidates in
