@@ -370,6 +370,86 @@ fn is_ident_char(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
 }
 
+/// The scanner's running measures of nesting, checked against the depth limits.
+#[derive(Default)]
+struct Nesting {
+    depth: usize,
+    ifs_since_semi: usize,
+    too_deep_reported: bool,
+    // Unary operators in a row (`- - - x`) nest like brackets; an operand ends the run.
+    unary_run: usize,
+    after_operand: bool,
+    // Binary operators in one statement build one deep tree.
+    ops_in_statement: usize,
+}
+
+impl Nesting {
+    /// A string, quoted identifier or number: an operand.
+    fn operand(&mut self) {
+        self.unary_run = 0;
+        self.after_operand = true;
+    }
+
+    /// A keyword or identifier.
+    fn word(&mut self, word: &str, kind: TokenKind) {
+        if word == "if" {
+            self.ifs_since_semi += 1;
+        }
+        match word {
+            "not" => self.unary_run += 1,
+            "and" | "or" => {
+                self.ops_in_statement += 1;
+                self.after_operand = false;
+            }
+            _ => {
+                self.unary_run = 0;
+                self.after_operand =
+                    kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
+            }
+        }
+    }
+
+    /// A punctuation token of `len` bytes starting with `b`.
+    fn punct(&mut self, b: u8, len: usize) {
+        match b {
+            b'(' | b'[' | b'{' => self.depth += 1,
+            b')' | b']' | b'}' => self.depth = self.depth.saturating_sub(1),
+            b';' => {
+                self.ifs_since_semi = 0;
+                self.ops_in_statement = 0;
+            }
+            _ => {}
+        }
+        if matches!(b, b'-' | b'+') && len == 1 && !self.after_operand {
+            self.unary_run += 1;
+        } else if matches!(b, b')' | b']' | b'}') {
+            self.unary_run = 0;
+        } else if !matches!(b, b'(' | b'[' | b'{' | b';' | b',') {
+            self.ops_in_statement += 1;
+        }
+        self.after_operand = matches!(b, b')' | b']' | b'}');
+    }
+
+    /// Records the deepest nesting so far and reports the first excess, at `start`.
+    fn check(&mut self, start: usize, out: &mut Scan) {
+        if self.ops_in_statement > MAX_OPERATORS && !self.too_deep_reported {
+            self.too_deep_reported = true;
+            out.errors.push(LexError::TooDeep {
+                start,
+                depth: self.ops_in_statement,
+            });
+        }
+        let d = self.depth + self.ifs_since_semi + self.unary_run;
+        if d > out.max_depth {
+            out.max_depth = d;
+            if d > MAX_DEPTH && !self.too_deep_reported {
+                self.too_deep_reported = true;
+                out.errors.push(LexError::TooDeep { start, depth: d });
+            }
+        }
+    }
+}
+
 /// Scans `text` into tokens, collecting every lexical error.
 pub fn scan(text: &str) -> Scan {
     let bytes = text.as_bytes();
@@ -378,14 +458,7 @@ pub fn scan(text: &str) -> Scan {
         tokens: Vec::with_capacity(text.len() / 5 + 16),
         ..Scan::default()
     };
-    let mut depth = 0usize;
-    let mut ifs_since_semi = 0usize;
-    let mut too_deep_reported = false;
-    // Unary operators in a row (`- - - x`) nest like brackets; an operand ends the run.
-    let mut unary_run = 0usize;
-    let mut after_operand = false;
-    // Binary operators in one statement build one deep tree.
-    let mut ops_in_statement = 0usize;
+    let mut nest = Nesting::default();
     let mut i = 0;
     while i < bytes.len() {
         let b = bytes[i];
@@ -402,112 +475,30 @@ pub fn scan(text: &str) -> Scan {
                 continue;
             }
             b'/' if bytes.get(i + 1) == Some(&b'*') => {
-                match text[i + 2..].find("*/") {
-                    Some(k) => i += 2 + k + 2,
-                    None => {
-                        out.errors.push(LexError::UnterminatedComment { start });
-                        i = bytes.len();
-                    }
-                }
+                i = skip_block_comment(text, i, &mut out);
                 continue;
             }
             b'"' | b'\'' => {
-                let (end, ok, escapes) = scan_quoted(bytes, i, b);
-                for (s, e) in escapes {
-                    out.errors.push(LexError::BadEscape { start: s, end: e });
-                }
-                if !ok {
-                    out.errors.push(if b == b'"' {
-                        LexError::UnterminatedString { start }
-                    } else {
-                        LexError::UnterminatedQuotedIdent { start }
-                    });
-                }
-                unary_run = 0;
-                after_operand = true;
-                let kind = if b == b'"' {
-                    TokenKind::String
-                } else {
-                    TokenKind::QuotedIdent
-                };
-                out.tokens.push(Token::new(kind, Sym::None, start, end));
-                i = end;
+                nest.operand();
+                i = quoted_token(bytes, i, &mut out);
                 continue;
             }
             _ if is_ident_start(b) => {
-                while i < bytes.len() && is_ident_char(bytes[i]) {
-                    i += 1;
-                }
-                let word = &text[start..i];
-                // Every keyword is 2 to 13 lower-case letters: most names fail cheaply.
-                let sym = if (2..=13).contains(&word.len()) && b.is_ascii_lowercase() {
-                    keyword_sym(word)
-                } else {
-                    None
-                };
-                let (kind, sym) = match sym {
-                    Some(k) => (TokenKind::Keyword, k),
-                    None => (TokenKind::Ident, Sym::None),
-                };
-                if word == "if" {
-                    ifs_since_semi += 1;
-                }
-                match word {
-                    "not" => unary_run += 1,
-                    "and" | "or" => {
-                        ops_in_statement += 1;
-                        after_operand = false;
-                    }
-                    _ => {
-                        unary_run = 0;
-                        after_operand =
-                            kind == TokenKind::Ident || matches!(word, "end" | "true" | "false");
-                    }
-                }
-                out.tokens.push(Token::new(kind, sym, start, i));
+                i = word_token(text, i, &mut out, &mut nest);
             }
             _ if b.is_ascii_digit()
                 || (b == b'.' && bytes.get(i + 1).is_some_and(|c| c.is_ascii_digit())) =>
             {
-                unary_run = 0;
-                after_operand = true;
-                let (end, ok) = scan_number(bytes, i);
-                if !ok {
-                    out.errors.push(LexError::MalformedNumber { start, end });
-                }
-                out.tokens
-                    .push(Token::new(TokenKind::Number, Sym::None, start, end));
-                i = end;
+                nest.operand();
+                i = number_token(bytes, i, &mut out);
             }
             _ => {
                 let len = punct_len(bytes, i);
                 if len == 0 {
-                    let ch = text[i..].chars().next().unwrap_or('\u{FFFD}');
-                    let end = i + ch.len_utf8();
-                    // A byte-order mark is harmless whitespace.
-                    if ch != '\u{FEFF}' {
-                        out.errors.push(LexError::UnexpectedChar { start, end, ch });
-                    }
-                    i = end;
+                    i = unexpected_char(text, i, &mut out);
                     continue;
                 }
-                match b {
-                    b'(' | b'[' | b'{' => depth += 1,
-                    b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-                    b';' => {
-                        ifs_since_semi = 0;
-                        ops_in_statement = 0;
-                    }
-                    _ => {}
-                }
-                if matches!(b, b'-' | b'+') && len == 1 && !after_operand {
-                    unary_run += 1;
-                } else if matches!(b, b')' | b']' | b'}') {
-                    unary_run = 0;
-                } else if !matches!(b, b'(' | b'[' | b'{' | b';' | b',') {
-                    ops_in_statement += 1;
-                }
-                after_operand = matches!(b, b')' | b']' | b'}');
+                nest.punct(b, len);
                 out.tokens.push(Token::new(
                     TokenKind::Punct,
                     punct_sym(&text[start..i + len]),
@@ -517,23 +508,88 @@ pub fn scan(text: &str) -> Scan {
                 i += len;
             }
         }
-        if ops_in_statement > MAX_OPERATORS && !too_deep_reported {
-            too_deep_reported = true;
-            out.errors.push(LexError::TooDeep {
-                start,
-                depth: ops_in_statement,
-            });
-        }
-        let d = depth + ifs_since_semi + unary_run;
-        if d > out.max_depth {
-            out.max_depth = d;
-            if d > MAX_DEPTH && !too_deep_reported {
-                too_deep_reported = true;
-                out.errors.push(LexError::TooDeep { start, depth: d });
-            }
-        }
+        nest.check(start, &mut out);
     }
     out
+}
+
+/// Skips the `/* ... */` comment starting at `i`; returns where scanning resumes.
+fn skip_block_comment(text: &str, i: usize, out: &mut Scan) -> usize {
+    match text[i + 2..].find("*/") {
+        Some(k) => i + 2 + k + 2,
+        None => {
+            out.errors.push(LexError::UnterminatedComment { start: i });
+            text.len()
+        }
+    }
+}
+
+/// The string or quoted identifier starting at `start` (its quote); returns its end.
+fn quoted_token(bytes: &[u8], start: usize, out: &mut Scan) -> usize {
+    let b = bytes[start];
+    let (end, ok, escapes) = scan_quoted(bytes, start, b);
+    for (s, e) in escapes {
+        out.errors.push(LexError::BadEscape { start: s, end: e });
+    }
+    if !ok {
+        out.errors.push(if b == b'"' {
+            LexError::UnterminatedString { start }
+        } else {
+            LexError::UnterminatedQuotedIdent { start }
+        });
+    }
+    let kind = if b == b'"' {
+        TokenKind::String
+    } else {
+        TokenKind::QuotedIdent
+    };
+    out.tokens.push(Token::new(kind, Sym::None, start, end));
+    end
+}
+
+/// The keyword or identifier starting at `start`; returns its end.
+fn word_token(text: &str, start: usize, out: &mut Scan, nest: &mut Nesting) -> usize {
+    let bytes = text.as_bytes();
+    let mut i = start;
+    while i < bytes.len() && is_ident_char(bytes[i]) {
+        i += 1;
+    }
+    let word = &text[start..i];
+    // Every keyword is 2 to 13 lower-case letters: most names fail cheaply.
+    let sym = if (2..=13).contains(&word.len()) && bytes[start].is_ascii_lowercase() {
+        keyword_sym(word)
+    } else {
+        None
+    };
+    let (kind, sym) = match sym {
+        Some(k) => (TokenKind::Keyword, k),
+        None => (TokenKind::Ident, Sym::None),
+    };
+    nest.word(word, kind);
+    out.tokens.push(Token::new(kind, sym, start, i));
+    i
+}
+
+/// The number starting at `start`; returns its end.
+fn number_token(bytes: &[u8], start: usize, out: &mut Scan) -> usize {
+    let (end, ok) = scan_number(bytes, start);
+    if !ok {
+        out.errors.push(LexError::MalformedNumber { start, end });
+    }
+    out.tokens
+        .push(Token::new(TokenKind::Number, Sym::None, start, end));
+    end
+}
+
+/// A character no token starts with, at `start`; returns where scanning resumes.
+fn unexpected_char(text: &str, start: usize, out: &mut Scan) -> usize {
+    let ch = text[start..].chars().next().unwrap_or('\u{FFFD}');
+    let end = start + ch.len_utf8();
+    // A byte-order mark is harmless whitespace.
+    if ch != '\u{FEFF}' {
+        out.errors.push(LexError::UnexpectedChar { start, end, ch });
+    }
+    end
 }
 
 /// Scans a string or quoted identifier starting at `i` (the quote). Returns the end,

@@ -85,12 +85,17 @@ pub fn parse_expression(file: FileId, text: &str) -> Result<Expr, Vec<Diagnostic
     })
 }
 
-fn parse_inner(file: FileId, text: &str, try_fast: bool) -> Parsed {
-    let empty = StoredDefinition {
+/// The tree of a file nothing could be built from: no classes, the whole text's span.
+fn empty_tree(file: FileId, text: &str) -> StoredDefinition {
+    StoredDefinition {
         within: None,
         classes: Vec::new(),
         span: Span::new(file, 0, text.len()),
-    };
+    }
+}
+
+fn parse_inner(file: FileId, text: &str, try_fast: bool) -> Parsed {
+    let empty = empty_tree(file, text);
     let mut diagnostics = Vec::new();
 
     // Fast path: most files are fine. Depth is checked first: the parser recurses.
@@ -128,9 +133,30 @@ fn parse_inner(file: FileId, text: &str, try_fast: bool) -> Parsed {
         }
     }
 
-    // Slow path: recover. Error detail is switched on for good (never off again, so
-    // that concurrent parses give the same messages).
+    recover(file, text, scan, diagnostics)
+}
+
+/// The slow path: recover. Error detail is switched on for good (never off again, so
+/// that concurrent parses give the same messages).
+fn recover(file: FileId, text: &str, scan: Scan, mut diagnostics: Vec<Diagnostic>) -> Parsed {
     pest::set_error_detail(true);
+    let Some(masked) = blank_lex_errors(file, text, scan, &mut diagnostics) else {
+        return Parsed {
+            ast: empty_tree(file, text),
+            diagnostics,
+        };
+    };
+    repair_syntax_errors(file, text, masked, diagnostics)
+}
+
+/// Reports each lexical error and blanks it out with the rest of its statement; returns
+/// the blanked text, or `None` when there are too many errors or one runs to the end.
+fn blank_lex_errors(
+    file: FileId,
+    text: &str,
+    scan: Scan,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Option<Vec<u8>> {
     let mut masked = text.as_bytes().to_vec();
     let mut scan = scan;
     // 1. Lexical errors, each blanked out with the rest of its statement.
@@ -143,17 +169,23 @@ fn parse_inner(file: FileId, text: &str, try_fast: bool) -> Parsed {
         // Blanked to the end (an unclosed comment): anything further would be a
         // consequence of this error, not a new one.
         if guard >= MAX_ERRORS || end >= masked.len() {
-            return Parsed {
-                ast: empty,
-                diagnostics,
-            };
+            return None;
         }
         scan = lexer::scan(as_str(&masked));
         scan.errors
             .retain(|e| !matches!(e, LexError::TooDeep { .. }));
     }
+    Some(masked)
+}
 
-    // 2. Syntax errors, each repaired or blanked out, until the file parses.
+/// Reports each syntax error and repairs or blanks it out, until the file parses.
+fn repair_syntax_errors(
+    file: FileId,
+    text: &str,
+    mut masked: Vec<u8>,
+    mut diagnostics: Vec<Diagnostic>,
+) -> Parsed {
+    let empty = empty_tree(file, text);
     let mut last_region: Option<(usize, usize)> = None;
     loop {
         let current = as_str(&masked).to_owned();
@@ -430,36 +462,83 @@ fn syntax_diagnostic(
         None if text[pos..].trim().is_empty() => "end of file".to_owned(),
         None => format!("`{}`", text[pos..].chars().next().unwrap_or(' ')),
     };
-    let here = Span::new(file, pos, found.map_or(pos, |t| t.end()));
-    let has = |s: &str| expected.iter().any(|e| e == s);
+    let site = ErrorSite {
+        file,
+        text,
+        tokens,
+        pos,
+        found,
+        found_desc,
+        here: Span::new(file, pos, found.map_or(pos, |t| t.end())),
+        expected,
+    };
 
-    // Missing `;` at the end of a line.
-    if has("`;`") {
-        if let Some(prev) = prev {
-            let later_line = found.is_none_or(|t| text[prev.end()..t.start()].contains('\n'));
-            let ends_with_space = text
-                .as_bytes()
-                .get(prev.end())
-                .is_some_and(|b| b.is_ascii_whitespace());
-            if later_line && ends_with_space && !is_punct(text, prev, ";") {
-                let at = Span::point(file, prev.end());
-                let d = Diagnostic::error("E1101", format!("expected `;`, found {found_desc}"))
-                    .at(at, "add `;` here")
-                    .with_label(here, "the next item starts here");
-                return (d, Fix::InsertSemicolon(prev.end()));
-            }
-        }
+    if let Some(fixed) = site.missing_semicolon(prev) {
+        return fixed;
     }
-
     let blank = Fix::Blank(
         statement_start(tokens, text, pos, false),
         statement_end(tokens, text, pos),
     );
+    let d = site
+        .unclosed_class_at_eof()
+        .or_else(|| site.reserved_word())
+        .or_else(|| site.unclosed_bracket())
+        .unwrap_or_else(|| site.unexpected());
+    (d, blank)
+}
 
-    // The file ended inside a class.
-    if found.is_none() && text[pos..].trim().is_empty() {
-        if let Some((name, span)) = unclosed_class(tokens, text) {
-            let d = Diagnostic::error(
+/// Where pest stopped, with what it found there and what it expected: the facts each
+/// kind of syntax error is recognized by.
+struct ErrorSite<'t> {
+    file: FileId,
+    text: &'t str,
+    tokens: &'t [Token],
+    pos: usize,
+    found: Option<&'t Token>,
+    found_desc: String,
+    here: Span,
+    expected: Vec<String>,
+}
+
+impl ErrorSite<'_> {
+    fn has(&self, s: &str) -> bool {
+        self.expected.iter().any(|e| e == s)
+    }
+
+    /// Missing `;` at the end of a line (after `prev`): repaired by inserting one.
+    fn missing_semicolon(&self, prev: Option<&Token>) -> Option<(Diagnostic, Fix)> {
+        let text = self.text;
+        if !self.has("`;`") {
+            return None;
+        }
+        let prev = prev?;
+        let later_line = self
+            .found
+            .is_none_or(|t| text[prev.end()..t.start()].contains('\n'));
+        let ends_with_space = text
+            .as_bytes()
+            .get(prev.end())
+            .is_some_and(|b| b.is_ascii_whitespace());
+        if later_line && ends_with_space && !is_punct(text, prev, ";") {
+            let at = Span::point(self.file, prev.end());
+            let d = Diagnostic::error("E1101", format!("expected `;`, found {}", self.found_desc))
+                .at(at, "add `;` here")
+                .with_label(self.here, "the next item starts here");
+            return Some((d, Fix::InsertSemicolon(prev.end())));
+        }
+        None
+    }
+
+    /// The file ended inside a class.
+    fn unclosed_class_at_eof(&self) -> Option<Diagnostic> {
+        let (file, text) = (self.file, self.text);
+        if self.found.is_some() || !text[self.pos..].trim().is_empty() {
+            return None;
+        }
+        let (name, span) = unclosed_class(self.tokens, text)?;
+        Some(
+            Diagnostic::error(
                 "E1102",
                 format!("unexpected end of file: class `{name}` is not closed"),
             )
@@ -467,62 +546,82 @@ fn syntax_diagnostic(
                 Span::point(file, text.len()),
                 format!("expected `end {name};` before the end of the file"),
             )
-            .with_label(Span::new(file, span.0, span.1), "class opened here");
-            return (d, blank);
-        }
+            .with_label(Span::new(file, span.0, span.1), "class opened here"),
+        )
     }
 
-    // A reserved word where a name belongs.
-    if let Some(t) = found {
+    /// A reserved word where a name belongs.
+    fn reserved_word(&self) -> Option<Diagnostic> {
+        let t = self.found?;
         if t.kind == TokenKind::Keyword
-            && has("identifier")
-            && !matches!(token_text(text, t), "end" | "equation" | "algorithm")
+            && self.has("identifier")
+            && !matches!(token_text(self.text, t), "end" | "equation" | "algorithm")
         {
-            let word = token_text(text, t);
-            let d = Diagnostic::error(
-                "E1103",
-                format!("`{word}` is a reserved word and cannot be used as a name"),
-            )
-            .at(here, "reserved word")
-            .with_help(format!("rename it, or quote it as `'{word}'`"));
-            return (d, blank);
+            let word = token_text(self.text, t);
+            return Some(
+                Diagnostic::error(
+                    "E1103",
+                    format!("`{word}` is a reserved word and cannot be used as a name"),
+                )
+                .at(self.here, "reserved word")
+                .with_help(format!("rename it, or quote it as `'{word}'`")),
+            );
         }
+        None
     }
 
-    // An opening bracket never closed before the statement ended.
-    let closers: Vec<&str> = ["`)`", "`]`", "`}`"]
-        .into_iter()
-        .filter(|c| has(c))
-        .collect();
-    if !closers.is_empty()
-        && found.is_none_or(|t| is_punct(text, t, ";") || t.kind == TokenKind::Keyword)
-    {
-        if let Some((open, span)) = unclosed_bracket(tokens, text, pos) {
-            let close = match open {
-                "(" => ")",
-                "[" => "]",
-                _ => "}",
-            };
-            let d = Diagnostic::error(
+    /// An opening bracket never closed before the statement ended.
+    fn unclosed_bracket(&self) -> Option<Diagnostic> {
+        let text = self.text;
+        let closers: Vec<&str> = ["`)`", "`]`", "`}`"]
+            .into_iter()
+            .filter(|c| self.has(c))
+            .collect();
+        if closers.is_empty()
+            || !self
+                .found
+                .is_none_or(|t| is_punct(text, t, ";") || t.kind == TokenKind::Keyword)
+        {
+            return None;
+        }
+        let (open, span) = unclosed_bracket(self.tokens, text, self.pos)?;
+        let close = match open {
+            "(" => ")",
+            "[" => "]",
+            _ => "}",
+        };
+        Some(
+            Diagnostic::error(
                 "E1104",
-                format!("unclosed `{open}`: expected `{close}`, found {found_desc}"),
+                format!(
+                    "unclosed `{open}`: expected `{close}`, found {}",
+                    self.found_desc
+                ),
             )
-            .at(here, format!("expected `{close}` before this"))
-            .with_label(Span::new(file, span.0, span.1), "opened here");
-            return (d, blank);
-        }
+            .at(self.here, format!("expected `{close}` before this"))
+            .with_label(Span::new(self.file, span.0, span.1), "opened here"),
+        )
     }
 
-    let mut msg = if expected.is_empty() {
-        format!("unexpected {found_desc}")
-    } else {
-        format!("expected {}, found {found_desc}", join_expected(&expected))
-    };
-    if found.is_some_and(|t| token_text(text, t) == "when") {
-        msg.push_str(" (a `when` is not allowed here)");
+    /// Any other error: what was expected and what was found.
+    fn unexpected(&self) -> Diagnostic {
+        let found_desc = &self.found_desc;
+        let mut msg = if self.expected.is_empty() {
+            format!("unexpected {found_desc}")
+        } else {
+            format!(
+                "expected {}, found {found_desc}",
+                join_expected(&self.expected)
+            )
+        };
+        if self
+            .found
+            .is_some_and(|t| token_text(self.text, t) == "when")
+        {
+            msg.push_str(" (a `when` is not allowed here)");
+        }
+        Diagnostic::error("E1100", msg).at(self.here, "unexpected here")
     }
-    let d = Diagnostic::error("E1100", msg).at(here, "unexpected here");
-    (d, blank)
 }
 
 /// The expected rules and tokens of a pest error as readable, ordered, deduplicated names.

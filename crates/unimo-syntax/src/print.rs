@@ -93,30 +93,8 @@ fn write_expr(out: &mut String, e: &Expr) {
             out.push_str(&func.to_dotted());
             out.push_str(&call_args(args));
         }
-        ExprKind::Unary { op, operand } => {
-            out.push_str(op.symbol());
-            if *op == UnaryOp::Not {
-                out.push(' ');
-            }
-            let p = precedence(operand);
-            let paren = match op {
-                UnaryOp::Not => p < 5,
-                _ => p <= 6,
-            };
-            write_paren(out, operand, paren);
-        }
-        ExprKind::Binary { op, lhs, rhs } => {
-            let p = binary_precedence(*op);
-            let (lp, rp) = (precedence(lhs), precedence(rhs));
-            let (lparen, rparen) = match p {
-                // Non-associative: both sides parenthesized at equal strength.
-                5 | 8 => (lp <= p, rp <= p),
-                _ => (lp < p, rp <= p),
-            };
-            write_paren(out, lhs, lparen);
-            let _ = write!(out, " {} ", op.symbol());
-            write_paren(out, rhs, rparen);
-        }
+        ExprKind::Unary { op, operand } => write_unary(out, *op, operand),
+        ExprKind::Binary { op, lhs, rhs } => write_binary(out, *op, lhs, rhs),
         ExprKind::If {
             branches,
             otherwise,
@@ -161,18 +139,7 @@ fn write_expr(out: &mut String, e: &Expr) {
             }
             out.push(']');
         }
-        ExprKind::Tuple(items) => {
-            out.push('(');
-            for (i, it) in items.iter().enumerate() {
-                if i > 0 {
-                    out.push_str(", ");
-                }
-                if let Some(e) = it {
-                    write_expr(out, e);
-                }
-            }
-            out.push(')');
-        }
+        ExprKind::Tuple(items) => write_tuple(out, items),
         ExprKind::End => out.push_str("end"),
         ExprKind::PartialApplication { func, args } => {
             let _ = write!(out, "function {}(", func.to_dotted());
@@ -185,6 +152,49 @@ fn write_expr(out: &mut String, e: &Expr) {
             out.push(')');
         }
     }
+}
+
+/// `-x`, `not x`: the operand parenthesized when it binds more loosely.
+fn write_unary(out: &mut String, op: UnaryOp, operand: &Expr) {
+    out.push_str(op.symbol());
+    if op == UnaryOp::Not {
+        out.push(' ');
+    }
+    let p = precedence(operand);
+    let paren = match op {
+        UnaryOp::Not => p < 5,
+        _ => p <= 6,
+    };
+    write_paren(out, operand, paren);
+}
+
+/// `a op b`: each side parenthesized when it binds more loosely (or equally, where the
+/// operator does not associate that way).
+fn write_binary(out: &mut String, op: BinaryOp, lhs: &Expr, rhs: &Expr) {
+    let p = binary_precedence(op);
+    let (lp, rp) = (precedence(lhs), precedence(rhs));
+    let (lparen, rparen) = match p {
+        // Non-associative: both sides parenthesized at equal strength.
+        5 | 8 => (lp <= p, rp <= p),
+        _ => (lp < p, rp <= p),
+    };
+    write_paren(out, lhs, lparen);
+    let _ = write!(out, " {} ", op.symbol());
+    write_paren(out, rhs, rparen);
+}
+
+/// `(a, , b)`: a tuple, empty slots left empty.
+fn write_tuple(out: &mut String, items: &[Option<Expr>]) {
+    out.push('(');
+    for (i, it) in items.iter().enumerate() {
+        if i > 0 {
+            out.push_str(", ");
+        }
+        if let Some(e) = it {
+            write_expr(out, e);
+        }
+    }
+    out.push(')');
 }
 
 fn list(out: &mut String, items: &[Expr]) {

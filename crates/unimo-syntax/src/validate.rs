@@ -187,92 +187,106 @@ impl Validator<'_> {
             ElementKind::Class(cd) => Some(cd.as_ref()),
             _ => None,
         }));
-        let in_function = c.kind == ClassKind::Function;
         if let Some(ext) = &comp.external {
-            if !in_function {
-                self.push(
-                    Diagnostic::error(
-                        "E1226",
-                        format!("a {} cannot have an `external` clause", c.kind.keyword()),
-                    )
-                    .at(ext.span, "external clause not allowed here")
-                    .with_label(
-                        c.name.span,
-                        format!("in {} `{}`", c.kind.keyword(), c.name.text),
-                    )
-                    .with_help("only functions are implemented externally"),
-                );
-            }
-            if let Some(call) = &ext.call {
-                for a in &call.args {
-                    self.expr(a, Ctx::default());
-                }
-            }
+            self.external(c, ext);
         }
         for s in &comp.sections {
-            match s {
-                Section::Equation(es) => {
-                    if matches!(
-                        c.kind,
-                        ClassKind::Function
-                            | ClassKind::Record
-                            | ClassKind::Connector
-                            | ClassKind::Type
-                            | ClassKind::Package
-                            | ClassKind::Operator
-                    ) {
-                        self.push(
-                            Diagnostic::error(
-                                "E1221",
-                                format!("a {} cannot have equations", c.kind.keyword()),
-                            )
-                            .at(es.span, "equation section not allowed here")
-                            .with_label(c.name.span, format!("in {} `{}`", c.kind.keyword(), c.name.text))
-                            .with_help(if in_function {
-                                "functions compute their outputs in an `algorithm` section with `:=`"
-                            } else {
-                                "equations belong in a `model` or `block`"
-                            }),
-                        );
-                    }
-                    let ctx = Ctx {
-                        in_initial: es.initial,
-                        in_function,
-                        ..Ctx::default()
-                    };
-                    for eq in &es.equations {
-                        self.equation(eq, ctx);
-                    }
+            self.section(c, s);
+        }
+    }
+
+    /// An `external` clause: allowed in functions only; its arguments checked.
+    fn external(&mut self, c: &ClassDef, ext: &External) {
+        if c.kind != ClassKind::Function {
+            self.push(
+                Diagnostic::error(
+                    "E1226",
+                    format!("a {} cannot have an `external` clause", c.kind.keyword()),
+                )
+                .at(ext.span, "external clause not allowed here")
+                .with_label(
+                    c.name.span,
+                    format!("in {} `{}`", c.kind.keyword(), c.name.text),
+                )
+                .with_help("only functions are implemented externally"),
+            );
+        }
+        if let Some(call) = &ext.call {
+            for a in &call.args {
+                self.expr(a, Ctx::default());
+            }
+        }
+    }
+
+    /// An equation or algorithm section: allowed in some kinds of class only; its
+    /// equations or statements checked.
+    fn section(&mut self, c: &ClassDef, s: &Section) {
+        let in_function = c.kind == ClassKind::Function;
+        match s {
+            Section::Equation(es) => {
+                if matches!(
+                    c.kind,
+                    ClassKind::Function
+                        | ClassKind::Record
+                        | ClassKind::Connector
+                        | ClassKind::Type
+                        | ClassKind::Package
+                        | ClassKind::Operator
+                ) {
+                    self.push(
+                        Diagnostic::error(
+                            "E1221",
+                            format!("a {} cannot have equations", c.kind.keyword()),
+                        )
+                        .at(es.span, "equation section not allowed here")
+                        .with_label(
+                            c.name.span,
+                            format!("in {} `{}`", c.kind.keyword(), c.name.text),
+                        )
+                        .with_help(if in_function {
+                            "functions compute their outputs in an `algorithm` section with `:=`"
+                        } else {
+                            "equations belong in a `model` or `block`"
+                        }),
+                    );
                 }
-                Section::Algorithm(al) => {
-                    if matches!(
-                        c.kind,
-                        ClassKind::Record
-                            | ClassKind::Connector
-                            | ClassKind::Type
-                            | ClassKind::Package
-                            | ClassKind::Operator
-                    ) {
-                        self.push(
-                            Diagnostic::error(
-                                "E1222",
-                                format!("a {} cannot have algorithm sections", c.kind.keyword()),
-                            )
-                            .at(al.span, "algorithm section not allowed here")
-                            .with_label(
-                                c.name.span,
-                                format!("in {} `{}`", c.kind.keyword(), c.name.text),
-                            ),
-                        );
-                    }
-                    let ctx = Ctx {
-                        in_initial: al.initial,
-                        in_function,
-                        ..Ctx::default()
-                    };
-                    for st in &al.statements {
-                        self.statement(st, ctx);
-                    }
+                let ctx = Ctx {
+                    in_initial: es.initial,
+                    in_function,
+                    ..Ctx::default()
+                };
+                for eq in &es.equations {
+                    self.equation(eq, ctx);
+                }
+            }
+            Section::Algorithm(al) => {
+                if matches!(
+                    c.kind,
+                    ClassKind::Record
+                        | ClassKind::Connector
+                        | ClassKind::Type
+                        | ClassKind::Package
+                        | ClassKind::Operator
+                ) {
+                    self.push(
+                        Diagnostic::error(
+                            "E1222",
+                            format!("a {} cannot have algorithm sections", c.kind.keyword()),
+                        )
+                        .at(al.span, "algorithm section not allowed here")
+                        .with_label(
+                            c.name.span,
+                            format!("in {} `{}`", c.kind.keyword(), c.name.text),
+                        ),
+                    );
+                }
+                let ctx = Ctx {
+                    in_initial: al.initial,
+                    in_function,
+                    ..Ctx::default()
+                };
+                for st in &al.statements {
+                    self.statement(st, ctx);
                 }
             }
         }
