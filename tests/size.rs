@@ -17,6 +17,7 @@ const ENFORCED: &[&str] = &[
     "unimo-source",
     "unimo-stdlib",
     "unimo-structure",
+    "unimo-syntax",
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
