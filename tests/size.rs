@@ -101,7 +101,11 @@ fn files_and_functions_stay_within_the_limits() {
             }
         }
     }
-    assert!(failures.is_empty(), "over the limits:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "over the limits:\n{}",
+        failures.join("\n")
+    );
 }
 
 #[test]

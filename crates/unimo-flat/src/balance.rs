@@ -438,34 +438,7 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
             mentioned.insert(var_key(r));
         });
     };
-    fn walk(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
-        for e in eqs {
-            match &e.kind {
-                EquationKind::Simple { lhs, rhs } => {
-                    note(lhs);
-                    note(rhs);
-                }
-                EquationKind::Call(c) => note(c),
-                EquationKind::If {
-                    branches,
-                    otherwise,
-                } => {
-                    branches.iter().for_each(|(c, b)| {
-                        note(c);
-                        walk(b, note)
-                    });
-                    walk(otherwise, note);
-                }
-                EquationKind::When { branches } => branches.iter().for_each(|(c, b)| {
-                    note(c);
-                    walk(b, note)
-                }),
-                EquationKind::For { body, .. } => walk(body, note),
-                EquationKind::Connect { .. } => {}
-            }
-        }
-    }
-    walk(&model.equations, &mut note);
+    crate::flat::for_each_equation_expr(&model.equations, &mut note);
     let mut assigned_names = BTreeSet::new();
     for alg in &model.algorithms {
         assigned(alg, &mut assigned_names);

@@ -3,9 +3,9 @@
 //! uses are not part of the model (a bus declares signals an example may not use).
 
 use crate::eval::var_key;
-use crate::flat::{for_each_ref, FlatModel, Variability};
+use crate::flat::{for_each_equation_expr, for_each_ref, FlatModel, Variability};
 use std::collections::BTreeSet;
-use unimo_syntax::ast::{Equation, EquationKind, Expr, Statement, StatementKind};
+use unimo_syntax::ast::{Expr, Statement, StatementKind};
 
 /// Removes the declared members of the expandable connector instances `buses` (their
 /// instance keys) that nothing in `model` uses.
@@ -42,7 +42,7 @@ fn used_names(model: &FlatModel) -> BTreeSet<String> {
         })
     };
     for eqs in [&model.equations, &model.initial_equations] {
-        equations(eqs, &mut note);
+        for_each_equation_expr(eqs, &mut note);
     }
     for alg in model.algorithms.iter().chain(&model.initial_algorithms) {
         statements(alg, &mut note);
@@ -56,36 +56,6 @@ fn used_names(model: &FlatModel) -> BTreeSet<String> {
         }
     }
     used
-}
-
-fn equations(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
-    for e in eqs {
-        match &e.kind {
-            EquationKind::Simple { lhs, rhs } => {
-                note(lhs);
-                note(rhs);
-            }
-            EquationKind::Call(c) => note(c),
-            EquationKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (c, b) in branches {
-                    note(c);
-                    equations(b, note);
-                }
-                equations(otherwise, note);
-            }
-            EquationKind::When { branches } => {
-                for (c, b) in branches {
-                    note(c);
-                    equations(b, note);
-                }
-            }
-            EquationKind::For { body, .. } => equations(body, note),
-            EquationKind::Connect { .. } => {}
-        }
-    }
 }
 
 fn statements(body: &[Statement], note: &mut dyn FnMut(&Expr)) {

@@ -212,6 +212,38 @@ pub fn printable(e: &Expr) -> Expr {
     e
 }
 
+/// Calls `note` with every expression of `eqs` (conditions included, nested equations
+/// too; the references of `connect` are not expressions).
+pub fn for_each_equation_expr(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
+    for e in eqs {
+        match &e.kind {
+            EquationKind::Simple { lhs, rhs } => {
+                note(lhs);
+                note(rhs);
+            }
+            EquationKind::Call(c) => note(c),
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => {
+                for (c, b) in branches {
+                    note(c);
+                    for_each_equation_expr(b, note);
+                }
+                for_each_equation_expr(otherwise, note);
+            }
+            EquationKind::When { branches } => {
+                for (c, b) in branches {
+                    note(c);
+                    for_each_equation_expr(b, note);
+                }
+            }
+            EquationKind::For { body, .. } => for_each_equation_expr(body, note),
+            EquationKind::Connect { .. } => {}
+        }
+    }
+}
+
 /// Calls `f` with every component reference in `e` (not function names), subscripts
 /// of references included.
 pub fn for_each_ref(e: &Expr, f: &mut dyn FnMut(&ComponentRef)) {
