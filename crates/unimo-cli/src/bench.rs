@@ -154,91 +154,7 @@ pub fn bench(a: &BenchArgs, color: bool) -> i32 {
             &a.libs,
             color,
             false,
-            &mut |flat, map, _| {
-                let (dae, analysis) = match unimo_dae::analyze_model(flat) {
-                    Ok(x) => x,
-                    Err(d) => {
-                        render_stage(&d, map, color);
-                        return EXIT_MODEL_ERROR;
-                    }
-                };
-                let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
-                // The same resolution of the experiment's settings as `simulate`, with
-                // the benchmark's tolerances and output points.
-                let resolved = |m: MethodArg, rtol: f64, atol: f64| {
-                    let o = unimo_runtime::sim::Overrides {
-                        stop: a.stop_time,
-                        rtol: Some(rtol),
-                        atol: Some(atol),
-                        points: Some(a.points),
-                        ..Default::default()
-                    };
-                    SimOptions::resolve(&dae.experiment, &o, method(m), false)
-                };
-                // Tolerances are checked above: only the times can be wrong here.
-                if let Err(msg) = resolved(MethodArg::Bdf, 1e-6, 1e-8) {
-                    eprintln!("error: {msg}");
-                    return EXIT_USAGE;
-                }
-                let options = |m: MethodArg, rtol: f64, atol: f64| {
-                    resolved(m, rtol, atol).expect("times checked above, tolerances positive")
-                };
-                let reference = match &a.reference {
-                    Some(p) => match reference_from_csv(p) {
-                        Ok(r) => r,
-                        Err(e) => {
-                            eprintln!("error: {e}");
-                            return EXIT_USAGE;
-                        }
-                    },
-                    None => {
-                        let tight = (a.tolerances.iter().copied().fold(f64::INFINITY, f64::min)
-                            * 1e-3)
-                            .max(1e-14);
-                        let r = simulate(
-                            &compiled,
-                            &options(MethodArg::Radau5, tight, tight * a.atol_factor),
-                        );
-                        if let Some(e) = &r.error {
-                            eprintln!("error: the reference run failed: {}", e.message());
-                            return EXIT_USAGE;
-                        }
-                        reference_from_result(&r)
-                    }
-                };
-                for &m in &a.methods {
-                    for &rtol in &a.tolerances {
-                        let atol = rtol * a.atol_factor;
-                        let (median, r, end, grid) =
-                            measure(&compiled, &options(m, rtol, atol), a.runs, &reference);
-                        let meas = Measurement {
-                            model: dae.name.clone(),
-                            method: m,
-                            median_ms: median,
-                            steps: r.stats.solver.steps,
-                            scd_end: end,
-                            failed: r.error.as_ref().map(|e| e.message()),
-                        };
-                        println!(
-                            "{:<16} {:<7} {:>8.0e} {:>8.0e} {:>11.3} {:>7} {:>7.2} {:>7.2}{}",
-                            meas.model,
-                            format!("{m:?}").to_lowercase(),
-                            rtol,
-                            atol,
-                            median,
-                            meas.steps,
-                            end,
-                            grid,
-                            meas.failed
-                                .as_ref()
-                                .map(|f| format!("  FAILED: {f}"))
-                                .unwrap_or_default()
-                        );
-                        all.push(meas);
-                    }
-                }
-                EXIT_OK
-            },
+            &mut |flat, map, _| bench_model(a, flat, map, color, &mut all),
         );
         code = code.max(c);
     }
@@ -250,6 +166,113 @@ pub fn bench(a: &BenchArgs, color: bool) -> i32 {
         eprintln!("wrote {}", path.display());
     }
     code
+}
+
+/// Benchmarks one flat model with every method and tolerance, printing a table row
+/// for each and adding it to `all`. Returns the exit code.
+fn bench_model(
+    a: &BenchArgs,
+    flat: &unimo_flat::FlatModel,
+    map: &unimo_source::SourceMap,
+    color: bool,
+    all: &mut Vec<Measurement>,
+) -> i32 {
+    let (dae, analysis) = match unimo_dae::analyze_model(flat) {
+        Ok(x) => x,
+        Err(d) => {
+            render_stage(&d, map, color);
+            return EXIT_MODEL_ERROR;
+        }
+    };
+    let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+    // The same resolution of the experiment's settings as `simulate`, with
+    // the benchmark's tolerances and output points.
+    let resolved = |m: MethodArg, rtol: f64, atol: f64| {
+        let o = unimo_runtime::sim::Overrides {
+            stop: a.stop_time,
+            rtol: Some(rtol),
+            atol: Some(atol),
+            points: Some(a.points),
+            ..Default::default()
+        };
+        SimOptions::resolve(&dae.experiment, &o, method(m), false)
+    };
+    // Tolerances are checked above: only the times can be wrong here.
+    if let Err(msg) = resolved(MethodArg::Bdf, 1e-6, 1e-8) {
+        eprintln!("error: {msg}");
+        return EXIT_USAGE;
+    }
+    let options = |m: MethodArg, rtol: f64, atol: f64| {
+        resolved(m, rtol, atol).expect("times checked above, tolerances positive")
+    };
+    let reference = match reference_values(a, &compiled, &options) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    for &m in &a.methods {
+        for &rtol in &a.tolerances {
+            let atol = rtol * a.atol_factor;
+            let (median, r, end, grid) =
+                measure(&compiled, &options(m, rtol, atol), a.runs, &reference);
+            let meas = Measurement {
+                model: dae.name.clone(),
+                method: m,
+                median_ms: median,
+                steps: r.stats.solver.steps,
+                scd_end: end,
+                failed: r.error.as_ref().map(|e| e.message()),
+            };
+            print_row(&meas, rtol, atol, grid);
+            all.push(meas);
+        }
+    }
+    EXIT_OK
+}
+
+/// The reference values: from `--reference`, or from a run with tolerances a thousand
+/// times tighter than the tightest benchmarked.
+fn reference_values(
+    a: &BenchArgs,
+    compiled: &CompiledModel,
+    options: &dyn Fn(MethodArg, f64, f64) -> SimOptions,
+) -> Result<Reference, String> {
+    match &a.reference {
+        Some(p) => reference_from_csv(p),
+        None => {
+            let tight =
+                (a.tolerances.iter().copied().fold(f64::INFINITY, f64::min) * 1e-3).max(1e-14);
+            let r = simulate(
+                compiled,
+                &options(MethodArg::Radau5, tight, tight * a.atol_factor),
+            );
+            if let Some(e) = &r.error {
+                return Err(format!("the reference run failed: {}", e.message()));
+            }
+            Ok(reference_from_result(&r))
+        }
+    }
+}
+
+/// One row of the table on stdout.
+fn print_row(meas: &Measurement, rtol: f64, atol: f64, grid: f64) {
+    println!(
+        "{:<16} {:<7} {:>8.0e} {:>8.0e} {:>11.3} {:>7} {:>7.2} {:>7.2}{}",
+        meas.model,
+        format!("{:?}", meas.method).to_lowercase(),
+        rtol,
+        atol,
+        meas.median_ms,
+        meas.steps,
+        meas.scd_end,
+        grid,
+        meas.failed
+            .as_ref()
+            .map(|f| format!("  FAILED: {f}"))
+            .unwrap_or_default()
+    );
 }
 
 fn plot(path: &std::path::Path, all: &[Measurement]) -> Result<(), Box<dyn std::error::Error>> {

@@ -84,6 +84,124 @@ fn count_classes(def: &StoredDefinition) -> usize {
     def.classes.iter().map(rec).sum()
 }
 
+/// What reading and parsing the files of `check` gave.
+#[derive(Default)]
+struct Parsed {
+    diags: Vec<Diagnostic>,
+    n_classes: usize,
+    bytes: usize,
+    read_errors: usize,
+    /// The files that parse, with their syntax trees.
+    files: Vec<(unimo_source::FileId, StoredDefinition, PathBuf)>,
+}
+
+/// The text of a file for `check`; None (after the error) when it cannot be read.
+fn read_text(path: &Path) -> Option<String> {
+    match std::fs::read(path) {
+        Ok(b) => match String::from_utf8(b) {
+            Ok(t) => Some(t),
+            Err(_) => {
+                eprintln!("error[E0002]: `{}` is not UTF-8 text", path.display());
+                None
+            }
+        },
+        Err(e) => {
+            eprintln!("error[E0001]: cannot read `{}`: {e}", path.display());
+            None
+        }
+    }
+}
+
+/// Reads and parses every file into the tree's sources.
+fn parse_files(tree: &mut ClassTree<'_>, files: &[PathBuf]) -> Parsed {
+    let mut out = Parsed::default();
+    for path in files {
+        let Some(text) = read_text(path) else {
+            out.read_errors += 1;
+            continue;
+        };
+        out.bytes += text.len();
+        let id = tree.sources.add(path.clone(), text);
+        let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
+        out.n_classes += count_classes(&parsed.ast);
+        let clean = !parsed.has_errors();
+        out.diags.extend(parsed.diagnostics);
+        // Names are checked only in files that parse: a broken file would only add
+        // follow-on errors.
+        if clean {
+            out.files.push((id, parsed.ast, path.clone()));
+        }
+    }
+    out
+}
+
+/// Adds the parsed files to the tree; returns their classes.
+fn add_files(
+    tree: &mut ClassTree<'_>,
+    libs: &[PathBuf],
+    mut parsed_files: Vec<(unimo_source::FileId, StoredDefinition, PathBuf)>,
+) -> Vec<unimo_flat::ClassId> {
+    let mut user_classes = Vec::new();
+    // Enclosing packages before their members: a file `within A.B;` needs `A.B`.
+    parsed_files.sort_by_key(|(_, ast, _)| match &ast.within {
+        Some(Some(n)) => n.parts.len(),
+        _ => 0,
+    });
+    for (id, ast, path) in parsed_files {
+        // A file of a library given with --lib is checked as that library's class, so
+        // that it sees its package's other files (a `package.mo` its siblings).
+        if let Some(c) = library_class(tree, libs, &path) {
+            user_classes.push(c);
+            continue;
+        }
+        user_classes.extend(tree.add_user_file(id, ast));
+    }
+    user_classes
+}
+
+/// The analysis statistics of one model: its name, the counts and the time taken.
+type ModelStats = (String, unimo_dae::plan::PlanStats, std::time::Duration);
+
+/// Flattens every top model of `user_classes` and checks its balance (and, with
+/// `analysis`, analyses it), adding the diagnostics to `diags`. Returns the number of
+/// models flattened.
+fn check_models(
+    tree: &mut ClassTree<'_>,
+    user_classes: &[unimo_flat::ClassId],
+    (stats, analysis): (bool, bool),
+    diags: &mut Vec<Diagnostic>,
+    model_stats: &mut Vec<ModelStats>,
+) -> usize {
+    let mut flattened = 0;
+    // Every top model of a file that holds models (not a package): flatten it and
+    // check its balance.
+    for c in top_models(tree, user_classes) {
+        let (flat, mut fd) = unimo_flat::flatten(tree, c);
+        // `check` already ran the name check on every class.
+        fd.retain(|d| d.code.0 != "E2001");
+        if !fd.iter().any(|d| d.is_error()) {
+            let span = tree.get(c).def.name.span;
+            fd.extend(unimo_flat::balance::check(&flat, span));
+        }
+        if analysis && !fd.iter().any(|d| d.is_error()) {
+            let t0 = Instant::now();
+            match unimo_dae::analyze_model(&flat) {
+                Ok((dae, analysis)) => {
+                    if stats {
+                        let mut plan = analysis.plan.clone();
+                        unimo_dae::prune::prune(&dae, &mut plan, &[]);
+                        model_stats.push((flat.name.clone(), plan.stats, t0.elapsed()));
+                    }
+                }
+                Err(d) => fd.extend(d),
+            }
+        }
+        diags.extend(fd);
+        flattened += 1;
+    }
+    flattened
+}
+
 pub fn check(
     paths: &[PathBuf],
     libs: &[PathBuf],
@@ -102,89 +220,25 @@ pub fn check(
     };
     let provider = CliProvider::new(libs);
     let mut tree = ClassTree::new(&provider);
-    let mut diags: Vec<Diagnostic> = Vec::new();
-    let mut n_classes = 0;
-    let mut bytes = 0;
-    let mut read_errors = 0;
-    let mut user_classes = Vec::new();
-    let mut parsed_files = Vec::new();
-    for path in &files {
-        let text = match std::fs::read(path) {
-            Ok(b) => match String::from_utf8(b) {
-                Ok(t) => t,
-                Err(_) => {
-                    eprintln!("error[E0002]: `{}` is not UTF-8 text", path.display());
-                    read_errors += 1;
-                    continue;
-                }
-            },
-            Err(e) => {
-                eprintln!("error[E0001]: cannot read `{}`: {e}", path.display());
-                read_errors += 1;
-                continue;
-            }
-        };
-        bytes += text.len();
-        let id = tree.sources.add(path.clone(), text);
-        let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
-        n_classes += count_classes(&parsed.ast);
-        let clean = !parsed.has_errors();
-        diags.extend(parsed.diagnostics);
-        // Names are checked only in files that parse: a broken file would only add
-        // follow-on errors.
-        if clean {
-            parsed_files.push((id, parsed.ast, path.clone()));
-        }
-    }
-    // Enclosing packages before their members: a file `within A.B;` needs `A.B`.
-    parsed_files.sort_by_key(|(_, ast, _)| match &ast.within {
-        Some(Some(n)) => n.parts.len(),
-        _ => 0,
-    });
-    for (id, ast, path) in parsed_files {
-        // A file of a library given with --lib is checked as that library's class, so
-        // that it sees its package's other files (a `package.mo` its siblings).
-        if let Some(c) = library_class(&mut tree, libs, &path) {
-            user_classes.push(c);
-            continue;
-        }
-        user_classes.extend(tree.add_user_file(id, ast));
-    }
+    let parsed = parse_files(&mut tree, &files);
+    let mut diags = parsed.diags;
+    let user_classes = add_files(&mut tree, libs, parsed.files);
     let mut flattened = 0;
     let mut model_stats = Vec::new();
     for c in &user_classes {
         diags.extend(unimo_flat::resolve::check_names(&mut tree, *c));
     }
     if balance && !diags.iter().any(|d| d.is_error()) {
-        // Every top model of a file that holds models (not a package): flatten it and
-        // check its balance.
-        for c in top_models(&tree, &user_classes) {
-            let (flat, mut fd) = unimo_flat::flatten(&mut tree, c);
-            // The name check already ran on every class above.
-            fd.retain(|d| d.code.0 != "E2001");
-            if !fd.iter().any(|d| d.is_error()) {
-                let span = tree.get(c).def.name.span;
-                fd.extend(unimo_flat::balance::check(&flat, span));
-            }
-            if analysis && !fd.iter().any(|d| d.is_error()) {
-                let t0 = Instant::now();
-                match unimo_dae::analyze_model(&flat) {
-                    Ok((dae, analysis)) => {
-                        if stats {
-                            let mut plan = analysis.plan.clone();
-                            unimo_dae::prune::prune(&dae, &mut plan, &[]);
-                            model_stats.push((flat.name.clone(), plan.stats, t0.elapsed()));
-                        }
-                    }
-                    Err(d) => fd.extend(d),
-                }
-            }
-            diags.extend(fd);
-            flattened += 1;
-        }
+        flattened = check_models(
+            &mut tree,
+            &user_classes,
+            (stats, analysis),
+            &mut diags,
+            &mut model_stats,
+        );
     }
     diags.append(&mut tree.diagnostics);
-    let (mut n_errors, mut n_warnings) = (read_errors, 0);
+    let (mut n_errors, mut n_warnings) = (parsed.read_errors, 0);
     report(&diags, &tree.sources, color, &mut n_errors, &mut n_warnings);
     let elapsed = started.elapsed();
     if stats {
@@ -192,8 +246,8 @@ pub fn check(
         eprintln!(
             "stats: files={} classes={} bytes={} models_flattened={} library_files_loaded={} library_bytes_loaded={} classes_in_tree={} time_ms={:.1}",
             files.len(),
-            n_classes,
-            bytes,
+            parsed.n_classes,
+            parsed.bytes,
             flattened,
             s.library_files,
             s.library_bytes,
@@ -201,7 +255,13 @@ pub fn check(
             elapsed.as_secs_f64() * 1e3
         );
     }
-    for (name, p, time) in &model_stats {
+    print_model_stats(&model_stats);
+    summary(files.len(), n_errors, n_warnings)
+}
+
+/// The `--stats` line of each analysed model.
+fn print_model_stats(model_stats: &[ModelStats]) {
+    for (name, p, time) in model_stats {
         eprintln!(
             "stats: model={name} flat_scalars={} aliases_removed={} constants_removed={} equations={} differentiated={} states={} dummy_derivatives={} state_sets={} algebraic={} blocks={} torn_blocks={} largest_block={} zero_crossings={} pruned={} analysis_ms={:.2}",
             p.flat_scalars,
@@ -221,11 +281,15 @@ pub fn check(
             time.as_secs_f64() * 1e3
         );
     }
+}
+
+/// The closing line of `check`; returns the exit code.
+fn summary(n_files: usize, n_errors: usize, n_warnings: usize) -> i32 {
     let plural = |n: usize, w: &str| format!("{n} {w}{}", if n == 1 { "" } else { "s" });
     if n_errors > 0 {
         eprintln!(
             "checked {}: {}, {}",
-            plural(files.len(), "file"),
+            plural(n_files, "file"),
             plural(n_errors, "error"),
             plural(n_warnings, "warning")
         );
@@ -233,7 +297,7 @@ pub fn check(
     } else {
         eprintln!(
             "checked {}: no errors{}",
-            plural(files.len(), "file"),
+            plural(n_files, "file"),
             if n_warnings > 0 {
                 format!(", {}", plural(n_warnings, "warning"))
             } else {

@@ -5,9 +5,14 @@ use crate::{
     MethodArg, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE,
 };
 use std::io::Write;
+use std::path::Path;
 use std::time::Instant;
-use unimo_runtime::sim::{SimOptions, SimResult};
+use unimo_dae::plan::Plan;
+use unimo_dae::Dae;
+use unimo_runtime::model::CompiledModel;
+use unimo_runtime::sim::{SimError, SimOptions, SimResult};
 use unimo_solve::Method;
+use unimo_source::SourceMap;
 
 pub fn method(m: MethodArg) -> Method {
     match m {
@@ -94,176 +99,224 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
         &a.libs,
         color,
         false,
-        &mut |flat, map, _| {
-            let (dae, analysis) = match unimo_dae::analyze_model(flat) {
-                Ok(x) => x,
-                Err(diags) => {
-                    render_stage(&diags, map, color);
-                    return EXIT_MODEL_ERROR;
-                }
-            };
-            // Select the outputs first: with --vars, what they do not need is left out.
-            let output_ids: Vec<unimo_dae::expr::ScalarId> = dae
-                .ids()
-                .filter(|&s| {
-                    !matches!(
-                        dae.scalar(s).kind,
-                        unimo_dae::dae::ScalarKind::Parameter
-                            | unimo_dae::dae::ScalarKind::Constant
-                    )
-                })
-                .collect();
-            let all_names: Vec<String> = output_ids.iter().map(|&s| dae.name(s)).collect();
-            let cols = match select(&all_names, &a.vars) {
-                Ok(c) => c,
-                Err(msg) => {
-                    eprintln!("error: {msg}");
-                    return EXIT_USAGE;
-                }
-            };
-            let mut plan = analysis.plan.clone();
-            if !a.vars.is_empty() {
-                let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
-                unimo_dae::prune::prune(&dae, &mut plan, &wanted);
-            }
-            let compiled = unimo_runtime::model::compile(&dae, &plan);
-            let compile_ms = started.elapsed().as_secs_f64() * 1e3;
-            let overrides = unimo_runtime::sim::Overrides {
-                start: a.start,
-                stop: a.stop_time,
-                rtol: a.tolerance,
-                atol: a.atol,
-                interval: a.interval,
-                points: a.points,
-            };
-            let options = match SimOptions::resolve(
-                &dae.experiment,
-                &overrides,
-                method(a.method),
-                a.every_step,
-            ) {
-                Ok(o) => o,
-                Err(msg) => {
-                    eprintln!("error: {msg}");
-                    return EXIT_USAGE;
-                }
-            };
-            let (start, stop) = (options.start, options.stop);
-            let sim_started = Instant::now();
-            // A progress bar on stderr for runs longer than a moment, when it is a
-            // terminal (never in pipes, files or CI logs).
-            let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-                let bar = indicatif::ProgressBar::new(1000);
-                bar.set_style(
-                    indicatif::ProgressStyle::with_template(
-                        "{spinner} simulating [{bar:40}] t = {msg} ({elapsed})",
-                    )
-                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-                );
-                bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-                Some(bar)
-            } else {
-                None
-            };
-            let shown_after = std::time::Duration::from_millis(500);
-            let mut report = |t: f64| {
-                if let Some(bar) = &bar {
-                    if bar.is_hidden() && sim_started.elapsed() > shown_after {
-                        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-                    }
-                    bar.set_position((((t - start) / (stop - start)) * 1000.0) as u64);
-                    bar.set_message(format!("{t:.6e}"));
-                }
-            };
-            let result = unimo_runtime::sim::Simulator::new(&compiled)
-                .run_with_progress(&options, &mut report);
-            if let Some(bar) = &bar {
-                bar.finish_and_clear();
-            }
-            let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
-            let written = match &a.output {
-                Some(path) => std::fs::File::create(path)
-                    .map(std::io::BufWriter::new)
-                    .and_then(|mut f| write_csv(&mut f, &result, &cols).and_then(|_| f.flush())),
-                None => {
-                    let stdout = std::io::stdout();
-                    let mut lock = std::io::BufWriter::new(stdout.lock());
-                    write_csv(&mut lock, &result, &cols).and_then(|_| lock.flush())
-                }
-            };
-            if let Err(e) = written {
-                eprintln!("error: cannot write the results: {e}");
-                return EXIT_USAGE;
-            }
-            if a.stats {
-                let s = &result.stats;
-                eprintln!(
-                "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
-                format!("{:?}", a.method).to_lowercase(),
-                compiled.states.len(),
-                s.solver.steps,
-                s.solver.rejected_steps,
-                s.solver.rhs_evals,
-                s.solver.jacobian_evals,
-                s.solver.lu_factorizations,
-                s.solver.newton_iterations,
-                s.events,
-                s.event_iterations,
-                s.rhs_evaluations,
-                s.state_selections,
-                plan.stats.pruned_equations,
-                compiled.plan_ops(),
-                compiled.roots.len(),
-                compile_ms,
-                simulate_ms,
-                match &s.collision {
-                    Some(c) => format!(
-                        ",\"collision\":{{\"bodies\":{},\"evaluations\":{},\"broadphase_tests\":{},\"narrowphase_pairs\":{},\"impulses\":{},\"contact_changes\":{}}}",
-                        compiled.collision.as_ref().map_or(0, |c| c.bodies.len()),
-                        c.evaluations,
-                        c.broadphase_tests,
-                        c.narrowphase_pairs,
-                        c.impulses,
-                        c.contact_changes
-                    ),
-                    None => String::new(),
-                }
-            );
-            }
-            if let Some(msg) = &result.terminated {
-                eprintln!(
-                    "note: terminate() at t = {}: {msg}",
-                    result.times.last().copied().unwrap_or(start)
-                );
-            }
-            match &result.error {
-                Some(e) => {
-                    eprintln!("error[{}]: {}", e.code(), e.message());
-                    if let unimo_runtime::sim::SimError::NonFinite {
-                        equation: Some(eq), ..
-                    } = e
-                    {
-                        let equation = &dae.equations[eq.index()];
-                        let mut text = String::new();
-                        let name = |s| dae.name(s);
-                        let _ = dae.arena.write(equation.lhs, &name, &mut text);
-                        text.push_str(" = ");
-                        let _ = dae.arena.write(equation.rhs, &name, &mut text);
-                        eprintln!(
-                            "note: equation #{} is `{text}` ({})",
-                            eq.0,
-                            map.location(equation.origin)
-                        );
-                    }
-                    eprintln!(
-                        "note: {} rows up to t = {} were kept",
-                        result.times.len(),
-                        result.times.last().copied().unwrap_or(start)
-                    );
-                    EXIT_SIMULATION_FAILURE
-                }
-                None => EXIT_OK,
-            }
-        },
+        &mut |flat, map, _| simulate_flat(a, flat, map, color, started),
     )
+}
+
+/// Analyses, compiles and simulates a flat model, then writes the results and reports
+/// how the run ended. Returns the exit code.
+fn simulate_flat(
+    a: &SimulateArgs,
+    flat: &unimo_flat::FlatModel,
+    map: &SourceMap,
+    color: bool,
+    started: Instant,
+) -> i32 {
+    let (dae, analysis) = match unimo_dae::analyze_model(flat) {
+        Ok(x) => x,
+        Err(diags) => {
+            render_stage(&diags, map, color);
+            return EXIT_MODEL_ERROR;
+        }
+    };
+    // Select the outputs first: with --vars, what they do not need is left out.
+    let (output_ids, cols) = match output_columns(&dae, &a.vars) {
+        Ok(x) => x,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return EXIT_USAGE;
+        }
+    };
+    let mut plan = analysis.plan.clone();
+    if !a.vars.is_empty() {
+        let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
+        unimo_dae::prune::prune(&dae, &mut plan, &wanted);
+    }
+    let compiled = unimo_runtime::model::compile(&dae, &plan);
+    let compile_ms = started.elapsed().as_secs_f64() * 1e3;
+    let options = match sim_options(a, &dae) {
+        Ok(o) => o,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            return EXIT_USAGE;
+        }
+    };
+    let start = options.start;
+    let sim_started = Instant::now();
+    let result = run(&compiled, &options, sim_started);
+    let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
+    if let Err(e) = write_results(a.output.as_deref(), &result, &cols) {
+        eprintln!("error: cannot write the results: {e}");
+        return EXIT_USAGE;
+    }
+    if a.stats {
+        let ms = (compile_ms, simulate_ms);
+        print_stats(a.method, &compiled, &plan, &result, ms);
+    }
+    if let Some(msg) = &result.terminated {
+        eprintln!(
+            "note: terminate() at t = {}: {msg}",
+            result.times.last().copied().unwrap_or(start)
+        );
+    }
+    match &result.error {
+        Some(e) => {
+            report_failure(&dae, map, e, &result, start);
+            EXIT_SIMULATION_FAILURE
+        }
+        None => EXIT_OK,
+    }
+}
+
+/// The scalars written (all but parameters and constants) and the columns of them
+/// that `--vars` selects; Err names an unknown selector.
+fn output_columns(
+    dae: &Dae,
+    vars: &[String],
+) -> Result<(Vec<unimo_dae::expr::ScalarId>, Vec<usize>), String> {
+    let output_ids: Vec<unimo_dae::expr::ScalarId> = dae
+        .ids()
+        .filter(|&s| {
+            !matches!(
+                dae.scalar(s).kind,
+                unimo_dae::dae::ScalarKind::Parameter | unimo_dae::dae::ScalarKind::Constant
+            )
+        })
+        .collect();
+    let all_names: Vec<String> = output_ids.iter().map(|&s| dae.name(s)).collect();
+    let cols = select(&all_names, vars)?;
+    Ok((output_ids, cols))
+}
+
+/// The experiment's settings with the command line's overrides.
+fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, String> {
+    let overrides = unimo_runtime::sim::Overrides {
+        start: a.start,
+        stop: a.stop_time,
+        rtol: a.tolerance,
+        atol: a.atol,
+        interval: a.interval,
+        points: a.points,
+    };
+    SimOptions::resolve(&dae.experiment, &overrides, method(a.method), a.every_step)
+}
+
+/// Runs the simulation; a progress bar on stderr for runs longer than a moment, when
+/// it is a terminal (never in pipes, files or CI logs).
+fn run(compiled: &CompiledModel, options: &SimOptions, sim_started: Instant) -> SimResult {
+    let (start, stop) = (options.start, options.stop);
+    let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        let bar = indicatif::ProgressBar::new(1000);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} simulating [{bar:40}] t = {msg} ({elapsed})",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+        Some(bar)
+    } else {
+        None
+    };
+    let shown_after = std::time::Duration::from_millis(500);
+    let mut report = |t: f64| {
+        if let Some(bar) = &bar {
+            if bar.is_hidden() && sim_started.elapsed() > shown_after {
+                bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            }
+            bar.set_position((((t - start) / (stop - start)) * 1000.0) as u64);
+            bar.set_message(format!("{t:.6e}"));
+        }
+    };
+    let result =
+        unimo_runtime::sim::Simulator::new(compiled).run_with_progress(options, &mut report);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    result
+}
+
+/// Writes the selected columns as CSV to `output`, or to stdout.
+fn write_results(output: Option<&Path>, result: &SimResult, cols: &[usize]) -> std::io::Result<()> {
+    match output {
+        Some(path) => std::fs::File::create(path)
+            .map(std::io::BufWriter::new)
+            .and_then(|mut f| write_csv(&mut f, result, cols).and_then(|_| f.flush())),
+        None => {
+            let stdout = std::io::stdout();
+            let mut lock = std::io::BufWriter::new(stdout.lock());
+            write_csv(&mut lock, result, cols).and_then(|_| lock.flush())
+        }
+    }
+}
+
+/// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time.
+fn print_stats(
+    method: MethodArg,
+    compiled: &CompiledModel,
+    plan: &Plan,
+    result: &SimResult,
+    (compile_ms, simulate_ms): (f64, f64),
+) {
+    let s = &result.stats;
+    let collision = match &s.collision {
+        Some(c) => format!(
+            ",\"collision\":{{\"bodies\":{},\"evaluations\":{},\"broadphase_tests\":{},\"narrowphase_pairs\":{},\"impulses\":{},\"contact_changes\":{}}}",
+            compiled.collision.as_ref().map_or(0, |c| c.bodies.len()),
+            c.evaluations,
+            c.broadphase_tests,
+            c.narrowphase_pairs,
+            c.impulses,
+            c.contact_changes
+        ),
+        None => String::new(),
+    };
+    eprintln!(
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
+        format!("{method:?}").to_lowercase(),
+        compiled.states.len(),
+        s.solver.steps,
+        s.solver.rejected_steps,
+        s.solver.rhs_evals,
+        s.solver.jacobian_evals,
+        s.solver.lu_factorizations,
+        s.solver.newton_iterations,
+        s.events,
+        s.event_iterations,
+        s.rhs_evaluations,
+        s.state_selections,
+        plan.stats.pruned_equations,
+        compiled.plan_ops(),
+        compiled.roots.len(),
+        compile_ms,
+        simulate_ms,
+        collision
+    );
+}
+
+/// Reports a failed run: the error, the equation that went non-finite and the rows
+/// that were kept.
+fn report_failure(dae: &Dae, map: &SourceMap, e: &SimError, result: &SimResult, start: f64) {
+    eprintln!("error[{}]: {}", e.code(), e.message());
+    if let SimError::NonFinite {
+        equation: Some(eq), ..
+    } = e
+    {
+        let equation = &dae.equations[eq.index()];
+        let mut text = String::new();
+        let name = |s| dae.name(s);
+        let _ = dae.arena.write(equation.lhs, &name, &mut text);
+        text.push_str(" = ");
+        let _ = dae.arena.write(equation.rhs, &name, &mut text);
+        eprintln!(
+            "note: equation #{} is `{text}` ({})",
+            eq.0,
+            map.location(equation.origin)
+        );
+    }
+    eprintln!(
+        "note: {} rows up to t = {} were kept",
+        result.times.len(),
+        result.times.last().copied().unwrap_or(start)
+    );
 }
