@@ -14,6 +14,7 @@ const MAX_FN_LINES: usize = 100;
 const ENFORCED: &[&str] = &[
     "unimo-cli",
     "unimo-geometry",
+    "unimo-runtime",
     "unimo-solve",
     "unimo-source",
     "unimo-stdlib",

@@ -228,33 +228,7 @@ impl CollisionState {
         let margin = r[m.world_args.margin as usize].max(0.0);
         let tol = r[m.world_args.tolerance as usize].max(0.0);
         let sweep = r[m.world_args.sweep as usize] != 0.0;
-        {
-            let v = View { m, r };
-            self.placements.clear();
-            for b in 0..n {
-                let rot = v.rotation(b);
-                let det = dot(rot[0], cross(rot[1], rot[2]));
-                let a = &m.bodies[b].args;
-                let finite = (a.position.iter())
-                    .chain(&a.rotation)
-                    .chain(&a.velocity)
-                    .chain(&a.angular_velocity)
-                    .all(|&x| r[x as usize].is_finite());
-                if !finite || (det - 1.0).abs() > 0.1 {
-                    return Err(CollisionFailure {
-                        body: m.bodies[b].name.clone(),
-                        reason: format!(
-                            "placement or velocity is not finite, or the rotation matrix is not \
-                             a rotation (det = {det:.3})"
-                        ),
-                    });
-                }
-                self.placements.push(Placement {
-                    r: v.v3(b, |a| a.position),
-                    rot,
-                });
-            }
-        }
+        self.place(m, r)?;
         if self.origin.len() != n {
             self.origin = self.placements.clone();
         }
@@ -292,38 +266,8 @@ impl CollisionState {
             self.pair_contacts(m, a, b, margin)?;
             let dist = self.points.iter().map(|c| c.dist).fold(margin, f64::min);
             let key = (i, j);
-            let (ra, rb) = (self.placements[a].r, self.placements[b].r);
             if event_mode {
-                let in_contact = self.contact.contains_key(&key);
-                if !in_contact && dist <= tol {
-                    let approach = self
-                        .points
-                        .iter()
-                        .min_by(|x, y| x.dist.total_cmp(&y.dist))
-                        .map(|c| {
-                            let p = mid(c);
-                            let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
-                            dot(rel, c.normal).max(0.0)
-                        })
-                        .unwrap_or(0.0);
-                    self.contact.insert(key, approach);
-                    if v.arg(a, |a| a.impulses) == 0.0
-                        && v.arg(b, |a| a.impulses) == 0.0
-                        && approach > 0.0
-                    {
-                        let thin = self.shapes[a]
-                            .half_thickness
-                            .min(self.shapes[b].half_thickness);
-                        self.duration.insert(key, thin / approach);
-                    }
-                    changes += 1;
-                } else if in_contact && dist > 1.5 * tol {
-                    // The separation crossing is located where dist = 2 tol (to rounding):
-                    // deciding at 1.5 tol keeps the decision on the right side of it.
-                    self.contact.remove(&key);
-                    self.duration.remove(&key);
-                    changes += 1;
-                }
+                changes += self.update_contact(&v, a, b, dist, tol);
             }
             match self.contact.get(&key) {
                 Some(_) => {
@@ -331,114 +275,14 @@ impl CollisionState {
                     g_sep = g_sep.min(2.0 * tol - dist);
                 }
                 None => {
-                    let mut g = dist;
-                    if dist > 0.0 && sweep {
-                        // Did the pair pass through each other since the last step?
-                        let da = sub(self.placements[a].r, self.origin[a].r);
-                        let db = sub(self.placements[b].r, self.origin[b].r);
-                        let rel = sub(da, db);
-                        if dot(rel, rel) > 0.0 {
-                            if let Some(s) = time_of_impact(
-                                &self.shapes[a],
-                                &self.origin[a],
-                                da,
-                                &self.shapes[b],
-                                &self.origin[b],
-                                db,
-                                1.0,
-                            ) {
-                                if s < 1.0 {
-                                    g = -(1.0 - s) * dot(rel, rel).sqrt();
-                                }
-                            }
-                        }
-                    }
+                    let g = self.swept_gap(a, b, dist, sweep);
                     g_new = g_new.min(g);
                 }
             }
             if v.arg(a, |a| a.impulses) != 0.0 || v.arg(b, |a| a.impulses) != 0.0 {
                 continue;
             }
-            // Penalty forces at every penetrating point.
-            let mass = |x: usize| {
-                if self.dynamic[x] {
-                    v.arg(x, |a| a.mass)
-                } else {
-                    f64::INFINITY
-                }
-            };
-            let (ma, mb) = (mass(a), mass(b));
-            let m_eff = if ma.is_infinite() {
-                mb
-            } else if mb.is_infinite() {
-                ma
-            } else {
-                ma * mb / (ma + mb)
-            };
-            let k = v.mean(a, b, |a| a.stiffness);
-            let nexp = v.mean(a, b, |a| a.exponent);
-            let law = v.arg(a, |a| a.law);
-            let damping = match LawCode::from_value(law) {
-                Some(LawCode::Clipped) => Damping::Clipped {
-                    d: v.mean(a, b, |a| a.damping),
-                },
-                Some(LawCode::HuntCrossley) => Damping::HuntCrossley {
-                    e: v.mean(a, b, |a| a.restitution),
-                },
-                Some(LawCode::Flores) => Damping::Flores {
-                    e: v.mean(a, b, |a| a.restitution),
-                },
-                None => {
-                    return Err(CollisionFailure {
-                        body: v.m.bodies[a].name.clone(),
-                        reason: format!(
-                            "unknown damping law code {law} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
-                        ),
-                    })
-                }
-            };
-            let friction = Friction {
-                mu_static: v.mean(a, b, |a| a.mu_static),
-                mu_sliding: v.mean(a, b, |a| a.mu_sliding),
-                v_switch: v.mean(a, b, |a| a.v_switch).max(f64::MIN_POSITIVE),
-                f_max: v.mean(a, b, |a| a.f_max),
-            };
-            for c in &self.points {
-                if c.dist >= 0.0 {
-                    continue;
-                }
-                let p = mid(c);
-                let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
-                let vn = dot(rel, c.normal);
-                // The restitution laws divide by the impact speed. The speed at first
-                // touch is wrong when other bodies push the contact harder later (a rack
-                // of balls: over-damped rebound); the pair's current relative energy,
-                // kinetic along the normal plus elastic, as a speed, equals the impact
-                // speed throughout an undamped binary impact and follows such pushes.
-                let delta = -c.dist;
-                let elastic = 2.0 * k * delta.powf(nexp + 1.0) / ((nexp + 1.0) * m_eff);
-                let v_ref = (vn * vn + elastic).sqrt().max(V_FLOOR);
-                let fnorm = laws::normal_force(k, nexp, damping, delta, vn, v_ref);
-                let mut fa = [
-                    -fnorm * c.normal[0],
-                    -fnorm * c.normal[1],
-                    -fnorm * c.normal[2],
-                ];
-                if !friction.is_zero() {
-                    let vt = [
-                        rel[0] - vn * c.normal[0],
-                        rel[1] - vn * c.normal[1],
-                        rel[2] - vn * c.normal[2],
-                    ];
-                    let ff = laws::friction_force(&friction, vt, fnorm);
-                    fa = [fa[0] + ff[0], fa[1] + ff[1], fa[2] + ff[2]];
-                }
-                let fb = [-fa[0], -fa[1], -fa[2]];
-                add_to(&mut out[6 * a..6 * a + 3], fa);
-                add_to(&mut out[6 * a + 3..6 * a + 6], cross(sub(p, ra), fa));
-                add_to(&mut out[6 * b..6 * b + 3], fb);
-                add_to(&mut out[6 * b + 3..6 * b + 6], cross(sub(p, rb), fb));
-            }
+            self.penalty_forces(&v, a, b, &mut out)?;
         }
         // Pairs in contact that are no longer candidates have separated by more than
         // the margin.
@@ -461,6 +305,196 @@ impl CollisionState {
         }
         r[m.gaps[0] as usize] = g_new;
         r[m.gaps[1] as usize] = g_sep;
+        Ok(())
+    }
+
+    /// The bodies' placements, checked to be finite and rotations.
+    fn place(&mut self, m: &CollisionModel, r: &[f64]) -> Result<(), CollisionFailure> {
+        let n = m.bodies.len();
+        let v = View { m, r };
+        self.placements.clear();
+        for b in 0..n {
+            let rot = v.rotation(b);
+            let det = dot(rot[0], cross(rot[1], rot[2]));
+            let a = &m.bodies[b].args;
+            let finite = (a.position.iter())
+                .chain(&a.rotation)
+                .chain(&a.velocity)
+                .chain(&a.angular_velocity)
+                .all(|&x| r[x as usize].is_finite());
+            if !finite || (det - 1.0).abs() > 0.1 {
+                return Err(CollisionFailure {
+                    body: m.bodies[b].name.clone(),
+                    reason: format!(
+                        "placement or velocity is not finite, or the rotation matrix is not \
+                         a rotation (det = {det:.3})"
+                    ),
+                });
+            }
+            self.placements.push(Placement {
+                r: v.v3(b, |a| a.position),
+                rot,
+            });
+        }
+        Ok(())
+    }
+
+    /// In event mode: the pair `(a, b)` joins the contact set at a distance of at most
+    /// `tol` (with its approach speed, and for penalty contacts the time a thin body
+    /// takes to pass) and leaves it beyond `1.5 tol`. Returns the changes (0 or 1).
+    fn update_contact(&mut self, v: &View<'_>, a: usize, b: usize, dist: f64, tol: f64) -> u64 {
+        let key = (a as u32, b as u32);
+        let (ra, rb) = (self.placements[a].r, self.placements[b].r);
+        let in_contact = self.contact.contains_key(&key);
+        if !in_contact && dist <= tol {
+            let approach = self
+                .points
+                .iter()
+                .min_by(|x, y| x.dist.total_cmp(&y.dist))
+                .map(|c| {
+                    let p = mid(c);
+                    let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
+                    dot(rel, c.normal).max(0.0)
+                })
+                .unwrap_or(0.0);
+            self.contact.insert(key, approach);
+            if v.arg(a, |a| a.impulses) == 0.0 && v.arg(b, |a| a.impulses) == 0.0 && approach > 0.0
+            {
+                let thin = self.shapes[a]
+                    .half_thickness
+                    .min(self.shapes[b].half_thickness);
+                self.duration.insert(key, thin / approach);
+            }
+            1
+        } else if in_contact && dist > 1.5 * tol {
+            // The separation crossing is located where dist = 2 tol (to rounding):
+            // deciding at 1.5 tol keeps the decision on the right side of it.
+            self.contact.remove(&key);
+            self.duration.remove(&key);
+            1
+        } else {
+            0
+        }
+    }
+
+    /// The gap of a pair outside the contact set: its distance, negative when its
+    /// linear sweep since the last accepted step hits.
+    fn swept_gap(&self, a: usize, b: usize, dist: f64, sweep: bool) -> f64 {
+        let mut g = dist;
+        if dist > 0.0 && sweep {
+            // Did the pair pass through each other since the last step?
+            let da = sub(self.placements[a].r, self.origin[a].r);
+            let db = sub(self.placements[b].r, self.origin[b].r);
+            let rel = sub(da, db);
+            if dot(rel, rel) > 0.0 {
+                if let Some(s) = time_of_impact(
+                    &self.shapes[a],
+                    &self.origin[a],
+                    da,
+                    &self.shapes[b],
+                    &self.origin[b],
+                    db,
+                    1.0,
+                ) {
+                    if s < 1.0 {
+                        g = -(1.0 - s) * dot(rel, rel).sqrt();
+                    }
+                }
+            }
+        }
+        g
+    }
+
+    /// Penalty forces and torques at every penetrating point of the pair `(a, b)`,
+    /// added to `out` (six values per body).
+    fn penalty_forces(
+        &self,
+        v: &View<'_>,
+        a: usize,
+        b: usize,
+        out: &mut [f64],
+    ) -> Result<(), CollisionFailure> {
+        let (ra, rb) = (self.placements[a].r, self.placements[b].r);
+        // Penalty forces at every penetrating point.
+        let mass = |x: usize| {
+            if self.dynamic[x] {
+                v.arg(x, |a| a.mass)
+            } else {
+                f64::INFINITY
+            }
+        };
+        let (ma, mb) = (mass(a), mass(b));
+        let m_eff = if ma.is_infinite() {
+            mb
+        } else if mb.is_infinite() {
+            ma
+        } else {
+            ma * mb / (ma + mb)
+        };
+        let k = v.mean(a, b, |a| a.stiffness);
+        let nexp = v.mean(a, b, |a| a.exponent);
+        let law = v.arg(a, |a| a.law);
+        let damping = match LawCode::from_value(law) {
+            Some(LawCode::Clipped) => Damping::Clipped {
+                d: v.mean(a, b, |a| a.damping),
+            },
+            Some(LawCode::HuntCrossley) => Damping::HuntCrossley {
+                e: v.mean(a, b, |a| a.restitution),
+            },
+            Some(LawCode::Flores) => Damping::Flores {
+                e: v.mean(a, b, |a| a.restitution),
+            },
+            None => {
+                return Err(CollisionFailure {
+                    body: v.m.bodies[a].name.clone(),
+                    reason: format!(
+                        "unknown damping law code {law} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
+                    ),
+                })
+            }
+        };
+        let friction = Friction {
+            mu_static: v.mean(a, b, |a| a.mu_static),
+            mu_sliding: v.mean(a, b, |a| a.mu_sliding),
+            v_switch: v.mean(a, b, |a| a.v_switch).max(f64::MIN_POSITIVE),
+            f_max: v.mean(a, b, |a| a.f_max),
+        };
+        for c in &self.points {
+            if c.dist >= 0.0 {
+                continue;
+            }
+            let p = mid(c);
+            let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
+            let vn = dot(rel, c.normal);
+            // The restitution laws divide by the impact speed. The speed at first
+            // touch is wrong when other bodies push the contact harder later (a rack
+            // of balls: over-damped rebound); the pair's current relative energy,
+            // kinetic along the normal plus elastic, as a speed, equals the impact
+            // speed throughout an undamped binary impact and follows such pushes.
+            let delta = -c.dist;
+            let elastic = 2.0 * k * delta.powf(nexp + 1.0) / ((nexp + 1.0) * m_eff);
+            let v_ref = (vn * vn + elastic).sqrt().max(V_FLOOR);
+            let fnorm = laws::normal_force(k, nexp, damping, delta, vn, v_ref);
+            let mut fa = [
+                -fnorm * c.normal[0],
+                -fnorm * c.normal[1],
+                -fnorm * c.normal[2],
+            ];
+            if !friction.is_zero() {
+                let vt = [
+                    rel[0] - vn * c.normal[0],
+                    rel[1] - vn * c.normal[1],
+                    rel[2] - vn * c.normal[2],
+                ];
+                let ff = laws::friction_force(&friction, vt, fnorm);
+                fa = [fa[0] + ff[0], fa[1] + ff[1], fa[2] + ff[2]];
+            }
+            let fb = [-fa[0], -fa[1], -fa[2]];
+            add_to(&mut out[6 * a..6 * a + 3], fa);
+            add_to(&mut out[6 * a + 3..6 * a + 6], cross(sub(p, ra), fa));
+            add_to(&mut out[6 * b..6 * b + 3], fb);
+            add_to(&mut out[6 * b + 3..6 * b + 6], cross(sub(p, rb), fb));
+        }
         Ok(())
     }
 

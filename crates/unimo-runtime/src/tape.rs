@@ -336,50 +336,8 @@ impl<'a> Compiler<'a> {
                 continue;
             }
             let node = self.arena.node(x);
-            match node {
-                Node::Var(s) => {
-                    memo.insert(x, self.layout.var(s));
-                    continue;
-                }
-                Node::Pre(s) => {
-                    memo.insert(x, self.layout.pre_base + s.0);
-                    continue;
-                }
-                Node::Time => {
-                    memo.insert(x, self.layout.time);
-                    continue;
-                }
-                Node::Initial => {
-                    memo.insert(x, self.layout.initial);
-                    continue;
-                }
-                Node::Terminal => {
-                    memo.insert(x, self.layout.terminal);
-                    continue;
-                }
-                Node::External(..) => {
-                    // Output registers of external objects are allocated up front by
-                    // `model::compile` (in `shared`); this is only a fallback.
-                    let reg = self.next_temp;
-                    self.next_temp += 1;
-                    self.shared.insert(x, reg);
-                    continue;
-                }
-                Node::Const(bits) => {
-                    // Constants live in registers of their own, set once.
-                    let reg = match self.constant_regs.get(&bits) {
-                        Some(&r) => r,
-                        None => {
-                            let r = self.temp();
-                            self.constant_regs.insert(bits, r);
-                            self.constants.push((r, f64::from_bits(bits)));
-                            r
-                        }
-                    };
-                    memo.insert(x, reg);
-                    continue;
-                }
-                _ => {}
+            if self.leaf(x, node, memo) {
+                continue;
             }
             let child_ne = ne || matches!(node, Node::NoEvent(_));
             if !expanded {
@@ -396,57 +354,7 @@ impl<'a> Compiler<'a> {
                     continue;
                 }
             }
-            let out = {
-                let shared = &self.shared;
-                let memo_ref = &*memo;
-                let g = |c: ExprId| -> Reg {
-                    *memo_ref
-                        .get(&c)
-                        .or_else(|| shared.get(&c))
-                        .expect("children first")
-                };
-                let known = |c: ExprId| memo_ref.get(&c).or_else(|| shared.get(&c)).copied();
-                match node {
-                    Node::Const(b) => Ok(Op::Const(0, f64::from_bits(b))),
-                    Node::NoEvent(a) => Err(g(a)),
-                    Node::Add(a, b) => match self.arena.node(b) {
-                        Node::Neg(nb) if known(nb).is_some() => {
-                            Ok(Op::Sub(0, g(a), known(nb).expect("checked")))
-                        }
-                        _ => Ok(Op::Add(0, g(a), g(b))),
-                    },
-                    Node::Mul(a, b) => Ok(Op::Mul(0, g(a), g(b))),
-                    Node::Div(a, b) => Ok(Op::Div(0, g(a), g(b))),
-                    Node::Pow(a, b) => Ok(match self.arena.as_const(b) {
-                        Some(n) if n == n.trunc() && n.abs() <= 16.0 => Op::Powi(0, g(a), n as i32),
-                        _ => Op::Pow(0, g(a), g(b)),
-                    }),
-                    Node::Neg(a) => Ok(Op::Neg(0, g(a))),
-                    Node::Fn1(f, a) => Ok(Op::Fn1(f, 0, g(a))),
-                    Node::Fn2(f, a, b) => Ok(Op::Fn2(f, 0, g(a), g(b))),
-                    Node::Rel(op, a, b) => Ok(match (ne, self.relation_index.get(&x)) {
-                        (false, Some(&k)) => Op::RelEvent(op, 0, g(a), g(b), k),
-                        _ => Op::Rel(op, 0, g(a), g(b)),
-                    }),
-                    Node::And(a, b) => Ok(Op::And(0, g(a), g(b))),
-                    Node::Or(a, b) => Ok(Op::Or(0, g(a), g(b))),
-                    Node::Not(a) => Ok(Op::Not(0, g(a))),
-                    Node::If(c, a, b) => Ok(Op::Select(0, g(c), g(a), g(b))),
-                    Node::Ext(f, ops) => Ok(Op::Ext(f, 0, ops.map(g))),
-                    Node::Sample(..) => Ok(Op::Sample(
-                        0,
-                        self.sample_index.get(&x).copied().unwrap_or(0),
-                    )),
-                    Node::Var(_)
-                    | Node::Pre(_)
-                    | Node::Time
-                    | Node::Initial
-                    | Node::Terminal
-                    | Node::External(..) => {
-                        unreachable!("leaves are handled above")
-                    }
-                }
-            };
+            let out = self.op_of(x, node, ne, memo);
             let op = match out {
                 Ok(op) => op,
                 Err(alias) => {
@@ -462,6 +370,110 @@ impl<'a> Compiler<'a> {
             .get(&e)
             .or_else(|| self.shared.get(&e))
             .expect("compiled")
+    }
+
+    /// A leaf's register into `memo` (an external output's into `shared`): true when
+    /// `node` is a leaf.
+    fn leaf(&mut self, x: ExprId, node: Node, memo: &mut HashMap<ExprId, Reg>) -> bool {
+        match node {
+            Node::Var(s) => {
+                memo.insert(x, self.layout.var(s));
+            }
+            Node::Pre(s) => {
+                memo.insert(x, self.layout.pre_base + s.0);
+            }
+            Node::Time => {
+                memo.insert(x, self.layout.time);
+            }
+            Node::Initial => {
+                memo.insert(x, self.layout.initial);
+            }
+            Node::Terminal => {
+                memo.insert(x, self.layout.terminal);
+            }
+            Node::External(..) => {
+                // Output registers of external objects are allocated up front by
+                // `model::compile` (in `shared`); this is only a fallback.
+                let reg = self.next_temp;
+                self.next_temp += 1;
+                self.shared.insert(x, reg);
+            }
+            Node::Const(bits) => {
+                // Constants live in registers of their own, set once.
+                let reg = match self.constant_regs.get(&bits) {
+                    Some(&r) => r,
+                    None => {
+                        let r = self.temp();
+                        self.constant_regs.insert(bits, r);
+                        self.constants.push((r, f64::from_bits(bits)));
+                        r
+                    }
+                };
+                memo.insert(x, reg);
+            }
+            _ => return false,
+        }
+        true
+    }
+
+    /// The operation computing the interior node `x` from its compiled children, or
+    /// Err(the register) of a node that is its child's value (`noEvent`).
+    fn op_of(
+        &self,
+        x: ExprId,
+        node: Node,
+        ne: bool,
+        memo: &HashMap<ExprId, Reg>,
+    ) -> Result<Op, Reg> {
+        let shared = &self.shared;
+        let memo_ref = memo;
+        let g = |c: ExprId| -> Reg {
+            *memo_ref
+                .get(&c)
+                .or_else(|| shared.get(&c))
+                .expect("children first")
+        };
+        let known = |c: ExprId| memo_ref.get(&c).or_else(|| shared.get(&c)).copied();
+        match node {
+            Node::Const(b) => Ok(Op::Const(0, f64::from_bits(b))),
+            Node::NoEvent(a) => Err(g(a)),
+            Node::Add(a, b) => match self.arena.node(b) {
+                Node::Neg(nb) if known(nb).is_some() => {
+                    Ok(Op::Sub(0, g(a), known(nb).expect("checked")))
+                }
+                _ => Ok(Op::Add(0, g(a), g(b))),
+            },
+            Node::Mul(a, b) => Ok(Op::Mul(0, g(a), g(b))),
+            Node::Div(a, b) => Ok(Op::Div(0, g(a), g(b))),
+            Node::Pow(a, b) => Ok(match self.arena.as_const(b) {
+                Some(n) if n == n.trunc() && n.abs() <= 16.0 => Op::Powi(0, g(a), n as i32),
+                _ => Op::Pow(0, g(a), g(b)),
+            }),
+            Node::Neg(a) => Ok(Op::Neg(0, g(a))),
+            Node::Fn1(f, a) => Ok(Op::Fn1(f, 0, g(a))),
+            Node::Fn2(f, a, b) => Ok(Op::Fn2(f, 0, g(a), g(b))),
+            Node::Rel(op, a, b) => Ok(match (ne, self.relation_index.get(&x)) {
+                (false, Some(&k)) => Op::RelEvent(op, 0, g(a), g(b), k),
+                _ => Op::Rel(op, 0, g(a), g(b)),
+            }),
+            Node::And(a, b) => Ok(Op::And(0, g(a), g(b))),
+            Node::Or(a, b) => Ok(Op::Or(0, g(a), g(b))),
+            Node::Not(a) => Ok(Op::Not(0, g(a))),
+            Node::If(c, a, b) => Ok(Op::Select(0, g(c), g(a), g(b))),
+            Node::Ext(f, ops) => Ok(Op::Ext(f, 0, ops.map(g))),
+            Node::Sample(..) => Ok(Op::Sample(
+                0,
+                self.sample_index.get(&x).copied().unwrap_or(0),
+            )),
+            Node::Var(_)
+            | Node::Pre(_)
+            | Node::Time
+            | Node::Initial
+            | Node::Terminal
+            | Node::External(..) => {
+                unreachable!("leaves are handled above")
+            }
+        }
     }
 
     /// The register of an already compiled child.

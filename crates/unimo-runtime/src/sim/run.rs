@@ -1,0 +1,352 @@
+//! The run: the solver set up from the options, the integration loop (steps, crossings
+//! the root search missed, output on the grid, sample, state and terminal events), and
+//! the result with its counters.
+
+use super::{SimError, SimOptions, SimResult, Simulator, MAX_STEPS};
+use unimo_solve::newton::NewtonTolerance;
+use unimo_solve::{Direction, Options, SolveError, Solver, StopReason, System};
+
+/// The integration loop's state between its steps.
+struct Integration<'o> {
+    o: &'o SimOptions,
+    /// The step cap of the options (the collision world may lower it further).
+    max_step: f64,
+    /// The next output grid point.
+    next_output: usize,
+    /// Interpolated states.
+    buf: Vec<f64>,
+    steps_taken: u64,
+}
+
+impl Integration<'_> {
+    /// Output grid point `k`.
+    fn grid(&self, k: usize) -> f64 {
+        self.o.start + k as f64 * self.o.interval
+    }
+}
+
+impl Simulator<'_> {
+    pub(super) fn solver_error(&self, e: SolveError) -> SimError {
+        let m = self.m();
+        let (time, step, worst) = match &e {
+            SolveError::StepSizeTooSmall { time, step, worst }
+            | SolveError::NewtonFailed { time, step, worst }
+            | SolveError::ErrorTestFailed { time, step, worst } => {
+                (*time, Some(*step), worst.clone())
+            }
+            SolveError::TooManySteps { time, .. } | SolveError::Eval { time, .. } => {
+                (*time, None, Vec::new())
+            }
+            SolveError::SingularMatrix { time, step } => (*time, Some(*step), Vec::new()),
+            _ => (f64::NAN, None, Vec::new()),
+        };
+        let mut culprits: Vec<String> = worst
+            .iter()
+            .take(5)
+            .filter_map(|&(k, w)| m.state_names.get(k).map(|n| format!("{n} ({w:.3e})")))
+            .collect();
+        if let Some(f) = &self.ode.last_failure {
+            culprits.extend(f.variables.iter().cloned());
+        }
+        SimError::Solver {
+            time,
+            step,
+            message: e.to_string(),
+            culprits,
+        }
+    }
+
+    /// Runs the simulation. The result holds everything computed, also on failure.
+    pub fn run(self, o: &SimOptions) -> SimResult {
+        self.run_with_progress(o, &mut |_| {})
+    }
+    /// Like [`run`](Simulator::run), calling `progress(t)` now and then with the
+    /// simulated time reached (for a progress bar; the runtime never prints).
+    pub fn run_with_progress(mut self, o: &SimOptions, progress: &mut dyn FnMut(f64)) -> SimResult {
+        let m = self.m();
+        self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
+        self.ode.work.tolerance = NewtonTolerance::new(o.rtol, o.atol);
+        if let Err(e) = self.initialize(o.start) {
+            self.result.error = Some(e);
+            return self.result;
+        }
+        self.record(o.start);
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error = Some(e);
+            return self.result;
+        }
+        if o.stop == o.start {
+            // A zero-length interval: the consistent initial values are the result.
+            self.result.final_states = self.states();
+            self.result.final_states.truncate(m.states.len());
+            return self.result;
+        }
+        let x0 = self.states();
+        let options = self.solver_options(o);
+        if m.states.is_empty() && !self.ode.clock {
+            return self.run_without_states(o);
+        }
+        let options_max_step = options.max_step;
+        let mut solver = match Solver::new(o.method, &mut self.ode, o.start, &x0, options) {
+            Ok(s) => s,
+            Err(e) => {
+                self.result.error = Some(self.solver_error(e));
+                return self.result;
+            }
+        };
+        if let Some(c) = self.ode.ev.collision.as_ref() {
+            solver.set_max_step(options_max_step.min(c.step_cap()));
+        }
+        let mut run = Integration {
+            o,
+            max_step: options_max_step,
+            next_output: 1,
+            buf: vec![0.0; self.ode.len()],
+            steps_taken: 0,
+        };
+        loop {
+            match self.integration_step(&mut solver, &mut run, progress) {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(e) => {
+                    self.result.error = Some(e);
+                    break;
+                }
+            }
+        }
+        self.finish(&solver)
+    }
+
+    /// The solver's options: the tolerances (the absolute one scaled by the states'
+    /// nominal values) and the largest step.
+    fn solver_options(&self, o: &SimOptions) -> Options {
+        let m = self.m();
+        let mut options = Options::with_tolerances(o.rtol, o.atol);
+        if !m.states.is_empty() {
+            options.absolute_tolerance = unimo_solve::Tolerance::PerComponent(
+                m.nominals.iter().map(|n| o.atol * n).collect(),
+            );
+        }
+        options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
+        if self.ode.clock {
+            // Nothing limits the steps of a constant state: the zero crossings (all of
+            // time) are searched one output interval at a time, so none pair up and
+            // cancel within a step.
+            options.max_step = options.max_step.min(o.interval);
+        }
+        options
+    }
+
+    /// One step of the integration loop and what it stopped at. Ok(false): the run
+    /// is over without error.
+    fn integration_step(
+        &mut self,
+        solver: &mut Solver,
+        run: &mut Integration<'_>,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<bool, SimError> {
+        let t_event = self
+            .sample_next
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let (prev, now, reason) = self.advance(solver, run, t_event, progress)?;
+        self.write_grid(solver, run, prev, now, &reason)?;
+        if let Some(e) = self.take_non_finite(Some(now - prev)) {
+            return Err(e);
+        }
+        let go_on = match reason {
+            StopReason::InternalStep => {
+                if run.o.every_step {
+                    let x = solver.state().to_vec();
+                    self.load_state(now, &x)?;
+                    self.record(now);
+                }
+                self.check_assertions(now)?;
+                true
+            }
+            StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_event)?,
+            StopReason::Root { t, components } => self.root_stop(solver, run, t, &components)?,
+        };
+        if !go_on {
+            return Ok(false);
+        }
+        self.reselect_after_step(solver)?;
+        if let Some(e) = self.take_non_finite(Some(now - prev)) {
+            return Err(e);
+        }
+        Ok(true)
+    }
+
+    /// The solver's step towards the stop time or the next sample instant, stopped at
+    /// a crossing the root search missed: (previous time, time reached, why).
+    fn advance(
+        &mut self,
+        solver: &mut Solver,
+        run: &mut Integration<'_>,
+        t_event: f64,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<(f64, f64, StopReason), SimError> {
+        let t_stop = run.o.stop.min(t_event);
+        let prev = solver.current_time();
+        let mut reason = solver
+            .step(&mut self.ode, t_stop)
+            .map_err(|e| self.solver_error(e))?;
+        let mut now = solver.current_time();
+        if !matches!(reason, StopReason::Root { .. }) {
+            if let Some((t, components)) = self.missed_crossing(solver, prev, now)? {
+                now = t;
+                reason = StopReason::Root { t, components };
+            }
+        }
+        run.steps_taken += 1;
+        if !matches!(reason, StopReason::Root { .. }) {
+            let x = solver.state().to_vec();
+            self.commit_collision(now, &x)?;
+        }
+        if run.steps_taken.is_multiple_of(256) {
+            progress(now);
+        }
+        if run.steps_taken > MAX_STEPS {
+            return Err(SimError::Solver {
+                time: now,
+                step: None,
+                message: format!("more than {MAX_STEPS} steps; the problem may be stiffer or more oscillatory than the method can handle"),
+                culprits: Vec::new(),
+            });
+        }
+        Ok((prev, now, reason))
+    }
+
+    /// Output grid points inside (prev, now].
+    fn write_grid(
+        &mut self,
+        solver: &Solver,
+        run: &mut Integration<'_>,
+        prev: f64,
+        now: f64,
+        reason: &StopReason,
+    ) -> Result<(), SimError> {
+        let stop = run.o.stop;
+        while run.grid(run.next_output) <= now * (1.0 + 1e-14) && run.grid(run.next_output) <= stop
+        {
+            let tg = run.grid(run.next_output).min(now);
+            if tg > prev && solver.interpolate(tg, &mut run.buf).is_ok() {
+                self.load_state(tg, &run.buf)?;
+                if tg < now || !matches!(reason, StopReason::Root { .. }) {
+                    self.record(tg);
+                }
+            }
+            run.next_output += 1;
+        }
+        Ok(())
+    }
+
+    /// The solver reached the stop time or a sample instant. Ok(false): the run is
+    /// over.
+    fn reached_stop(
+        &mut self,
+        solver: &mut Solver,
+        o: &SimOptions,
+        now: f64,
+        t_event: f64,
+    ) -> Result<bool, SimError> {
+        let x = solver.state().to_vec();
+        self.load_state(now, &x)?;
+        if now >= o.stop {
+            // A sample instant at the stop time is an event like any other.
+            if t_event <= now {
+                self.sample_event(now, solver)?;
+            }
+            if self.result.times.last() != Some(&now) {
+                self.record(now);
+            }
+            self.terminal_event(now)?;
+            return Ok(false);
+        }
+        // A sample instant.
+        self.sample_event(now, solver)?;
+        Ok(true)
+    }
+
+    /// A zero crossing at `t`: the state event. Ok(false): the model terminated.
+    fn root_stop(
+        &mut self,
+        solver: &mut Solver,
+        run: &mut Integration<'_>,
+        t: f64,
+        components: &[(usize, Direction)],
+    ) -> Result<bool, SimError> {
+        let mut x = solver.state().to_vec();
+        if t != solver.current_time() {
+            // A crossing the driver found inside the step.
+            let _ = solver.interpolate(t, &mut x);
+        }
+        self.state_event(t, &x, components, solver)?;
+        if self.m().collision.is_some() {
+            let x = solver.state().to_vec();
+            self.commit_collision(solver.current_time(), &x)?;
+            let cap = self
+                .ode
+                .ev
+                .collision
+                .as_ref()
+                .map_or(f64::INFINITY, |c| c.step_cap());
+            solver.set_max_step(run.max_step.min(cap));
+        }
+        if let Some(msg) = self.terminate.take() {
+            self.result.terminated = Some(msg);
+            return Ok(false);
+        }
+        // Grid points at exactly t were written as the left limit.
+        while run.grid(run.next_output) <= t && run.grid(run.next_output) <= run.o.stop {
+            run.next_output += 1;
+        }
+        Ok(true)
+    }
+
+    fn finish(mut self, solver: &Solver) -> SimResult {
+        if let Some(e) = self.take_non_finite(None) {
+            self.result.error.get_or_insert(e);
+        }
+        self.result.stats.solver = solver.stats();
+        self.result.stats.rhs_evaluations = self.ode.evaluations;
+        self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
+        self.result.final_states = self.states();
+        self.result.final_states.truncate(self.m().states.len());
+        self.result
+    }
+
+    fn run_without_states(mut self, o: &SimOptions) -> SimResult {
+        let n = ((o.stop - o.start) / o.interval).round().max(0.0) as usize;
+        for k in 1..=n {
+            let t = o.start + k as f64 * o.interval;
+            if let Err(e) = self.load_state(t, &[]) {
+                self.result.error = Some(e);
+                break;
+            }
+            self.record(t);
+            if let Some(e) = self.take_non_finite(Some(o.interval)) {
+                self.result.error = Some(e);
+                break;
+            }
+        }
+        if self.result.error.is_none() {
+            if let Err(e) = self.terminal_event(o.stop) {
+                self.result.error = Some(e);
+            }
+        }
+        self.result
+    }
+    /// After an accepted step or an event: the collision world's sweep starts here.
+    pub(super) fn commit_collision(&mut self, t: f64, x: &[f64]) -> Result<(), SimError> {
+        if self.m().collision.is_none() {
+            return Ok(());
+        }
+        self.load_state(t, x)?;
+        if let Some(c) = self.ode.ev.collision.as_mut() {
+            c.commit();
+        }
+        Ok(())
+    }
+}
