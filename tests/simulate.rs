@@ -12,8 +12,15 @@ fn load(file: &str) -> unimo_cli::LoadedModel {
         .unwrap_or_else(|e| panic!("{file}:\n{e}"))
 }
 
-fn run(
-    m: &unimo_cli::LoadedModel,
+/// Model `model` of the file `file` (relative to the project).
+fn load_named(file: &str, model: &str) -> unimo_cli::LoadedModel {
+    unimo_cli::load_model(&[common::root().join(file)], Some(model))
+        .unwrap_or_else(|e| panic!("{file} {model}:\n{e}"))
+}
+
+/// A run from 0 to `stop` with `points` output intervals; failures are in the result.
+fn try_run(
+    compiled: &unimo_runtime::model::CompiledModel,
     method: Method,
     rtol: f64,
     atol: f64,
@@ -29,7 +36,19 @@ fn run(
         interval: stop / points as f64,
         every_step: false,
     };
-    let r = simulate(&m.compiled, &o);
+    simulate(compiled, &o)
+}
+
+/// [`try_run`] that must succeed.
+fn run(
+    m: &unimo_cli::LoadedModel,
+    method: Method,
+    rtol: f64,
+    atol: f64,
+    stop: f64,
+    points: usize,
+) -> SimResult {
+    let r = try_run(&m.compiled, method, rtol, atol, stop, points);
     assert!(
         r.error.is_none(),
         "{:?}",
@@ -390,16 +409,7 @@ fn redundant_fixed_starts_are_checked_not_refused() {
     let path = dir.join("RedundantFixedStarts.mo");
     std::fs::write(&path, text).unwrap();
     let bad = unimo_cli::load_model(&[path], None).unwrap();
-    let o = SimOptions {
-        start: 0.0,
-        stop: 1.0,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: 0.5,
-        every_step: false,
-    };
-    let e = simulate(&bad.compiled, &o)
+    let e = try_run(&bad.compiled, Method::Bdf, 1e-8, 1e-10, 1.0, 2)
         .error
         .expect("contradicting starts fail");
     assert!(e.message().contains("contradict"), "{}", e.message());
@@ -651,16 +661,7 @@ fn pruning_keeps_the_steps_of_held_roundings() {
     let mut plan = m.analysis.plan.clone();
     unimo_dae::prune::prune(&m.dae, &mut plan, &[phi]);
     let compiled = unimo_runtime::model::compile(&m.dae, &plan);
-    let o = SimOptions {
-        start: 0.0,
-        stop: 20.0,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: 0.5,
-        every_step: false,
-    };
-    let r = simulate(&compiled, &o);
+    let r = try_run(&compiled, Method::Bdf, 1e-8, 1e-10, 20.0, 40);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     assert_eq!(r.stats.events, 3);
     assert!((value(&r, "phi") - 20.0).abs() < 1e-6);
@@ -672,8 +673,7 @@ fn pruning_keeps_the_steps_of_held_roundings() {
 /// assertion error (E4004) at the instant it would, not with a wrong index.
 #[test]
 fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
-    let file = common::root().join("tests/simulate/WhileLoops.mo");
-    let m = unimo_cli::load_model(std::slice::from_ref(&file), Some("WhileLoops.Search")).unwrap();
+    let m = load_named("tests/simulate/WhileLoops.mo", "WhileLoops.Search");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 4.5, 9);
     for (t, k) in r.times.iter().zip(common::column(&r, "k")) {
         let mid = (t.fract() - 0.5).abs() < 1e-9;
@@ -682,17 +682,8 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
         }
     }
     assert_eq!(value(&r, "k"), 6.0);
-    let m = unimo_cli::load_model(&[file], Some("WhileLoops.TooLong")).unwrap();
-    let o = SimOptions {
-        start: 0.0,
-        stop: 1.0,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: 0.1,
-        every_step: false,
-    };
-    let r = simulate(&m.compiled, &o);
+    let m = load_named("tests/simulate/WhileLoops.mo", "WhileLoops.TooLong");
+    let r = try_run(&m.compiled, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
     let e = r.error.expect("the loop needs more than 64 iterations");
     assert_eq!(e.code(), "E4004");
     assert!(
@@ -711,12 +702,10 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
 /// same instant, whichever comes first (twice = 2 s[2] = 36 after t = 0.2).
 #[test]
 fn when_clauses_of_one_instant_see_each_other() {
-    let file = common::root().join("tests/simulate/DiscreteInstants.mo");
-    let m = unimo_cli::load_model(
-        std::slice::from_ref(&file),
-        Some("DiscreteInstants.Fibonacci"),
-    )
-    .unwrap();
+    let m = load_named(
+        "tests/simulate/DiscreteInstants.mo",
+        "DiscreteInstants.Fibonacci",
+    );
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.25, 5);
     let at = |name: &str, t: f64| {
         let k = r.names.iter().position(|n| n == name).unwrap();
@@ -745,8 +734,10 @@ fn when_clauses_of_one_instant_see_each_other() {
 /// x(1) = e^-1 + k 1e-9 (1 - e^-1) with k = 2 seed.
 #[test]
 fn initialization_solves_for_large_integer_parameters() {
-    let file = common::root().join("tests/simulate/DiscreteInstants.mo");
-    let m = unimo_cli::load_model(&[file], Some("DiscreteInstants.LargeSeed")).unwrap();
+    let m = load_named(
+        "tests/simulate/DiscreteInstants.mo",
+        "DiscreteInstants.LargeSeed",
+    );
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
     let e = (-1.0f64).exp();
     let exact = e + 2.0 * 67_867_967.0 * 1e-9 * (1.0 - e);
@@ -775,8 +766,7 @@ fn evaluated_parameters_fold_into_the_equations() {
 /// (spec 9.1.3): the model balances and z = 2 t + 1.
 #[test]
 fn unused_signals_of_an_expandable_connector_are_left_out() {
-    let file = common::root().join("tests/simulate/ExpandableBus.mo");
-    let m = unimo_cli::load_model(&[file], Some("ExpandableBus.Use")).unwrap();
+    let m = load_named("tests/simulate/ExpandableBus.mo", "ExpandableBus.Use");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
     assert!((value(&r, "z") - 3.0).abs() < 1e-9, "{}", value(&r, "z"));
     assert!(!r.names.iter().any(|n| n == "bus.unused"), "{:?}", r.names);
