@@ -841,7 +841,14 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 }
             }
         };
-        let Some(found) = found else { return }; // unknown type: reported by the name check
+        let Some(found) = found else {
+            // The name check covers the flattened class and its nested classes; a type
+            // unknown in a class used from elsewhere (a record, a library model) is
+            // reported here (`flatten` drops the repeat of one already reported).
+            let d = crate::resolve::unknown_name(self.tree, scope.class, &cc.type_name, "type");
+            self.diags.push(d);
+            return;
+        };
         let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, merged) else {
             return;
         };

@@ -42,6 +42,15 @@ use unimo_source::Diagnostic;
 /// saves).
 const PARALLEL_FROM: usize = 20_000;
 
+/// Whether `d`'s primary span overlaps the primary span of one of `earlier`.
+fn overlaps_any(d: &Diagnostic, earlier: &[Diagnostic]) -> bool {
+    let primary = |d: &Diagnostic| d.labels.iter().find(|l| l.primary).map(|l| l.span);
+    let Some(s) = primary(d) else { return false };
+    earlier.iter().filter_map(primary).any(|e| {
+        e.file == s.file && e.start < s.end.max(s.start + 1) && s.start < e.end.max(e.start + 1)
+    })
+}
+
 /// Instantiates `class` into a flat model, with connection equations. Returns the
 /// model and the diagnostics (errors mean the model is not usable).
 pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diagnostic>) {
@@ -53,7 +62,12 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
     let buses = std::mem::take(&mut inst.expandable);
     inst.collect_functions();
     let mut model = std::mem::take(&mut inst.model);
-    diags.append(&mut inst.diags);
+    let named = diags.len();
+    for d in inst.diags.drain(..) {
+        if !(d.code.0 == "E2001" && overlaps_any(&d, &diags[..named])) {
+            diags.push(d);
+        }
+    }
     // A cycle that compile-time evaluation met is reported there already.
     if !diags.iter().any(|d| d.code.0 == "E2008") {
         diags.extend(semantic::parameter_cycles(&model));

@@ -19,6 +19,24 @@ pub fn check_names(tree: &mut ClassTree<'_>, class: ClassId) -> Vec<Diagnostic> 
     c.out
 }
 
+/// The E2001 diagnostic for `name`, unknown in `scope`, with a suggestion of a close name
+/// (the same message the name check gives).
+pub(crate) fn unknown_name(
+    tree: &mut ClassTree<'_>,
+    scope: ClassId,
+    name: &Name,
+    what: &'static str,
+) -> Diagnostic {
+    let mut c = Checker {
+        tree,
+        out: Vec::new(),
+        iterators: Vec::new(),
+        suppress_refs: false,
+    };
+    c.unknown(scope, name, name.span, what);
+    c.out.pop().expect("`unknown` reports one diagnostic")
+}
+
 struct Checker<'t, 'p> {
     tree: &'t mut ClassTree<'p>,
     out: Vec<Diagnostic>,
