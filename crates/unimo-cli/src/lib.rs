@@ -201,6 +201,18 @@ pub struct SimulateArgs {
     /// Print run statistics as one JSON object to stderr.
     #[arg(long)]
     pub stats: bool,
+    /// Keep these parameters tunable (comma separated; a record or array name covers
+    /// its fields and elements). Every other parameter whose value is known is folded
+    /// into the compiled model as a constant, with what it switches off: terms
+    /// multiplied by zero, `if` branches that cannot be taken, relations that cannot
+    /// change (no zero crossing). Parameters computed by initial equations
+    /// (`fixed = false`) and those bound to a tunable one are never folded.
+    #[arg(long, value_name = "P,Q.R", value_delimiter = ',')]
+    pub tunable: Vec<String>,
+    /// Keep every parameter tunable: fold only constants, parameters declared with
+    /// `annotation(Evaluate = true)` and parameters bound to those alone.
+    #[arg(long, conflicts_with = "tunable")]
+    pub tunable_all: bool,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -337,6 +349,15 @@ pub struct LoadedModel {
 /// Reads, flattens, lowers, analyses and compiles a model; errors come back as the
 /// plain-text diagnostics.
 pub fn load_model(files: &[PathBuf], model: Option<&str>) -> Result<LoadedModel, String> {
+    load_model_with(files, model, &unimo_dae::FoldOptions::default())
+}
+
+/// [`load_model`] with a choice of the parameters kept tunable (the others are folded).
+pub fn load_model_with(
+    files: &[PathBuf],
+    model: Option<&str>,
+    fold: &unimo_dae::FoldOptions,
+) -> Result<LoadedModel, String> {
     let provider = provider::CliProvider::new(&[]);
     let mut tree = unimo_flat::ClassTree::new(&provider);
     let mut first = None;
@@ -357,7 +378,7 @@ pub fn load_model(files: &[PathBuf], model: Option<&str>) -> Result<LoadedModel,
         return Err(render_all(&diags, &tree.sources));
     }
     let (dae, analysis) =
-        unimo_dae::analyze_model(&flat).map_err(|d| render_all(&d, &tree.sources))?;
+        unimo_dae::analyze_model_with(&flat, fold).map_err(|d| render_all(&d, &tree.sources))?;
     let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
     Ok(LoadedModel {
         dae,

@@ -112,7 +112,15 @@ fn simulate_flat(
     color: bool,
     started: Instant,
 ) -> i32 {
-    let (dae, analysis) = match unimo_dae::analyze_model(flat) {
+    let fold = unimo_dae::FoldOptions {
+        tunable_all: a.tunable_all,
+        tunable: a.tunable.clone(),
+    };
+    if let Err(msg) = check_tunable(flat, &fold) {
+        eprintln!("{msg}");
+        return EXIT_USAGE;
+    }
+    let (dae, analysis) = match unimo_dae::analyze_model_with(flat, &fold) {
         Ok(x) => x,
         Err(diags) => {
             render_stage(&diags, map, color);
@@ -250,6 +258,36 @@ fn write_results(output: Option<&Path>, result: &SimResult, cols: &[usize]) -> s
     }
 }
 
+/// `E0020` for each `--tunable` name that covers no parameter of the model, with the
+/// closest parameter name.
+pub(crate) fn check_tunable(
+    flat: &unimo_flat::FlatModel,
+    fold: &unimo_dae::FoldOptions,
+) -> Result<(), String> {
+    let unknown = unimo_dae::fold::unknown_tunable(flat, fold);
+    if unknown.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<String> = flat
+        .vars
+        .iter()
+        .filter(|v| v.variability == unimo_flat::flat::Variability::Parameter)
+        .map(|v| v.name.trim_matches('\'').to_string())
+        .collect();
+    let lines: Vec<String> = unknown
+        .iter()
+        .map(|n| {
+            match unimo_flat::resolve::suggest(n, names.clone()) {
+                Some(c) => format!(
+                    "error[E0020]: --tunable `{n}` names no parameter of the model (did you mean `{c}`?)"
+                ),
+                None => format!("error[E0020]: --tunable `{n}` names no parameter of the model"),
+            }
+        })
+        .collect();
+    Err(lines.join("\n"))
+}
+
 /// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time.
 fn print_stats(
     method: MethodArg,
@@ -272,7 +310,7 @@ fn print_stats(
         None => String::new(),
     };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -286,6 +324,7 @@ fn print_stats(
         s.rhs_evaluations,
         s.state_selections,
         plan.stats.pruned_equations,
+        plan.stats.parameters_folded,
         compiled.plan_ops(),
         compiled.roots.len(),
         compile_ms,

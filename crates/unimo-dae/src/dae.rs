@@ -182,6 +182,9 @@ pub struct Dae {
     /// Whether the model reads `terminal()` (the simulator then ends with a terminal
     /// event at the stop time).
     pub uses_terminal: bool,
+    /// The parameters folded into the equations as constants (`fold.rs`): changing
+    /// one of them needs a new compilation. Sorted.
+    pub folded_parameters: Vec<ScalarId>,
 }
 
 pub use crate::collision_args::{

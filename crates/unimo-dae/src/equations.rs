@@ -6,6 +6,7 @@
 use crate::dae::*;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, Node, ScalarId};
+use crate::fold::FoldOptions;
 use crate::lower::{broadcast, unsupported, Lowerer};
 use crate::tensor::{self, Tensor};
 use unimo_flat::FlatModel;
@@ -15,10 +16,15 @@ use unimo_syntax::ast::{self, EquationKind, Expr, ExprKind};
 /// Lowers a flat model to the hybrid DAE. Errors are coded `E30xx` diagnostics; when
 /// there are any, the DAE is incomplete.
 pub fn lower(model: &FlatModel) -> (Dae, Vec<Diagnostic>) {
+    lower_with(model, &FoldOptions::default())
+}
+
+/// [`lower`] with a choice of the parameters kept tunable (the others are folded).
+pub fn lower_with(model: &FlatModel, fold: &FoldOptions) -> (Dae, Vec<Diagnostic>) {
     let mut l = Lowerer::new(model);
     l.declare_vars();
     l.var_attributes();
-    l.evaluate_parameters();
+    l.evaluate_parameters(fold);
     for eq in &model.equations {
         match l.equation_rows(eq) {
             Ok(rows) => l.dae.equations.extend(rows),

@@ -17,6 +17,7 @@ pub mod error;
 pub mod events;
 pub mod expr;
 pub mod external;
+pub mod fold;
 pub mod lower;
 pub mod plan;
 pub mod prune;
@@ -27,20 +28,31 @@ pub mod tensor;
 pub mod verify;
 
 pub use dae::Dae;
-pub use equations::lower;
+pub use equations::{lower, lower_with};
 pub use error::DaeError;
+pub use fold::FoldOptions;
 
 /// Lowering, alias elimination and structural analysis in one call.
 pub fn analyze_model(
     model: &unimo_flat::FlatModel,
 ) -> Result<(Dae, analysis::Analysis), Vec<unimo_source::Diagnostic>> {
-    let (mut dae, diags) = lower(model);
+    analyze_model_with(model, &FoldOptions::default())
+}
+
+/// [`analyze_model`] with a choice of the parameters kept tunable (the others are
+/// folded into the code).
+pub fn analyze_model_with(
+    model: &unimo_flat::FlatModel,
+    fold: &FoldOptions,
+) -> Result<(Dae, analysis::Analysis), Vec<unimo_source::Diagnostic>> {
+    let (mut dae, diags) = lower_with(model, fold);
     if diags.iter().any(|d| d.is_error()) {
         return Err(diags);
     }
     let aliases = alias::eliminate_aliases(&mut dae);
     let mut a = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()])?;
     a.plan.stats.aliases_removed = aliases.aliases;
+    a.plan.stats.parameters_folded = dae.folded_parameters.len();
     a.plan.stats.constants_removed = aliases.constants;
     if cfg!(debug_assertions) {
         let checked = verify::verify_dae(&dae).and_then(|_| verify::verify_plan(&dae, &a.plan));

@@ -46,8 +46,8 @@ pub struct Lowerer<'m> {
     pub(crate) when_actions: Option<Vec<(WhenAction, Span)>>,
     /// Values of parameters evaluated at compile time (NaN: not evaluable).
     pub(crate) parameter_values: HashMap<ScalarId, f64>,
-    /// Parameters fixed at translation (`annotation(Evaluate = true)` and the
-    /// parameters bound to them alone): equations read their values as constants.
+    /// Parameters fixed at translation (see `fold.rs`): equations read their values
+    /// as constants.
     pub(crate) evaluated: HashMap<ScalarId, ExprId>,
     pub(crate) errors: Vec<DaeError>,
     /// Conditional `return`/`break` exits of the algorithm being executed.
@@ -144,61 +144,6 @@ impl<'m> Lowerer<'m> {
         }
     }
 
-    /// The parameters fixed at translation: those declared with `annotation(Evaluate =
-    /// true)` whose value is known, then every parameter whose binding reads such
-    /// parameters and constants alone (a capacitor's `final C = CapVal`), so that
-    /// `0 * der(v)` leaves the equations as the tool that wrote the model meant.
-    pub(crate) fn evaluate_parameters(&mut self) {
-        for v in &self.model.vars {
-            if !(v.evaluate && v.variability == Variability::Parameter) {
-                continue;
-            }
-            let Some(&(first, ref dims)) = self.vars.get(&v.name) else {
-                continue;
-            };
-            for k in 0..dims.iter().product::<usize>() {
-                let s = ScalarId(first.0 + k as u32);
-                if let Some(x) = self.parameter_value(s, 0) {
-                    let c = self.dae.arena.constant(x);
-                    self.evaluated.insert(s, c);
-                }
-            }
-        }
-        if self.evaluated.is_empty() {
-            return;
-        }
-        loop {
-            let mut grew = false;
-            for k in 0..self.dae.scalars.len() {
-                let s = ScalarId(k as u32);
-                let sc = &self.dae.scalars[k];
-                if sc.kind != ScalarKind::Parameter
-                    || sc.fixed == Some(false)
-                    || self.evaluated.contains_key(&s)
-                {
-                    continue;
-                }
-                let Some(b) = sc.binding else { continue };
-                let vars = self.dae.arena.vars(b);
-                let reads_evaluated = vars.iter().any(|v| self.evaluated.contains_key(v));
-                let only_fixed = vars.iter().all(|v| {
-                    self.evaluated.contains_key(v)
-                        || self.dae.scalars[v.index()].kind == ScalarKind::Constant
-                });
-                if reads_evaluated && only_fixed {
-                    if let Some(x) = self.parameter_value(s, 0) {
-                        let c = self.dae.arena.constant(x);
-                        self.evaluated.insert(s, c);
-                        grew = true;
-                    }
-                }
-            }
-            if !grew {
-                break;
-            }
-        }
-    }
-
     /// Whether every leaf of `e` is a constant or a parameter (no time, `pre`, ...).
     fn parameters_only(&self, e: ExprId) -> bool {
         let mut stack = vec![e];
@@ -229,7 +174,7 @@ impl<'m> Lowerer<'m> {
         true
     }
 
-    fn parameter_value(&mut self, s: ScalarId, depth: u32) -> Option<f64> {
+    pub(crate) fn parameter_value(&mut self, s: ScalarId, depth: u32) -> Option<f64> {
         if let Some(v) = self.parameter_values.get(&s) {
             return v.is_finite().then_some(*v);
         }

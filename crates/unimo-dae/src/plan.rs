@@ -63,6 +63,8 @@ pub struct StateSet {
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PlanStats {
     pub flat_scalars: usize,
+    /// Parameters folded into the code as constants.
+    pub parameters_folded: usize,
     pub aliases_removed: usize,
     pub constants_removed: usize,
     pub equations: usize,

@@ -49,7 +49,7 @@ struct Checker<'t, 'p> {
 
 /// The closest candidate to `name` (Damerau–Levenshtein, at most a third of its length),
 /// preferring a candidate of the same length on ties.
-pub(crate) fn suggest(name: &str, candidates: Vec<String>) -> Option<String> {
+pub fn suggest(name: &str, candidates: Vec<String>) -> Option<String> {
     if name.chars().count() <= 1 {
         return None;
     }

@@ -8,6 +8,11 @@ partial model UnilateralConstraintAcausal "Unilateral constraint: kinematics, im
   parameter Real k "Coefficient of restitution";
   parameter Real f "Coefficient of Coulomb friction";
   parameter SI.Velocity delta "Regularising parameter of dry friction";
+  // added (not in the paper): without friction (f = 0) sliding and rolling have the same
+  // dynamics (no tangential force), so the contact is then always Sliding. A frictionless
+  // scene has no slide/roll switching: with f folded at compile time (the default), no
+  // relation |v_rt| <= delta is left to watch and no Sliding/Rolling event happens.
+  final parameter Boolean Friction = f > 0 "Whether the contact has Coulomb friction";
   Interfaces.UnilateralConstraintState State "0 = Flight, 1 = Sliding, 2 = Rolling";
   Boolean Impact "True at the instant of an impact";
   Boolean NormalImpact;

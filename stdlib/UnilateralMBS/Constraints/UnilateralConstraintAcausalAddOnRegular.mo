@@ -46,7 +46,7 @@ equation
           StateIndicator = 0;
         else
           // Case of landing
-          if relvtsqrt > delta then
+          if relvtsqrt > delta or not Friction then
             StateIndicator = 1;
           else
             StateIndicator = 2;
@@ -58,14 +58,15 @@ equation
     end if;
   else
     Drelvn = 0;
-    if relvtsqrt <= delta then
+    if Friction and relvtsqrt <= delta then
       State = 2;
       StateIndicator = if Forcen > 0 then 0 else 2;
       Forcet - f*Forcen*relvt/delta - nu*normA = zeros(3);
     else
       State = 1;
       StateIndicator = if Forcen > 0 then 0 else 1;
-      Forcet - f*Forcen*relvt/relvtsqrt - nu*normA = zeros(3);
+      // Without friction the contact is Sliding also at |v_rt| <= delta: no 0/0.
+      Forcet - (if Friction then f*Forcen*relvt/relvtsqrt else zeros(3)) - nu*normA = zeros(3);
     end if;
   end if;
   der(Clearance) = 0;

@@ -19,6 +19,9 @@ partial model UnilateralConstraintCausal "Unilateral constraint for the causal r
   parameter Real k "Coefficient of restitution";
   parameter Real f "Coefficient of Coulomb friction";
   parameter SI.Velocity delta "Regularising parameter of dry friction";
+  // added (not in the paper), as in UnilateralConstraintAcausal: without friction the
+  // contact is always Sliding.
+  final parameter Boolean Friction = f > 0 "Whether the contact has Coulomb friction";
   Interfaces.UnilateralConstraintState State "0 = Flight, 1 = Sliding, 2 = Rolling";
   Boolean Impact "True at the instant of an impact";
   Boolean NormalImpact;

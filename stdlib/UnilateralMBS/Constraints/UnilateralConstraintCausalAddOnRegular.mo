@@ -45,7 +45,7 @@ equation
   ForcenGuard = if pre(State) > 0 then Forcen else 0;
   Landing = pre(State) == 0 and Clearance < ClearanceTolerance and not (relanGuard < 0 or relvnGuard < 0);
   LiftOff = pre(State) > 0 and ForcenGuard > 0;
-  ToRolling = pre(State) == 1 and relvtsqrt <= delta;
+  ToRolling = Friction and pre(State) == 1 and relvtsqrt <= delta;
   ToSliding = pre(State) == 2 and relvtsqrt > delta;
 
   // same as the acausal object, StateIndicator > 0.5 read as State > 0
@@ -66,7 +66,8 @@ equation
   elseif State == 2 then
     Forcet - f*Forcen*relvt/delta - nu*normA = zeros(3);
   else
-    Forcet - f*Forcen*relvt/relvtsqrt - nu*normA = zeros(3);
+    // Without friction the contact is Sliding also at |v_rt| <= delta: no 0/0.
+    Forcet - (if Friction then f*Forcen*relvt/relvtsqrt else zeros(3)) - nu*normA = zeros(3);
   end if;
   der(Clearance) = 0;
   when Impact then
@@ -78,7 +79,7 @@ equation
   OutPortA.ImpactTorque = zeros(3);
 algorithm
   when Landing then
-    State := if relvtsqrt > delta then 1 else 2;
+    State := if relvtsqrt > delta or not Friction then 1 else 2;
   elsewhen LiftOff then
     State := 0;
   elsewhen ToRolling then
