@@ -9,6 +9,7 @@ mod check;
 pub mod plot;
 mod provider;
 pub mod render;
+pub mod results;
 mod simulate;
 mod stages;
 
@@ -191,9 +192,14 @@ pub struct SimulateArgs {
     /// Also write a row after every internal solver step.
     #[arg(long)]
     pub every_step: bool,
-    /// Write the CSV here instead of standard output.
+    /// Write the results here instead of standard output.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Result format: `csv`, or `mat` (MAT v4 in the Dymola/OpenModelica `dsres`
+    /// layout, read by DyMat, scipy.io.loadmat, OMPlot). Default: `mat` when
+    /// --output ends in `.mat`, else `csv`.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub format: Option<ResultFormat>,
     /// Only these variables (comma separated; `body` selects every `body.*` and
     /// `body[...]`). Variables nothing else needs are then left out of the computation.
     #[arg(long, value_name = "A,B.C", value_delimiter = ',')]
@@ -238,6 +244,15 @@ pub struct BenchArgs {
     /// Write a work-precision plot (SVG) here.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+}
+
+/// The format of `simulate`'s result file.
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ResultFormat {
+    /// Comma-separated text, a header `time,<names>`.
+    Csv,
+    /// MAT v4, the result format of Dymola and OpenModelica.
+    Mat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]

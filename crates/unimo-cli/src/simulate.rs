@@ -2,7 +2,8 @@
 
 use crate::check::{render_stage, with_flat_model};
 use crate::{
-    MethodArg, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE,
+    MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE,
+    EXIT_USAGE,
 };
 use std::io::Write;
 use std::path::Path;
@@ -145,7 +146,14 @@ fn simulate_flat(
     let sim_started = Instant::now();
     let result = run(&compiled, &options, sim_started);
     let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
-    if let Err(e) = write_results(a.output.as_deref(), &result, &cols) {
+    let written = match result_format(a) {
+        ResultFormat::Csv => write_results(a.output.as_deref(), &result, &cols),
+        ResultFormat::Mat => {
+            let ids = (&output_ids[..], &cols[..]);
+            write_mat(a, flat, &dae, &result, ids, (start, options.stop))
+        }
+    };
+    if let Err(e) = written {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
@@ -234,6 +242,46 @@ fn run(compiled: &CompiledModel, options: &SimOptions, sim_started: Instant) -> 
         bar.finish_and_clear();
     }
     result
+}
+
+/// The result format: `--format`, else from the output file's extension (`.mat`),
+/// else CSV.
+pub fn result_format(a: &SimulateArgs) -> ResultFormat {
+    a.format.unwrap_or_else(|| {
+        let mat = a
+            .output
+            .as_deref()
+            .and_then(|p| p.extension())
+            .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+        if mat {
+            ResultFormat::Mat
+        } else {
+            ResultFormat::Csv
+        }
+    })
+}
+
+/// Writes a MAT v4 result file (`--format mat`): the selected outputs, aliases as
+/// such, and the parameters (with `--vars`, those the selectors name).
+fn write_mat(
+    a: &SimulateArgs,
+    flat: &unimo_flat::FlatModel,
+    dae: &Dae,
+    result: &SimResult,
+    ids: (&[unimo_dae::expr::ScalarId], &[usize]),
+    span: (f64, f64),
+) -> std::io::Result<()> {
+    let Some(path) = a.output.as_deref() else {
+        return Err(std::io::Error::other(
+            "a MAT file is binary: give the file with --output",
+        ));
+    };
+    let units = crate::results::units(flat);
+    let keep = |name: &str| a.vars.is_empty() || select(&[name.to_owned()], &a.vars).is_ok();
+    let vars = crate::results::variables(dae, &units, &result.initial_values, ids, &keep);
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    crate::results::mat::write(&mut f, &vars, &result.times, &result.rows, span)?;
+    f.flush()
 }
 
 /// Writes the selected columns as CSV to `output`, or to stdout.
