@@ -167,3 +167,89 @@ fn python_readers_agree_with_the_csv() {
         eprintln!("{model}: {stdout}");
     }
 }
+
+/// The largest height between the first and the second impact of the bouncing ball.
+fn first_rebound_height(extra: &[&str]) -> f64 {
+    let csv = temp(&format!(
+        "rebound{}.csv",
+        extra.join("_").replace(['=', '/'], "_")
+    ));
+    let mut args = vec!["--vars", "h,v", "--every-step", "--tolerance", "1e-10"];
+    args.extend_from_slice(extra);
+    simulate_to("models/BouncingBall.mo", &csv, &args);
+    let cols = read_csv(&csv);
+    let (h, v) = (&cols[1].1, &cols[2].1);
+    // After the first impact v > 0 until the apex: the largest h while rising or at rest.
+    let first_impact = v.iter().position(|&x| x > 0.0).unwrap();
+    let second_fall_end = (first_impact..v.len())
+        .find(|&k| h[k] < 1e-9 && v[k] < 0.0 && k > first_impact + 2)
+        .unwrap_or(h.len());
+    h[first_impact..second_fall_end]
+        .iter()
+        .cloned()
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn param_override_changes_the_rebound_as_the_closed_form_says() {
+    // h1 = e^2 h0 for restitution e: 6.4 with the model's e = 0.8, 2.5 with e = 0.5.
+    let default = first_rebound_height(&[]);
+    let changed = first_rebound_height(&["-p", "e=0.5"]);
+    assert!((default - 6.4).abs() < 1e-3, "e = 0.8: {default}");
+    assert!((changed - 2.5).abs() < 1e-3, "e = 0.5: {changed}");
+    // Two at once, one from a file (the flag wins over the file).
+    let file = temp("overrides.txt");
+    std::fs::write(&file, "# restitution and height\ne = 0.9\nh0=5 # metres\n").unwrap();
+    let file_s = file.to_string_lossy().into_owned();
+    let both = first_rebound_height(&["--override-file", &file_s, "-p", "e=0.5"]);
+    assert!((both - 0.25 * 5.0).abs() < 1e-3, "e = 0.5, h0 = 5: {both}");
+}
+
+#[test]
+fn structural_parameters_take_effect_and_are_reported() {
+    let csv = temp("structural.csv");
+    simulate_to(
+        "tests/interop/AliasesAndUnits.mo",
+        &csv,
+        &["-p", "n=5", "--vars", "a"],
+    );
+    let header: Vec<String> = read_csv(&csv).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(header, ["time", "a[1]", "a[2]", "a[3]", "a[4]", "a[5]"]);
+    let o = unimo(&[
+        "simulate",
+        "tests/interop/AliasesAndUnits.mo",
+        "--list-params",
+        "-p",
+        "mode=fast",
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    insta::assert_snapshot!("list_params", String::from_utf8_lossy(&o.stdout));
+}
+
+#[test]
+fn bad_overrides_are_coded_errors() {
+    let o = unimo(&[
+        "simulate",
+        "tests/interop/AliasesAndUnits.mo",
+        "-p",
+        "kk=1",
+        "-p",
+        "n=1.5",
+        "-p",
+        "on=3",
+        "-p",
+        "on=True",
+        "-p",
+        "c=2",
+        "-p",
+        "mode=medium",
+        "-p",
+        "x=1",
+        "-p",
+        "k=abc",
+        "-p",
+        "bad",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "usage errors exit with 2");
+    insta::assert_snapshot!("override_errors", String::from_utf8_lossy(&o.stderr));
+}

@@ -6,6 +6,7 @@
 
 mod bench;
 mod check;
+mod params;
 pub mod plot;
 mod provider;
 pub mod render;
@@ -113,7 +114,14 @@ enum Command {
     ///
     /// The CSV has a header `time,<names>` and one row per output point, plus two rows
     /// (left and right limit) at every event. On a solver failure the exit code is 3 and
-    /// the CSV keeps every row computed up to the failure.
+    /// the CSV keeps every row computed up to the failure. `--output x.mat` (or
+    /// `--format mat`) writes the same rows as a MAT v4 file in the Dymola/OpenModelica
+    /// layout, with the parameters, descriptions, units and aliases.
+    ///
+    /// Parameters: `-p e=0.5 -p h0=2`, or `--override-file FILE` with one `name=value` a
+    /// line (`#` comments); `--list-params` prints them all. See docs/simulate.md.
+    ///
+    /// Example: `unimo simulate models/BouncingBall.mo -p e=0.5 -o ball.mat`.
     Simulate(SimulateArgs),
     /// Measure error against run time: every model x method x tolerance.
     ///
@@ -207,6 +215,22 @@ pub struct SimulateArgs {
     /// Print run statistics as one JSON object to stderr.
     #[arg(long)]
     pub stats: bool,
+    /// Set a parameter: `-p e=0.5 -p h0=2` (repeatable). Values are checked against
+    /// the declaration: a number for Real, an integer for Integer, `true`/`false` for
+    /// Boolean, a literal's name for an enumeration. Unknown names, `final` parameters,
+    /// constants and values of the wrong type are errors (exit code 2). The model is
+    /// flattened again with the values as modifiers, so parameters that set array
+    /// sizes or `for` ranges can be changed too.
+    #[arg(short = 'p', long = "param", value_name = "NAME=VALUE")]
+    pub params: Vec<String>,
+    /// Read parameter settings from a file: one `name=value` a line, `#` comments.
+    /// `-p` flags are applied after it and win.
+    #[arg(long, value_name = "FILE")]
+    pub override_file: Option<PathBuf>,
+    /// Print every parameter (value, unit, whether it can change without
+    /// recompiling, description) instead of simulating; overrides are applied first.
+    #[arg(long)]
+    pub list_params: bool,
 }
 
 #[derive(clap::Args, Debug, Clone)]

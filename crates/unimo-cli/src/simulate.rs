@@ -1,6 +1,6 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
-use crate::check::{render_stage, with_flat_model};
+use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
 use crate::{
     MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE,
     EXIT_USAGE,
@@ -94,13 +94,24 @@ pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io:
 
 pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
     let started = Instant::now();
-    with_flat_model(
+    let overrides = ParameterOverrides {
+        flags: &a.params,
+        file: a.override_file.as_deref(),
+    };
+    with_flat_model_overridden(
         &a.files,
         a.model.as_deref(),
         &a.libs,
         color,
         false,
-        &mut |flat, map, _| simulate_flat(a, flat, map, color, started),
+        &overrides,
+        &mut |flat, map, _| {
+            if a.list_params {
+                print!("{}", crate::params::list(flat));
+                return EXIT_OK;
+            }
+            simulate_flat(a, flat, map, color, started)
+        },
     )
 }
 
