@@ -491,6 +491,29 @@ pub fn with_flat_model(
     print_unbalanced: bool,
     then: &mut dyn FnMut(&unimo_flat::FlatModel, &SourceMap, bool) -> i32,
 ) -> i32 {
+    let none = ParameterOverrides::default();
+    with_flat_model_overridden(files, model, libs, color, print_unbalanced, &none, then)
+}
+
+/// Parameter overrides from the command line: `-p NAME=VALUE` flags and a file.
+#[derive(Default)]
+pub struct ParameterOverrides<'a> {
+    pub flags: &'a [String],
+    pub file: Option<&'a std::path::Path>,
+}
+
+/// Like [`with_flat_model`], with parameter overrides: they are checked against the
+/// model (coded `E00xx` errors, exit code 2) and the model flattened again with them
+/// as top-level modifiers.
+pub fn with_flat_model_overridden(
+    files: &[PathBuf],
+    model: Option<&str>,
+    libs: &[PathBuf],
+    color: bool,
+    print_unbalanced: bool,
+    overrides: &ParameterOverrides<'_>,
+    then: &mut dyn FnMut(&unimo_flat::FlatModel, &SourceMap, bool) -> i32,
+) -> i32 {
     let provider = CliProvider::new(libs);
     let mut tree = ClassTree::new(&provider);
     let mut first_classes = None;
@@ -520,7 +543,19 @@ pub fn with_flat_model(
             return EXIT_USAGE;
         }
     };
-    let (flat, mut diags) = unimo_flat::flatten(&mut tree, class);
+    let (mut flat, mut diags) = unimo_flat::flatten(&mut tree, class);
+    let overridden = !overrides.flags.is_empty() || overrides.file.is_some();
+    if overridden && !diags.iter().any(|d| d.is_error()) {
+        let (o, file) = (overrides.flags, overrides.file);
+        match crate::params::overrides(o, file, &flat, &mut tree.sources) {
+            Ok(modifiers) => (flat, diags) = unimo_flat::flatten_with(&mut tree, class, &modifiers),
+            Err(refused) => {
+                let (mut e, mut w) = (0, 0);
+                report(&refused, &tree.sources, color, &mut e, &mut w);
+                return EXIT_USAGE;
+            }
+        }
+    }
     let has_errors = diags.iter().any(|d| d.is_error());
     let mut unbalanced = false;
     if !has_errors {

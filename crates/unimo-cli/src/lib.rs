@@ -6,9 +6,11 @@
 
 mod bench;
 mod check;
+mod params;
 pub mod plot;
 mod provider;
 pub mod render;
+pub mod results;
 mod simulate;
 mod stages;
 
@@ -112,7 +114,14 @@ enum Command {
     ///
     /// The CSV has a header `time,<names>` and one row per output point, plus two rows
     /// (left and right limit) at every event. On a solver failure the exit code is 3 and
-    /// the CSV keeps every row computed up to the failure.
+    /// the CSV keeps every row computed up to the failure. `--output x.mat` (or
+    /// `--format mat`) writes the same rows as a MAT v4 file in the Dymola/OpenModelica
+    /// layout, with the parameters, descriptions, units and aliases.
+    ///
+    /// Parameters: `-p e=0.5 -p h0=2`, or `--override-file FILE` with one `name=value` a
+    /// line (`#` comments); `--list-params` prints them all. See docs/simulate.md.
+    ///
+    /// Example: `unimo simulate models/BouncingBall.mo -p e=0.5 -o ball.mat`.
     Simulate(SimulateArgs),
     /// Measure error against run time: every model x method x tolerance.
     ///
@@ -191,9 +200,14 @@ pub struct SimulateArgs {
     /// Also write a row after every internal solver step.
     #[arg(long)]
     pub every_step: bool,
-    /// Write the CSV here instead of standard output.
+    /// Write the results here instead of standard output.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Result format: `csv`, or `mat` (MAT v4 in the Dymola/OpenModelica `dsres`
+    /// layout, read by DyMat, scipy.io.loadmat, OMPlot). Default: `mat` when
+    /// --output ends in `.mat`, else `csv`.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub format: Option<ResultFormat>,
     /// Only these variables (comma separated; `body` selects every `body.*` and
     /// `body[...]`). Variables nothing else needs are then left out of the computation.
     #[arg(long, value_name = "A,B.C", value_delimiter = ',')]
@@ -213,6 +227,22 @@ pub struct SimulateArgs {
     /// `annotation(Evaluate = true)` and parameters bound to those alone.
     #[arg(long, conflicts_with = "tunable")]
     pub tunable_all: bool,
+    /// Set a parameter: `-p e=0.5 -p h0=2` (repeatable). Values are checked against
+    /// the declaration: a number for Real, an integer for Integer, `true`/`false` for
+    /// Boolean, a literal's name for an enumeration. Unknown names, `final` parameters,
+    /// constants and values of the wrong type are errors (exit code 2). The model is
+    /// flattened again with the values as modifiers, so parameters that set array
+    /// sizes or `for` ranges can be changed too.
+    #[arg(short = 'p', long = "param", value_name = "NAME=VALUE")]
+    pub params: Vec<String>,
+    /// Read parameter settings from a file: one `name=value` a line, `#` comments.
+    /// `-p` flags are applied after it and win.
+    #[arg(long, value_name = "FILE")]
+    pub override_file: Option<PathBuf>,
+    /// Print every parameter (value, unit, whether it can change without
+    /// recompiling, description) instead of simulating; overrides are applied first.
+    #[arg(long)]
+    pub list_params: bool,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -250,6 +280,15 @@ pub struct BenchArgs {
     /// Write a work-precision plot (SVG) here.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+}
+
+/// The format of `simulate`'s result file.
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ResultFormat {
+    /// Comma-separated text, a header `time,<names>`.
+    Csv,
+    /// MAT v4, the result format of Dymola and OpenModelica.
+    Mat,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]

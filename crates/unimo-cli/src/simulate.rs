@@ -1,8 +1,9 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
-use crate::check::{render_stage, with_flat_model};
+use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
 use crate::{
-    MethodArg, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE,
+    MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE,
+    EXIT_USAGE,
 };
 use std::io::Write;
 use std::path::Path;
@@ -93,14 +94,39 @@ pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io:
 
 pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
     let started = Instant::now();
-    with_flat_model(
+    let overrides = ParameterOverrides {
+        flags: &a.params,
+        file: a.override_file.as_deref(),
+    };
+    with_flat_model_overridden(
         &a.files,
         a.model.as_deref(),
         &a.libs,
         color,
         false,
-        &mut |flat, map, _| simulate_flat(a, flat, map, color, started),
+        &overrides,
+        &mut |flat, map, _| {
+            if a.list_params {
+                let (dae, _) = unimo_dae::lower_with(flat, &fold_options(a));
+                let folded = dae
+                    .folded_parameters
+                    .iter()
+                    .map(|&s| dae.scalar(s).name.clone())
+                    .collect();
+                print!("{}", crate::params::list(flat, &folded));
+                return EXIT_OK;
+            }
+            simulate_flat(a, flat, map, color, started)
+        },
     )
+}
+
+/// The parameters `--tunable` / `--tunable-all` keep out of folding.
+fn fold_options(a: &SimulateArgs) -> unimo_dae::FoldOptions {
+    unimo_dae::FoldOptions {
+        tunable_all: a.tunable_all,
+        tunable: a.tunable.clone(),
+    }
 }
 
 /// Analyses, compiles and simulates a flat model, then writes the results and reports
@@ -112,10 +138,7 @@ fn simulate_flat(
     color: bool,
     started: Instant,
 ) -> i32 {
-    let fold = unimo_dae::FoldOptions {
-        tunable_all: a.tunable_all,
-        tunable: a.tunable.clone(),
-    };
+    let fold = fold_options(a);
     if let Err(msg) = check_tunable(flat, &fold) {
         eprintln!("{msg}");
         return EXIT_USAGE;
@@ -153,7 +176,14 @@ fn simulate_flat(
     let sim_started = Instant::now();
     let result = run(&compiled, &options, sim_started);
     let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
-    if let Err(e) = write_results(a.output.as_deref(), &result, &cols) {
+    let written = match result_format(a) {
+        ResultFormat::Csv => write_results(a.output.as_deref(), &result, &cols),
+        ResultFormat::Mat => {
+            let ids = (&output_ids[..], &cols[..]);
+            write_mat(a, flat, &dae, &result, ids, (start, options.stop))
+        }
+    };
+    if let Err(e) = written {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
@@ -242,6 +272,46 @@ fn run(compiled: &CompiledModel, options: &SimOptions, sim_started: Instant) -> 
         bar.finish_and_clear();
     }
     result
+}
+
+/// The result format: `--format`, else from the output file's extension (`.mat`),
+/// else CSV.
+pub fn result_format(a: &SimulateArgs) -> ResultFormat {
+    a.format.unwrap_or_else(|| {
+        let mat = a
+            .output
+            .as_deref()
+            .and_then(|p| p.extension())
+            .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+        if mat {
+            ResultFormat::Mat
+        } else {
+            ResultFormat::Csv
+        }
+    })
+}
+
+/// Writes a MAT v4 result file (`--format mat`): the selected outputs, aliases as
+/// such, and the parameters (with `--vars`, those the selectors name).
+fn write_mat(
+    a: &SimulateArgs,
+    flat: &unimo_flat::FlatModel,
+    dae: &Dae,
+    result: &SimResult,
+    ids: (&[unimo_dae::expr::ScalarId], &[usize]),
+    span: (f64, f64),
+) -> std::io::Result<()> {
+    let Some(path) = a.output.as_deref() else {
+        return Err(std::io::Error::other(
+            "a MAT file is binary: give the file with --output",
+        ));
+    };
+    let units = crate::results::units(flat);
+    let keep = |name: &str| a.vars.is_empty() || select(&[name.to_owned()], &a.vars).is_ok();
+    let vars = crate::results::variables(dae, &units, &result.initial_values, ids, &keep);
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    crate::results::mat::write(&mut f, &vars, &result.times, &result.rows, span)?;
+    f.flush()
 }
 
 /// Writes the selected columns as CSV to `output`, or to stdout.

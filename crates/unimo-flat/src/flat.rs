@@ -68,6 +68,9 @@ pub struct FlatVar {
     /// A parameter declared with `annotation(Evaluate = true)`: its value is fixed at
     /// translation (a capacitance of 0 removes the capacitor's derivative).
     pub evaluate: bool,
+    /// Declared `final`, or given a value by a `final` modifier: no modifier may
+    /// change it (spec 7.2.6).
+    pub is_final: bool,
     pub origin: Span,
 }
 
@@ -102,6 +105,11 @@ pub struct FlatModel {
     /// Every record instance by path (`z`, `body.frame`, `c[2]`) with its record type's
     /// full name; its fields are variables named `path.field`.
     pub record_instances: Vec<(String, String)>,
+    /// Parameters and constants whose values instantiation evaluated (array sizes,
+    /// `for` ranges, conditions of conditional components and structural `if`s, folded
+    /// subscripts, and what those depend on), sorted: changing one changes the
+    /// model's structure, so it needs flattening again.
+    pub evaluated: Vec<String>,
 }
 
 /// Array dimensions as text: `scalar` or `[3, 2]`.

@@ -57,6 +57,10 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub connects: Vec<Connect>,
     pub diags: Vec<Diagnostic>,
     values: HashMap<String, Value>,
+    /// The element being instantiated is declared `final` (read by `builtin_var`).
+    element_final: bool,
+    /// Modifiers applied to the top-level class (parameter overrides).
+    pub(crate) top_modifiers: Mod,
     pub(crate) evaluating: HashSet<String>,
     /// Instances whose bases are being instantiated: (instance key, class, modifier,
     /// scope). A base's modifier or condition may read the instance's own parameters,
@@ -223,6 +227,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             connects: Vec::new(),
             diags: Vec::new(),
             values: HashMap::default(),
+            element_final: false,
+            top_modifiers: Mod::default(),
             evaluating: HashSet::default(),
             pending_own: Vec::new(),
             ancestors: Vec::new(),
@@ -341,7 +347,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 "declared `partial`",
             );
         }
-        self.class_body(class, &[], &Mod::default(), None, true);
+        let top = std::mem::take(&mut self.top_modifiers);
+        self.class_body(class, &[], &top, None, true);
+        let mut evaluated: Vec<String> = self.values.keys().cloned().collect();
+        evaluated.sort();
+        self.model.evaluated = evaluated;
     }
 
     /// Follows short class definitions to a long class or a predefined type,
@@ -648,9 +658,11 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
                         m2.children.retain(|(n, _)| *n != name);
                         m2.children.push((name, child));
+                        self.element_final = e.is_final;
                         self.component(&scope, &prefix_key, cc, d, &m2, variability, top);
                         continue;
                     }
+                    self.element_final = e.is_final;
                     self.component(&scope, &prefix_key, cc, d, m, variability, top);
                 }
             }
@@ -1064,6 +1076,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             description: d.comment.description.clone(),
             top_level: top,
             evaluate: annotation_is_true(d.comment.annotation.as_ref(), "Evaluate"),
+            is_final: std::mem::take(&mut self.element_final) || m.is_final,
             origin: d.span,
         }
     }

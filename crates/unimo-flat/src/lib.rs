@@ -54,8 +54,21 @@ fn overlaps_any(d: &Diagnostic, earlier: &[Diagnostic]) -> bool {
 /// Instantiates `class` into a flat model, with connection equations. Returns the
 /// model and the diagnostics (errors mean the model is not usable).
 pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diagnostic>) {
+    flatten_with(tree, class, &[])
+}
+
+/// Like [`flatten`], with modifiers applied to the top-level class as if it were
+/// instantiated as `class(name1 = value1, ...)`: each `(dotted name, value)` replaces
+/// that element's binding (`body.m` modifies `m` of component `body`). Parameters
+/// that set sizes or ranges take the new values like any modifier would.
+pub fn flatten_with(
+    tree: &mut ClassTree<'_>,
+    class: ClassId,
+    modifiers: &[(String, unimo_syntax::ast::Expr)],
+) -> (FlatModel, Vec<Diagnostic>) {
     let mut diags = resolve::check_names(tree, class);
     let mut inst = instantiate::Instantiator::new(tree);
+    inst.top_modifiers = top_modifiers(class, modifiers);
     inst.run(class);
     let connects = std::mem::take(&mut inst.connects);
     let absent = std::mem::take(&mut inst.absent);
@@ -145,4 +158,30 @@ pub fn flatten(tree: &mut ClassTree<'_>, class: ClassId) -> (FlatModel, Vec<Diag
         }
     }
     (model, diags)
+}
+
+/// The modification `(a.b = v, ...)` of the top-level class.
+fn top_modifiers(class: ClassId, modifiers: &[(String, unimo_syntax::ast::Expr)]) -> modif::Mod {
+    let scope = modif::Scope {
+        class,
+        prefix: std::sync::Arc::from(Vec::new()),
+    };
+    let mut out = modif::Mod::default();
+    for (name, value) in modifiers {
+        let mut m = modif::Mod {
+            binding: Some(modif::Bound {
+                expr: value.clone(),
+                scope: scope.clone(),
+            }),
+            ..modif::Mod::default()
+        };
+        for part in name.rsplit('.') {
+            m = modif::Mod {
+                children: vec![(part.into(), m)],
+                ..modif::Mod::default()
+            };
+        }
+        out = m.over_into(out);
+    }
+    out
 }

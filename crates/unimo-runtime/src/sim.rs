@@ -222,6 +222,10 @@ pub struct SimResult {
     pub terminated: Option<String>,
     /// Final state values (for references).
     pub final_states: Vec<f64>,
+    /// Every scalar's value (indexed by `ScalarId`) right after initialization:
+    /// parameters, also those initialization solved for, and start values. Empty
+    /// when initialization failed.
+    pub initial_values: Vec<f64>,
 }
 
 /// The ODE in the states that the solvers see.

@@ -70,6 +70,8 @@ impl Simulator<'_> {
             self.result.error = Some(e);
             return self.result;
         }
+        let n_scalars = m.layout.n_scalars as usize;
+        self.result.initial_values = self.ode.regs[..n_scalars].to_vec();
         self.record(o.start);
         if let Some(e) = self.take_non_finite(None) {
             self.result.error = Some(e);

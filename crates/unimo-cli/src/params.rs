@@ -1,0 +1,325 @@
+//! Parameter overrides (`simulate -p NAME=VALUE`, `--override-file`) and the parameter
+//! list (`--list-params`): each override is checked against the flat model (a known,
+//! non-final parameter; a value of its type) and becomes a top-level modifier for
+//! flattening again. Problems are coded `E00xx` diagnostics pointing into the command
+//! line or the override file.
+
+use std::path::{Path, PathBuf};
+use unimo_flat::flat::{FlatModel, FlatType, FlatVar, Variability};
+use unimo_source::{Diagnostic, FileId, SourceMap, Span};
+use unimo_syntax::ast::{ComponentRef, Expr, ExprKind, Ident, RefPart};
+
+/// One `name=value` as written, with the spans of its two sides.
+struct Written {
+    name: String,
+    name_span: Span,
+    value: String,
+    value_span: Span,
+}
+
+/// Splits `text` (one override a line, `#` comments) of `file` into overrides.
+fn split_lines(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Written> {
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let start = offset;
+        offset += line.len();
+        let content = line.split('#').next().unwrap_or("").trim_end();
+        let lead = content.len() - content.trim_start().len();
+        let content = content.trim_start();
+        if content.is_empty() {
+            continue;
+        }
+        let at = |a: usize, b: usize| Span::new(file, start + lead + a, start + lead + b);
+        let Some(eq) = content.find('=') else {
+            diags.push(
+                Diagnostic::error("E0006", format!("`{content}` is not `NAME=VALUE`"))
+                    .at(at(0, content.len()), "no `=`")
+                    .with_help("write e.g. `-p k=0.8`"),
+            );
+            continue;
+        };
+        let (name, value) = (&content[..eq], &content[eq + 1..]);
+        let name_trim = name.trim_end();
+        let value_lead = value.len() - value.trim_start().len();
+        out.push(Written {
+            name: name_trim.to_owned(),
+            name_span: at(0, name_trim.len()),
+            value: value.trim().to_owned(),
+            value_span: at(
+                eq + 1 + value_lead,
+                eq + 1 + value_lead + value.trim().len(),
+            ),
+        });
+        if name_trim.is_empty() {
+            diags.push(
+                Diagnostic::error("E0006", "an override without a name")
+                    .at(at(0, eq + 1), "name missing"),
+            );
+            out.pop();
+        }
+    }
+    out
+}
+
+/// Reads the overrides: the `-p` flags (a source named `<command line>`, one a line)
+/// and the `--override-file`, which may repeat (the flags win: they come last).
+fn written(
+    flags: &[String],
+    file: Option<&Path>,
+    map: &mut SourceMap,
+    diags: &mut Vec<Diagnostic>,
+) -> Result<Vec<Written>, Diagnostic> {
+    let mut out = Vec::new();
+    if let Some(path) = file {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Diagnostic::error("E0001", format!("cannot read `{}`: {e}", path.display()))
+        })?;
+        let id = map.add(path.to_path_buf(), text.clone());
+        out.extend(split_lines(id, &text, diags));
+    }
+    if !flags.is_empty() {
+        let text: String = flags.iter().map(|f| format!("{f}\n")).collect();
+        let id = map.add(PathBuf::from("<command line>"), text.clone());
+        out.extend(split_lines(id, &text, diags));
+    }
+    Ok(out)
+}
+
+/// The parameter closest to `name` (for "did you mean").
+fn closest(name: &str, flat: &FlatModel) -> Option<String> {
+    let names = flat
+        .vars
+        .iter()
+        .filter(|v| v.variability == Variability::Parameter)
+        .map(|v| v.name.clone())
+        .collect();
+    unimo_flat::resolve::suggest(name, names)
+}
+
+fn literal(kind: ExprKind, span: Span) -> Expr {
+    Expr { kind, span }
+}
+
+/// The value as an expression of the parameter's type, or the reason it is not one.
+fn typed_value(var: &FlatVar, text: &str, span: Span) -> Result<Expr, String> {
+    match &var.ty {
+        FlatType::Real => match text.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(literal(ExprKind::Real(x), span)),
+            _ => Err(format!(
+                "`{}` is a Real: `{text}` is not a finite number",
+                var.name
+            )),
+        },
+        FlatType::Integer => match text.parse::<i64>() {
+            Ok(n) => Ok(literal(ExprKind::Integer(n), span)),
+            _ => Err(format!(
+                "`{}` is an Integer: `{text}` is not an integer",
+                var.name
+            )),
+        },
+        FlatType::Boolean => match text {
+            "true" => Ok(literal(ExprKind::Bool(true), span)),
+            "false" => Ok(literal(ExprKind::Bool(false), span)),
+            _ => Err(format!(
+                "`{}` is a Boolean: write `true` or `false`, not `{text}`",
+                var.name
+            )),
+        },
+        FlatType::String => Ok(literal(
+            ExprKind::String(text.trim_matches('"').to_owned()),
+            span,
+        )),
+        FlatType::Enumeration { name, literals } => {
+            let last = text.rsplit('.').next().unwrap_or(text);
+            if !literals.iter().any(|l| l == last) {
+                return Err(format!(
+                    "`{}` is of type {name}: `{text}` is not one of {}",
+                    var.name,
+                    literals.join(", ")
+                ));
+            }
+            let parts = name
+                .split('.')
+                .chain(std::iter::once(last))
+                .map(|p| RefPart {
+                    name: Ident {
+                        text: p.into(),
+                        span,
+                    },
+                    subscripts: Vec::new(),
+                })
+                .collect();
+            let r = ComponentRef {
+                global: true,
+                parts,
+                span,
+            };
+            Ok(literal(ExprKind::Ref(r), span))
+        }
+        FlatType::ExternalObject { .. } => Err(format!("`{}` is an external object", var.name)),
+    }
+}
+
+/// Checks one override against the flat model.
+fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
+    let Some(var) = flat.vars.iter().find(|v| v.name == w.name) else {
+        let mut d = Diagnostic::error(
+            "E0003",
+            format!("no parameter `{}` in `{}`", w.name, flat.name),
+        )
+        .at(w.name_span, "unknown name");
+        if let Some(n) = closest(&w.name, flat) {
+            d = d.with_help(format!("did you mean `{n}`?"));
+        }
+        if w.name.contains('[') {
+            d = d.with_help("elements of arrays cannot be set one by one");
+        }
+        return Err(d);
+    };
+    let refuse = |why: String, help: &str| {
+        Err(Diagnostic::error("E0005", why)
+            .at(w.name_span, "cannot be changed")
+            .with_label(var.origin, "declared here")
+            .with_help(help.to_owned()))
+    };
+    match var.variability {
+        Variability::Parameter => {}
+        Variability::Constant => {
+            return refuse(
+                format!("`{}` is a constant", w.name),
+                "only parameters can be overridden",
+            )
+        }
+        _ => {
+            return refuse(
+                format!("`{}` is a variable, not a parameter", w.name),
+                "change its start value in the model instead",
+            )
+        }
+    }
+    if var.is_final {
+        return refuse(
+            format!(
+                "`{}` is `final`: no modifier may change it (spec 7.2.6)",
+                w.name
+            ),
+            "remove `final` in the model to make it a setting",
+        );
+    }
+    if !var.dims.is_empty() {
+        return refuse(
+            format!("`{}` is an array parameter", w.name),
+            "only scalar parameters can be overridden from the command line",
+        );
+    }
+    let value = typed_value(var, &w.value, w.value_span).map_err(|msg| {
+        Diagnostic::error("E0004", msg)
+            .at(w.value_span, "wrong value")
+            .with_label(var.origin, "declared here")
+    })?;
+    Ok((w.name.clone(), value))
+}
+
+/// The overrides as modifiers, or the diagnostics that refuse them (`E0001` when the
+/// override file cannot be read).
+pub fn overrides(
+    flags: &[String],
+    file: Option<&Path>,
+    flat: &FlatModel,
+    map: &mut SourceMap,
+) -> Result<Vec<(String, Expr)>, Vec<Diagnostic>> {
+    let mut diags = Vec::new();
+    let list = written(flags, file, map, &mut diags).map_err(|d| vec![d])?;
+    let mut out = Vec::new();
+    for w in &list {
+        match check(w, flat) {
+            Ok(m) => out.push(m),
+            Err(d) => diags.push(d),
+        }
+    }
+    if diags.is_empty() {
+        Ok(out)
+    } else {
+        Err(diags)
+    }
+}
+
+/// Whether changing the parameter needs the model flattened again, and why.
+pub fn structural_reason(var: &FlatVar, flat: &FlatModel) -> Option<&'static str> {
+    if var.is_final {
+        Some("final")
+    } else if var.evaluate {
+        Some("Evaluate=true")
+    } else if flat.evaluated.binary_search(&var.name).is_ok() {
+        Some("structural")
+    } else {
+        None
+    }
+}
+
+/// The `--list-params` table: name, type, value (the binding as written, after the
+/// overrides), unit, whether it can change without recompiling, description.
+/// `folded`: the names of the parameters compiled as constants (`--tunable` keeps
+/// others).
+pub fn list(flat: &FlatModel, folded: &std::collections::HashSet<String>) -> String {
+    let mut rows = vec![[
+        "name".to_owned(),
+        "type".to_owned(),
+        "value".to_owned(),
+        "unit".to_owned(),
+        "change without recompiling".to_owned(),
+        "description".to_owned(),
+    ]];
+    for v in flat
+        .vars
+        .iter()
+        .filter(|v| v.variability == Variability::Parameter)
+    {
+        let attribute = |n: &str| v.attributes.iter().find(|(a, _)| a == n).map(|(_, e)| e);
+        let value = v
+            .binding
+            .as_deref()
+            .or_else(|| attribute("start"))
+            .map_or("(none)".to_owned(), unimo_syntax::print::expr);
+        let unit = match attribute("unit").map(|e| &e.kind) {
+            Some(ExprKind::String(u)) => u.clone(),
+            _ => String::new(),
+        };
+        let ty = match &v.ty {
+            FlatType::Enumeration { name, .. } => name.clone(),
+            t => format!("{t:?}"),
+        };
+        let ty = if v.dims.is_empty() {
+            ty
+        } else {
+            format!("{ty}{:?}", v.dims)
+        };
+        let is_folded = || {
+            let bare = v.name.trim_matches('\'');
+            folded.contains(bare)
+                || folded
+                    .iter()
+                    .any(|f| f.strip_prefix(bare).is_some_and(|r| r.starts_with('[')))
+        };
+        let changeable = match structural_reason(v, flat) {
+            Some(why) => format!("no ({why})"),
+            None if is_folded() => "no (folded: --tunable keeps it)".to_owned(),
+            None => "yes".to_owned(),
+        };
+        let description = v.description.clone().unwrap_or_default();
+        rows.push([v.name.clone(), ty, value, unit, changeable, description]);
+    }
+    let widths: Vec<usize> = (0..6)
+        .map(|k| rows.iter().map(|r| r[k].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut out = String::new();
+    for r in &rows {
+        let cells: Vec<String> = (0..6)
+            .map(|k| format!("{:w$}", r[k], w = widths[k]))
+            .collect();
+        out.push_str(cells.join("  ").trim_end());
+        out.push('\n');
+    }
+    out
+}
