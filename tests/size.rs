@@ -12,6 +12,7 @@ const MAX_FN_LINES: usize = 100;
 
 /// The crates held to the limits.
 const ENFORCED: &[&str] = &[
+    "unimo-builtins",
     "unimo-cli",
     "unimo-geometry",
     "unimo-runtime",

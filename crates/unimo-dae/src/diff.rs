@@ -162,59 +162,61 @@ fn derivative_node(
     }
 }
 
-/// f'(x) for `e = f(x)`.
+/// f'(x) for `e = f(x)`, by the table's rule for `f` (`unimo_builtins::Derivative`).
 fn fn1_derivative(a: &mut ExprArena, f: Fn1, x: ExprId, e: ExprId) -> ExprId {
+    use unimo_builtins::Derivative as D;
     let one = a.one();
     let two = a.constant(2.0);
-    match f {
-        Fn1::Sin => a.fn1(Fn1::Cos, x),
-        Fn1::Cos => {
+    match f.derivative() {
+        D::Cos => a.fn1(Fn1::Cos, x),
+        D::NegSin => {
             let s = a.fn1(Fn1::Sin, x);
             a.neg(s)
         }
-        Fn1::Tan => {
-            // 1 + tan^2
+        D::OnePlusSquareOfValue => {
             let t2 = a.pow(e, two);
             a.add(one, t2)
         }
-        Fn1::Asin | Fn1::Acos => {
+        rule @ (D::InvSqrtOneMinusSquare | D::NegInvSqrtOneMinusSquare) => {
             let x2 = a.pow(x, two);
             let r = a.sub(one, x2);
             let s = a.fn1(Fn1::Sqrt, r);
             let q = a.div(one, s);
-            if f == Fn1::Asin {
+            if rule == D::InvSqrtOneMinusSquare {
                 q
             } else {
                 a.neg(q)
             }
         }
-        Fn1::Atan => {
+        D::InvOnePlusSquare => {
             let x2 = a.pow(x, two);
             let r = a.add(one, x2);
             a.div(one, r)
         }
-        Fn1::Sinh => a.fn1(Fn1::Cosh, x),
-        Fn1::Cosh => a.fn1(Fn1::Sinh, x),
-        Fn1::Tanh => {
+        D::Cosh => a.fn1(Fn1::Cosh, x),
+        D::Sinh => a.fn1(Fn1::Sinh, x),
+        D::OneMinusSquareOfValue => {
             let t2 = a.pow(e, two);
             a.sub(one, t2)
         }
-        Fn1::Exp => e,
-        Fn1::Log => a.div(one, x),
-        Fn1::Log10 => {
+        D::Value => e,
+        D::Reciprocal => a.div(one, x),
+        D::ReciprocalLn10 => {
             let ln10 = a.constant(std::f64::consts::LN_10);
             let m = a.mul(ln10, x);
             a.div(one, m)
         }
-        Fn1::Sqrt => {
+        D::HalfReciprocalOfValue => {
             let m = a.mul(two, e);
             a.div(one, m)
         }
-        Fn1::Abs => a.fn1(Fn1::Sign, x),
-        Fn1::Sign | Fn1::Floor | Fn1::Ceil => a.zero(),
+        D::Sign => a.fn1(Fn1::Sign, x),
+        D::Zero => a.zero(),
+        rule => unreachable!("`{}` has the rule {rule:?} of another arity", f.name()),
     }
 }
 
+/// The total derivative of `f(x, y)` from dx and dy, by the table's rule for `f`.
 fn fn2_derivative(
     a: &mut ExprArena,
     f: Fn2,
@@ -223,8 +225,9 @@ fn fn2_derivative(
     dx: ExprId,
     dy: ExprId,
 ) -> ExprId {
-    match f {
-        Fn2::Atan2 => {
+    use unimo_builtins::Derivative as D;
+    match f.derivative() {
+        D::Atan2 => {
             // atan2(x, y): (y dx - x dy) / (x^2 + y^2)
             let two = a.constant(2.0);
             let ydx = a.mul(y, dx);
@@ -235,26 +238,27 @@ fn fn2_derivative(
             let den = a.add(x2, y2);
             a.div(num, den)
         }
-        Fn2::Min => {
+        D::MinSelect => {
             let c = a.rel(crate::expr::RelOp::Lt, x, y);
             a.if_(c, dx, dy)
         }
-        Fn2::Max => {
+        D::MaxSelect => {
             let c = a.rel(crate::expr::RelOp::Gt, x, y);
             a.if_(c, dx, dy)
         }
-        Fn2::Mod => {
+        D::Mod => {
             let q = a.div(x, y);
             let fl = a.fn1(Fn1::Floor, q);
             let m = a.mul(fl, dy);
             a.sub(dx, m)
         }
-        Fn2::Rem => {
+        D::Rem => {
             let q = a.fn2(Fn2::Div, x, y);
             let m = a.mul(q, dy);
             a.sub(dx, m)
         }
-        Fn2::Div => a.zero(),
+        D::Zero => a.zero(),
+        rule => unreachable!("`{}` has the rule {rule:?} of another arity", f.name()),
     }
 }
 

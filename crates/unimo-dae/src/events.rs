@@ -4,7 +4,7 @@
 //! `div`, `mod`, `rem` of a continuous-time argument, MLS 3.7.2).
 
 use crate::dae::Dae;
-use crate::expr::{ExprId, Fn1, Fn2, Node};
+use crate::expr::{ExprId, Node};
 use rustc_hash::FxHashSet as HashSet;
 
 /// The relations that generate state events, in first-occurrence order, and the
@@ -50,12 +50,8 @@ fn collect(dae: &Dae, e: ExprId, seen: &mut HashSet<ExprId>, out: &mut Crossings
         match dae.arena.node(x) {
             Node::NoEvent(_) => continue,
             Node::Rel(..) if moves(dae, x) => out.relations.push(x),
-            Node::Fn1(Fn1::Floor | Fn1::Ceil, _)
-            | Node::Fn2(Fn2::Div | Fn2::Mod | Fn2::Rem, ..)
-                if moves(dae, x) =>
-            {
-                out.held.push(x)
-            }
+            Node::Fn1(f, _) if f.generates_events() && moves(dae, x) => out.held.push(x),
+            Node::Fn2(f, ..) if f.generates_events() && moves(dae, x) => out.held.push(x),
             Node::Sample(..) => out.samples.push(x),
             _ => {}
         }

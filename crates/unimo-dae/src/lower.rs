@@ -926,7 +926,7 @@ impl<'m> Lowerer<'m> {
                 })
             });
         }
-        if unimo_flat::lookup::UNSUPPORTED_BUILTINS.contains(&name.as_str()) {
+        if unimo_builtins::is_unsupported(&name) {
             return Err(unsupported(
                 format!(
                     "the built-in `{name}` (stream connectors, clocked and synchronous features, \
@@ -966,39 +966,15 @@ impl<'m> Lowerer<'m> {
             let x = self.positional(args, 0, span)?;
             return Ok(Some(x.map(|v| self.dae.arena.fn1(f, v))));
         }
-        let fn2 = match name {
-            "atan2" => Some(Fn2::Atan2),
-            "mod" => Some(Fn2::Mod),
-            "rem" => Some(Fn2::Rem),
-            "div" => Some(Fn2::Div),
-            "min" if nargs == 2 => Some(Fn2::Min),
-            "max" if nargs == 2 => Some(Fn2::Max),
-            _ => None,
-        };
+        // A two-argument compiled form: `atan2`, `div`, `mod`, `rem`, and `min`/`max`
+        // of two arguments (one argument is their reduction).
+        let fn2 = Fn2::from_name(name)
+            .filter(|f| nargs == 2 || unimo_builtins::Arity::Fixed(2) == f.entry().arity);
         if let Some(f) = fn2 {
             let a = self.positional(args, 0, span)?;
             let b = self.positional(args, 1, span)?;
             let ar = &mut self.dae.arena;
-            let t = match f {
-                Fn2::Atan2 => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Atan2, p, q))
-                }
-                Fn2::Mod => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Mod, p, q))
-                }
-                Fn2::Rem => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Rem, p, q))
-                }
-                Fn2::Div => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Div, p, q))
-                }
-                Fn2::Min => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Min, p, q))
-                }
-                Fn2::Max => {
-                    tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(Fn2::Max, p, q))
-                }
-            }?;
+            let t = tensor::elementwise(ar, &a, &b, true, span, |x, p, q| x.fn2(f, p, q))?;
             return Ok(Some(t));
         }
         let t = match name {
@@ -1180,7 +1156,7 @@ impl<'m> Lowerer<'m> {
             "sum" => t.data.iter().fold(ar.zero(), |acc, &x| ar.add(acc, x)),
             "product" => t.data.iter().fold(ar.one(), |acc, &x| ar.mul(acc, x)),
             "min" | "max" => {
-                let f = if name == "min" { Fn2::Min } else { Fn2::Max };
+                let f = Fn2::from_name(name).expect("min and max have a compiled form");
                 let Some((&first, rest)) = t.data.split_first() else {
                     return Err(DaeError::new(
                         "E3003",

@@ -106,7 +106,7 @@ pub fn elementwise(
     b: &Tensor,
     broadcast: bool,
     span: Span,
-    f: fn(&mut ExprArena, ExprId, ExprId) -> ExprId,
+    f: impl Fn(&mut ExprArena, ExprId, ExprId) -> ExprId,
 ) -> DaeResult<Tensor> {
     if a.dims == b.dims {
         let data = a

@@ -151,9 +151,7 @@ impl Shapes<'_> {
                         .unwrap_or_default()
                 };
                 match name.as_str() {
-                    "der" | "pre" | "noEvent" | "abs" | "sqrt" | "sin" | "cos" | "tan" | "exp"
-                    | "log" | "sign" | "asin" | "acos" | "atan" | "sinh" | "cosh" | "tanh"
-                    | "floor" | "ceil" => arg(0),
+                    f if unimo_builtins::is_elementwise(f) => arg(0),
                     "smooth" => arg(1),
                     "cross" => vec![3],
                     "collisionBody" => vec![6],

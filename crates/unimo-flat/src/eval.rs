@@ -569,62 +569,14 @@ fn call(
         vals.get(k)
             .ok_or_else(|| unsupported(e, "missing argument"))
     };
-    let f1 = |f: fn(f64) -> f64| -> Result<Value, EvalError> { map_num(e, arg(0)?, &f) };
+    if let Some(v) = scalar_builtin(e, &name, &vals)? {
+        return Ok(v);
+    }
     match name.as_str() {
-        "abs" => f1(f64::abs),
-        "sqrt" => f1(f64::sqrt),
-        "exp" => f1(f64::exp),
-        "log" => f1(f64::ln),
-        "log10" => f1(f64::log10),
-        "sin" => f1(f64::sin),
-        "cos" => f1(f64::cos),
-        "tan" => f1(f64::tan),
-        "asin" => f1(f64::asin),
-        "acos" => f1(f64::acos),
-        "atan" => f1(f64::atan),
-        "sinh" => f1(f64::sinh),
-        "cosh" => f1(f64::cosh),
-        "tanh" => f1(f64::tanh),
-        "sign" => f1(|x| {
-            if x > 0.0 {
-                1.0
-            } else if x < 0.0 {
-                -1.0
-            } else {
-                0.0
-            }
-        }),
-        "floor" => Ok(Value::Real(num(e, arg(0)?)?.floor())),
-        "ceil" => Ok(Value::Real(num(e, arg(0)?)?.ceil())),
-        "integer" => Ok(Value::Int(num(e, arg(0)?)?.floor() as i64)),
         "Integer" => {
             Ok(Value::Int(arg(0)?.as_int().ok_or_else(|| {
                 unsupported(e, "Integer() of a non-enumeration")
             })?))
-        }
-        "atan2" => Ok(Value::Real(num(e, arg(0)?)?.atan2(num(e, arg(1)?)?))),
-        "div" | "mod" | "rem" => {
-            let ints = matches!((arg(0)?, arg(1)?), (Value::Int(_), Value::Int(_)));
-            let (x, y) = (num(e, arg(0)?)?, num(e, arg(1)?)?);
-            let r = match name.as_str() {
-                "div" => (x / y).trunc(),
-                "mod" => x - (x / y).floor() * y,
-                _ => x - (x / y).trunc() * y,
-            };
-            Ok(if ints {
-                Value::Int(r as i64)
-            } else {
-                Value::Real(r)
-            })
-        }
-        "min" | "max" if vals.len() == 2 => {
-            let (x, y) = (arg(0)?, arg(1)?);
-            let pick_first = if name == "min" {
-                num(e, x)? <= num(e, y)?
-            } else {
-                num(e, x)? >= num(e, y)?
-            };
-            Ok(if pick_first { x.clone() } else { y.clone() })
         }
         "min" | "max" | "sum" | "product" => reduce(e, &name, arg(0)?),
         "size" => size_of(e, arg(0)?.dims(), vals.get(1)),
@@ -674,6 +626,53 @@ fn call(
             what: format!("a call of `{name}`"),
         }),
     }
+}
+
+/// A built-in with a scalar evaluation in `unimo_builtins::BUILTINS` (`sin`, `floor`,
+/// `div`, `min(x, y)`, ...), evaluated by the table's function: continuous maths element
+/// by element (a whole result of an Integer argument stays Integer), roundings of
+/// scalars with the table's result type, `min`/`max` of two values picking the
+/// operand the table's function gives. `None` when `name` is no such call.
+fn scalar_builtin(e: &Expr, name: &str, vals: &[Value]) -> Result<Option<Value>, EvalError> {
+    use unimo_builtins::{Eval, Kind};
+    let Some(b) = unimo_builtins::find(name) else {
+        return Ok(None);
+    };
+    let arg = |k: usize| {
+        vals.get(k)
+            .ok_or_else(|| unsupported(e, "missing argument"))
+    };
+    let typed = |r: f64, all_integer: bool| match b.integer_result(r, all_integer) {
+        None => Ok(Value::Real(r)),
+        Some(Ok(i)) => Ok(Value::Int(i)),
+        Some(Err(())) => Err(unsupported(
+            e,
+            &format!("an Integer result of `{name}` that is no Integer ({r})"),
+        )),
+    };
+    let value = match b.eval {
+        Eval::None => return Ok(None),
+        Eval::Unary(f) if b.kind == Kind::Math => map_num(e, arg(0)?, &f)?,
+        Eval::Unary(f) => typed(f(num(e, arg(0)?)?), false)?,
+        // `min(a)`, `max(a)`: the reductions.
+        Eval::Binary(_) if b.kind == Kind::Reduction && vals.len() != 2 => return Ok(None),
+        Eval::Binary(f) if b.kind == Kind::Reduction => {
+            let (x, y) = (arg(0)?, arg(1)?);
+            let r = f(num(e, x)?, num(e, y)?);
+            // The operand itself, so that its type (Integer, enumeration) is kept.
+            if r.to_bits() == num(e, x)?.to_bits() || r == num(e, x)? {
+                x.clone()
+            } else {
+                y.clone()
+            }
+        }
+        Eval::Binary(f) => {
+            let (x, y) = (arg(0)?, arg(1)?);
+            let ints = matches!((x, y), (Value::Int(_), Value::Int(_)));
+            typed(f(num(e, x)?, num(e, y)?), ints)?
+        }
+    };
+    Ok(Some(value))
 }
 
 /// Largest array a compile-time evaluation may build.

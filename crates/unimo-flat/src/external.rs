@@ -3,7 +3,6 @@
 //! built-in calls; a class that `extends ExternalObject` (spec 12.9.7) is the type of
 //! opaque handles made by its `constructor` function (the MSL's tables).
 
-use crate::lookup::BUILTIN_FUNCTIONS;
 use unimo_syntax::ast::{Causality, ClassBody, ClassDef, ElementKind, ExprKind};
 
 /// Whether `def` is an external object class: a class extending `ExternalObject`.
@@ -62,5 +61,7 @@ pub(crate) fn builtin_alias(def: &ClassDef) -> Option<&'static str> {
             call.function.text.as_str()
         }
     };
-    BUILTIN_FUNCTIONS.iter().copied().find(|b| *b == name)
+    unimo_builtins::find(name)
+        .filter(|b| b.kind != unimo_builtins::Kind::Unsupported)
+        .map(|b| b.name)
 }

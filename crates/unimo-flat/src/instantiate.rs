@@ -4,7 +4,7 @@
 
 use crate::eval::{self, Env, EvalError, Value};
 use crate::flat::{FlatModel, FlatType, FlatVar, VarId, Variability};
-use crate::lookup::{Found, BUILTIN_FUNCTIONS};
+use crate::lookup::{is_builtin_function, Found};
 use crate::modif::{Bound, Mod, Scope};
 use crate::tree::{ClassId, ClassTree};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -1523,7 +1523,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                 if simple && func.parts[0].text == "getInstanceName" && args.positional.is_empty() {
                     return instance_name(&self.model.name, &scope.prefix, span);
                 }
-                let func = if simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()) {
+                let func = if simple && is_builtin_function(&func.parts[0].text) {
                     Name {
                         global: false,
                         ..func.clone()

@@ -17,12 +17,9 @@ pub const BUILTIN_TYPES: &[&str] = &[
     "ExternalObject",
 ];
 
-/// Builtin functions and operators usable in expressions (spec 3.7).
-/// Builtin functions applied element by element to an array argument.
-pub const ELEMENTWISE_FUNCTIONS: &[&str] = &[
-    "der", "pre", "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "sinh",
-    "cosh", "tanh", "exp", "log", "log10", "noEvent", "floor", "ceil",
-];
+// Built-in functions and operators (spec 3.7) are the entries of
+// `unimo_builtins::BUILTINS`: `is_builtin_function`, `is_unsupported_builtin` and
+// `unimo_builtins::is_elementwise` read it.
 
 /// Operators that combine arrays element by element (`+`, `-` and the `.` ones).
 pub fn is_elementwise(op: unimo_syntax::ast::BinaryOp) -> bool {
@@ -47,115 +44,26 @@ pub fn elementwise_arg<'e>(
 ) -> Option<&'e unimo_syntax::ast::Expr> {
     (!func.global
         && func.parts.len() == 1
-        && ELEMENTWISE_FUNCTIONS.contains(&func.parts[0].text.as_str())
+        && unimo_builtins::is_elementwise(&func.parts[0].text)
         && args.positional.len() == 1
         && args.named.is_empty()
         && args.iterators.is_empty())
     .then(|| &args.positional[0])
 }
 
-pub const BUILTIN_FUNCTIONS: &[&str] = &[
-    "abs",
-    "acos",
-    "asin",
-    "assert",
-    "atan",
-    "atan2",
-    "array",
-    "cardinality",
-    "cat",
-    "ceil",
-    "change",
-    "cos",
-    "cosh",
-    "cross",
-    "delay",
-    "der",
-    "diagonal",
-    "div",
-    "edge",
-    "exp",
-    "fill",
-    "floor",
-    "collisionBody",
-    "collisionGaps",
-    "homotopy",
-    "identity",
-    "initial",
-    "integer",
-    "linspace",
-    "log",
-    "log10",
-    "matrix",
-    "max",
-    "min",
-    "mod",
-    "ndims",
-    "noEvent",
-    "ones",
-    "outerProduct",
-    "pre",
-    "product",
-    "reinit",
-    "rem",
-    "sample",
-    "scalar",
-    "semiLinear",
-    "sign",
-    "sin",
-    "sinh",
-    "size",
-    "skew",
-    "smooth",
-    "sqrt",
-    "String",
-    "sum",
-    "symmetric",
-    "tan",
-    "tanh",
-    "terminal",
-    "terminate",
-    "transpose",
-    "vector",
-    "zeros",
-    "Integer",
-    "Boolean",
-    "Real",
-];
+/// Whether `name` is a built-in function or operator unimo implements (an entry of
+/// `unimo_builtins::BUILTINS`).
+pub fn is_builtin_function(name: &str) -> bool {
+    unimo_builtins::is_function(name)
+}
 
 /// Built-in operators of the language that unimo names but does not implement yet:
 /// stream connectors (spec 15), synchronous and clocked features (16), state machines
 /// (17), overconstrained connections (9.4). The name check accepts them; lowering
 /// reports each as "not supported yet" (`E3001`).
-pub const UNSUPPORTED_BUILTINS: &[&str] = &[
-    "inStream",
-    "actualStream",
-    "previous",
-    "Clock",
-    "superSample",
-    "subSample",
-    "shiftSample",
-    "backSample",
-    "hold",
-    "interval",
-    "firstTick",
-    "noClock",
-    "transition",
-    "initialState",
-    "activeState",
-    "ticksInState",
-    "timeInState",
-    "spatialDistribution",
-    "getInstanceName",
-    "Connections.branch",
-    "Connections.root",
-    "Connections.potentialRoot",
-    "Connections.isRoot",
-    "Connections.rooted",
-    "Connections.uniqueRoot",
-    "Connections.uniqueRootIndices",
-    "rooted",
-];
+pub fn is_unsupported_builtin(name: &str) -> bool {
+    unimo_builtins::is_unsupported(name)
+}
 
 /// Most levels of inheritance followed before giving up (cycles, or absurd depth).
 const MAX_INHERITANCE_DEPTH: usize = 64;

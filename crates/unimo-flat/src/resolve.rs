@@ -2,7 +2,7 @@
 //! the first part of every component reference in a class must denote something.
 
 use crate::error::FlatError;
-use crate::lookup::{Found, BUILTIN_FUNCTIONS};
+use crate::lookup::Found;
 use crate::tree::{ClassId, ClassTree};
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
@@ -92,7 +92,7 @@ impl Checker<'_, '_> {
             None => {
                 let mut v = self.tree.visible_names(start);
                 if what == "function" {
-                    v.extend(BUILTIN_FUNCTIONS.iter().map(|s| s.to_string()));
+                    v.extend(unimo_builtins::function_names().map(str::to_string));
                 }
                 v
             }
@@ -454,10 +454,8 @@ impl Checker<'_, '_> {
             ExprKind::Call { func, args } => {
                 // `.asin(u)` names the built-in from the global scope.
                 let simple = func.parts.len() == 1;
-                let builtin = (simple && BUILTIN_FUNCTIONS.contains(&func.parts[0].text.as_str()))
-                    || (!func.global
-                        && crate::lookup::UNSUPPORTED_BUILTINS
-                            .contains(&func.to_dotted().as_str()));
+                let builtin = (simple && crate::lookup::is_builtin_function(&func.parts[0].text))
+                    || (!func.global && crate::lookup::is_unsupported_builtin(&func.to_dotted()));
                 if !builtin {
                     let refs: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
                     let scope = if func.global { None } else { Some(id) };
