@@ -178,3 +178,32 @@ fn frictionless_balls_cost_less_than_balls_with_friction() {
     let (d, col) = largest_difference(&smooth, &run(&smooth, 0.26), &run(&kept, 0.26));
     assert!(d <= 1e-12, "{col}: {d:e}");
 }
+
+#[test]
+fn the_cost_report_shows_what_friction_costs_and_where() {
+    let file = "tests/paper_a/Extremes.mo";
+    let smooth = load(file, "Extremes.Frictionless", &FoldOptions::default());
+    let rough = load(file, "Extremes.Base", &FoldOptions::default());
+    let of = |m: &LoadedModel, name: &str| {
+        m.compiled
+            .cost_by_component(1)
+            .into_iter()
+            .find(|c| c.component == name)
+            .unwrap_or_else(|| panic!("no component {name}"))
+    };
+    for m in [&smooth, &rough] {
+        let rows = m.compiled.cost_by_component(1);
+        let ops: f64 = rows.iter().map(|c| c.ops).sum();
+        assert_eq!(ops, m.compiled.plan_ops() as f64);
+        let roots: usize = rows.iter().map(|c| c.zero_crossings).sum();
+        assert_eq!(roots, m.compiled.roots.len());
+        assert_eq!(of(m, "FlySlideRollBody").zero_crossings, 0);
+    }
+    // The friction's cost is the contact's: its relations and its force terms.
+    let (s, r) = (
+        of(&smooth, "ConstraintSurfaces"),
+        of(&rough, "ConstraintSurfaces"),
+    );
+    assert_eq!(r.zero_crossings - s.zero_crossings, 2);
+    assert!(s.ops < r.ops, "{} >= {}", s.ops, r.ops);
+}

@@ -191,6 +191,12 @@ fn simulate_flat(
         let ms = (compile_ms, simulate_ms);
         print_stats(a.method, &compiled, &plan, &result, ms);
     }
+    if let Some(depth) = a.cost {
+        eprint!(
+            "{}",
+            cost_table(&compiled, depth.max(1), &result, simulate_ms)
+        );
+    }
     if let Some(msg) = &result.terminated {
         eprintln!(
             "note: terminate() at t = {}: {msg}",
@@ -356,6 +362,51 @@ pub(crate) fn check_tunable(
         })
         .collect();
     Err(lines.join("\n"))
+}
+
+/// The `--cost` table: per component instance, plan operations per evaluation (and
+/// their share), zero crossings and states.
+fn cost_table(m: &CompiledModel, depth: usize, r: &SimResult, simulate_ms: f64) -> String {
+    use std::fmt::Write as _;
+    let rows = m.cost_by_component(depth);
+    let total: f64 = rows.iter().map(|c| c.ops).sum();
+    let width = rows
+        .iter()
+        .map(|c| c.component.len())
+        .chain([9])
+        .max()
+        .unwrap_or(9);
+    let mut out = format!(
+        "cost by component (instance depth {depth}):\n{:width$}  {:>8}  {:>6}  {:>14}  {:>6}\n",
+        "component", "ops", "share", "zero crossings", "states"
+    );
+    for c in &rows {
+        let share = if total > 0.0 {
+            100.0 * c.ops / total
+        } else {
+            0.0
+        };
+        let _ = writeln!(
+            out,
+            "{:width$}  {:>8.1}  {:>5.1}%  {:>14}  {:>6}",
+            c.component, c.ops, share, c.zero_crossings, c.states
+        );
+    }
+    let crossings: usize = rows.iter().map(|c| c.zero_crossings).sum();
+    let states: usize = rows.iter().map(|c| c.states).sum();
+    let _ = writeln!(
+        out,
+        "{:width$}  {:>8.1}  {:>5.1}%  {:>14}  {:>6}",
+        "total", total, 100.0, crossings, states
+    );
+    let _ = writeln!(
+        out,
+        "ops: plan operations per evaluation of the model ({} evaluations in {:.1} ms of \
+         simulation); a component's share of them approximates its share of the time \
+         spent evaluating the model (operations differ in cost)",
+        r.stats.rhs_evaluations, simulate_ms
+    );
+    out
 }
 
 /// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time.

@@ -1,5 +1,6 @@
 //! The runtime: compiled evaluation of the causal plan, initialization, events and the simulation driver.
 pub mod collision;
+pub mod cost;
 pub mod dump;
 pub mod eval;
 pub mod model;

@@ -1,0 +1,182 @@
+//! Where a compiled model's work goes: plan operations per evaluation, zero crossings
+//! and states, attributed to the component instances of the model (`unimo simulate
+//! --cost`), so that a user sees what a scene pays for.
+//!
+//! An explicit step's operations belong to the variables it assigns (the temporaries
+//! before an assignment count for it); a Newton block's residual and Jacobian
+//! operations are shared among its iteration variables' components. A zero crossing
+//! belongs to the component of the first variable its relation names.
+
+use crate::model::{CompiledModel, CompiledStep};
+use crate::tape::{Op, Reg};
+use rustc_hash::FxHashMap as HashMap;
+
+/// The cost of one component instance (or of the model's top level).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ComponentCost {
+    /// The instance path (`ConstraintSurfaces`, `Ball[2]`), or `(top level)`.
+    pub component: String,
+    /// Plan operations per evaluation of the right-hand side (blocks' shares
+    /// fractional).
+    pub ops: f64,
+    pub zero_crossings: usize,
+    pub states: usize,
+}
+
+/// The register an operation writes.
+fn destination(op: &Op) -> Reg {
+    match *op {
+        Op::Const(d, _)
+        | Op::Copy(d, _)
+        | Op::Add(d, ..)
+        | Op::Sub(d, ..)
+        | Op::Mul(d, ..)
+        | Op::Div(d, ..)
+        | Op::Pow(d, ..)
+        | Op::Powi(d, ..)
+        | Op::Neg(d, _)
+        | Op::Fn1(_, d, _)
+        | Op::Fn2(_, d, ..)
+        | Op::Rel(_, d, ..)
+        | Op::RelEvent(_, d, ..)
+        | Op::And(d, ..)
+        | Op::Or(d, ..)
+        | Op::Not(d, _)
+        | Op::Select(d, ..)
+        | Op::Sample(d, _)
+        | Op::Ext(_, d, _)
+        | Op::Held(_, d, ..)
+        | Op::HeldBounds(_, d, ..) => d,
+    }
+}
+
+/// The first `depth` parts of an instance path (`a.b[2].c` at depth 1: `a`, at depth 2:
+/// `a.b[2]`); a name without a component is the top level. `der(x)` is `x`'s.
+pub fn component_of(name: &str, depth: usize) -> String {
+    let name = name.trim_start_matches("der(").trim_start_matches('\'');
+    let mut end = 0;
+    let mut parts = 0;
+    let mut bracket = 0i32;
+    for (k, c) in name.char_indices() {
+        match c {
+            '[' => bracket += 1,
+            ']' => bracket -= 1,
+            '.' if bracket == 0 => {
+                parts += 1;
+                end = k;
+                if parts == depth {
+                    break;
+                }
+            }
+            _ => {}
+        }
+    }
+    if parts == 0 {
+        "(top level)".to_owned()
+    } else {
+        name[..end].to_owned()
+    }
+}
+
+/// The first variable a relation's text names (`ConstraintSurfaces.relvtsqrt <= 0.001`;
+/// function names, followed by `(`, are skipped).
+fn first_name(text: &str) -> &str {
+    let is_name = |c: char| c.is_alphanumeric() || matches!(c, '_' | '.' | '[' | ']' | '\'' | ',');
+    let mut rest = text;
+    loop {
+        let Some(start) = rest.find(|c: char| c.is_alphabetic() || c == '_' || c == '\'') else {
+            return "";
+        };
+        rest = &rest[start..];
+        let end = rest.find(|c: char| !is_name(c)).unwrap_or(rest.len());
+        let (name, after) = rest.split_at(end);
+        if !after.trim_start().starts_with('(') {
+            return name;
+        }
+        rest = after;
+    }
+}
+
+impl CompiledModel {
+    /// Plan operations, zero crossings and states per component at `depth` levels of
+    /// the instance tree, most expensive first.
+    pub fn cost_by_component(&self, depth: usize) -> Vec<ComponentCost> {
+        let names: HashMap<Reg, &str> =
+            self.outputs.iter().map(|(n, r)| (*r, n.as_str())).collect();
+        let mut by: HashMap<String, ComponentCost> = HashMap::default();
+        fn entry(by: &mut HashMap<String, ComponentCost>, c: String) -> &mut ComponentCost {
+            by.entry(c).or_insert_with_key(|c| ComponentCost {
+                component: c.clone(),
+                ..ComponentCost::default()
+            })
+        }
+        for step in &self.steps {
+            match step {
+                CompiledStep::Explicit(tape) => {
+                    let mut pending = 0usize;
+                    let mut last = None;
+                    for op in &tape.ops {
+                        pending += 1;
+                        if let Some(n) = names.get(&destination(op)) {
+                            let c = component_of(n, depth);
+                            entry(&mut by, c.clone()).ops += pending as f64;
+                            last = Some(c);
+                            pending = 0;
+                        }
+                    }
+                    if pending > 0 {
+                        let c = last.unwrap_or_else(|| "(top level)".to_owned());
+                        entry(&mut by, c).ops += pending as f64;
+                    }
+                }
+                CompiledStep::Block(b) => {
+                    let total = (b.residual_tape.ops.len() + b.jacobian_tape.ops.len()) as f64;
+                    let share = total / b.names.len().max(1) as f64;
+                    for n in &b.names {
+                        entry(&mut by, component_of(n, depth)).ops += share;
+                    }
+                }
+            }
+        }
+        for text in &self.root_names {
+            entry(&mut by, component_of(first_name(text), depth)).zero_crossings += 1;
+        }
+        for n in &self.state_names {
+            entry(&mut by, component_of(n, depth)).states += 1;
+        }
+        let mut out: Vec<ComponentCost> = by.into_values().collect();
+        out.sort_by(|a, b| {
+            b.ops
+                .total_cmp(&a.ops)
+                .then(b.zero_crossings.cmp(&a.zero_crossings))
+                .then(a.component.cmp(&b.component))
+        });
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{component_of, first_name};
+
+    #[test]
+    fn components_are_instance_path_prefixes() {
+        assert_eq!(component_of("body.frame.r[1]", 1), "body");
+        assert_eq!(component_of("body.frame.r[1]", 2), "body.frame");
+        assert_eq!(component_of("Ball[2].v[1]", 1), "Ball[2]");
+        assert_eq!(component_of("der(Ball[2].v[1])", 1), "Ball[2]");
+        assert_eq!(component_of("x", 1), "(top level)");
+        assert_eq!(component_of("a[1.5]", 1), "(top level)");
+    }
+
+    #[test]
+    fn a_relation_is_named_by_its_first_variable() {
+        assert_eq!(
+            first_name("ConstraintSurfaces.relvtsqrt <= 0.001"),
+            "ConstraintSurfaces.relvtsqrt"
+        );
+        assert_eq!(first_name("t >= 150"), "t");
+        assert_eq!(first_name("abs(body.v) > 1e-3"), "body.v");
+        assert_eq!(first_name("floor(time / 0.1) (its lower bound)"), "time");
+    }
+}
