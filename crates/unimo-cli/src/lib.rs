@@ -160,6 +160,10 @@ enum Command {
         /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
+        /// Keep every parameter tunable (the DAE, structure and tape then name the
+        /// parameters instead of showing their folded values).
+        #[arg(long)]
+        tunable_all: bool,
     },
 }
 
@@ -366,6 +370,7 @@ fn run_on_this_thread() -> i32 {
             files,
             model,
             libs,
+            tunable_all,
         } => match stage {
             Stage::Ast => match files.first() {
                 Some(file) => check::emit_ast(file, color),
@@ -375,9 +380,18 @@ fn run_on_this_thread() -> i32 {
                 }
             },
             Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
-            Stage::Dae => stages::emit_dae(&files, model.as_deref(), &libs, color),
-            Stage::Structure => stages::emit_structure(&files, model.as_deref(), &libs, color),
-            Stage::Tape => stages::emit_tape(&files, model.as_deref(), &libs, color),
+            Stage::Dae | Stage::Structure | Stage::Tape => {
+                let fold = unimo_dae::FoldOptions {
+                    tunable_all,
+                    ..Default::default()
+                };
+                let m = model.as_deref();
+                match stage {
+                    Stage::Dae => stages::emit_dae(&files, m, &libs, &fold, color),
+                    Stage::Structure => stages::emit_structure(&files, m, &libs, &fold, color),
+                    _ => stages::emit_tape(&files, m, &libs, &fold, color),
+                }
+            }
         },
     }
 }

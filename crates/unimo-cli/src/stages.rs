@@ -20,9 +20,15 @@ pub fn origin(map: &SourceMap, span: Span) -> String {
     format!("{name}:{}", lc.line)
 }
 
-pub fn emit_dae(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color: bool) -> i32 {
+pub fn emit_dae(
+    files: &[PathBuf],
+    model: Option<&str>,
+    libs: &[PathBuf],
+    fold: &unimo_dae::FoldOptions,
+    color: bool,
+) -> i32 {
     with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        let (mut dae, diags) = unimo_dae::lower(flat);
+        let (mut dae, diags) = unimo_dae::lower_with(flat, fold);
         if render_stage(&diags, map, color) {
             return EXIT_MODEL_ERROR;
         }
@@ -32,9 +38,15 @@ pub fn emit_dae(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color:
     })
 }
 
-pub fn emit_tape(files: &[PathBuf], model: Option<&str>, libs: &[PathBuf], color: bool) -> i32 {
+pub fn emit_tape(
+    files: &[PathBuf],
+    model: Option<&str>,
+    libs: &[PathBuf],
+    fold: &unimo_dae::FoldOptions,
+    color: bool,
+) -> i32 {
     with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        match unimo_dae::analyze_model(flat) {
+        match unimo_dae::analyze_model_with(flat, fold) {
             Ok((dae, analysis)) => {
                 let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
                 let names: Vec<String> = dae.ids().map(|s| dae.name(s)).collect();
@@ -54,10 +66,11 @@ pub fn emit_structure(
     files: &[PathBuf],
     model: Option<&str>,
     libs: &[PathBuf],
+    fold: &unimo_dae::FoldOptions,
     color: bool,
 ) -> i32 {
     with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        match unimo_dae::analyze_model(flat) {
+        match unimo_dae::analyze_model_with(flat, fold) {
             Ok((_, analysis)) => {
                 print!("{}", analysis.dump);
                 EXIT_OK

@@ -70,7 +70,11 @@ impl Lowerer<'_> {
             let scalars = (0..dims.iter().product::<usize>()).map(|k| ScalarId(first.0 + k as u32));
             if v.evaluate {
                 evaluate.extend(scalars);
-            } else if options.tunable_all || options.tunable.iter().any(|n| covers(n, &v.name)) {
+            } else if options.tunable_all
+                || (!v.is_final && options.tunable.iter().any(|n| covers(n, &v.name)))
+            {
+                // A `final` parameter cannot be set: it is tunable only through what
+                // it is bound to.
                 tunable.extend(scalars);
             }
         }
