@@ -499,7 +499,7 @@ fn range(e: &Expr, a: &Value, step: Option<&Value>, b: &Value) -> Result<Value, 
             } else {
                 (y - x) / s + 1
             };
-            if n > 10_000_000 {
+            if n > MAX_ELEMENTS {
                 return Err(unsupported(e, "a range of more than 10^7 elements"));
             }
             return Ok(Value::Array(
@@ -516,6 +516,9 @@ fn range(e: &Expr, a: &Value, step: Option<&Value>, b: &Value) -> Result<Value, 
         return Err(unsupported(e, "a range with step 0"));
     }
     let n = ((y - x) / s + 1e-10).floor() as i64 + 1;
+    if n > MAX_ELEMENTS {
+        return Err(unsupported(e, "a range of more than 10^7 elements"));
+    }
     Ok(Value::Array(
         (0..n.max(0))
             .map(|k| Value::Real(x + k as f64 * s))

@@ -883,21 +883,32 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                     // `[:]`: the size comes from the binding.
                     // Its value when it is constant; else its shape, which a binding
                     // of variables (`reset = {b1.on, b2.on}`) has too.
+                    let mut refused = None;
                     let size = merged.binding.clone().and_then(|b| {
                         let flat = self.expr(&b.expr, &b.scope, &mut Vec::new(), &mut Vec::new());
                         match eval::eval(&flat, self, &mut Vec::new()) {
                             Ok(v) => Some(v.dims()),
-                            Err(_) => self.shape_of(&flat),
+                            Err(e) => {
+                                if let EvalError::Unsupported { what, .. } = e {
+                                    refused = Some(what);
+                                }
+                                self.shape_of(&flat)
+                            }
                         }
                     });
                     match size {
                         Some(vd) if vd.len() > dims.len() => dims.push(vd[dims.len()]),
-                        _ => self.error(
-                            "E2003",
-                            "the size of `[:]` must follow from a constant binding".into(),
-                            *span,
-                            "unknown size",
-                        ),
+                        _ => {
+                            let mut d = Diagnostic::error(
+                                "E2003",
+                                "the size of `[:]` must follow from a constant binding",
+                            )
+                            .at(*span, "unknown size");
+                            if let Some(what) = refused {
+                                d = d.with_note(format!("its binding cannot be evaluated: {what}"));
+                            }
+                            self.diags.push(d);
+                        }
                     }
                 }
             }
