@@ -114,19 +114,18 @@ impl Compiled {
             .map_or("", |u| u.as_str())
     }
 
-    /// Runs the model. A failed run is `Err` with the rows computed so far.
+    /// Runs the model: the result (the rows computed so far when the run failed) and
+    /// the run's error. `Err` when the options are wrong (nothing ran).
     pub fn simulate(
         &self,
         overrides: &Overrides,
         method: Method,
-    ) -> Result<SimResult, (ApiError, Option<SimResult>)> {
+    ) -> Result<(SimResult, Option<ApiError>), ApiError> {
         let options = SimOptions::resolve(&self.dae.experiment, overrides, method, false)
-            .map_err(|m| (ApiError::plain(ErrorKind::Usage, "E0007", m), None))?;
+            .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0007", m))?;
         let result = unimo_runtime::sim::simulate(&self.model, &options);
-        match &result.error {
-            None => Ok(result),
-            Some(e) => Err((self.simulation_error(e), Some(result))),
-        }
+        let error = result.error.as_ref().map(|e| self.simulation_error(e));
+        Ok((result, error))
     }
 
     fn simulation_error(&self, e: &SimError) -> ApiError {
@@ -299,19 +298,15 @@ impl Session<'_> {
         compiled: &Compiled,
         overrides: &Overrides,
         method: Method,
-    ) -> Result<SimResult, (ApiError, Option<SimResult>)> {
-        compiled.simulate(overrides, method).map_err(|(mut e, r)| {
-            if e.location.is_none() {
-                if let Some(SimError::NonFinite {
-                    equation: Some(eq), ..
-                }) = r.as_ref().and_then(|r| r.error.as_ref())
-                {
-                    let origin = compiled.dae.equations[eq.index()].origin;
-                    e.location = Some(self.tree.sources.location(origin));
-                }
+    ) -> Result<(SimResult, Option<ApiError>), ApiError> {
+        let (result, mut error) = compiled.simulate(overrides, method)?;
+        if let (Some(e), Some(SimError::NonFinite { equation, .. })) = (&mut error, &result.error) {
+            if let (None, Some(eq)) = (&e.location, equation) {
+                let origin = compiled.dae.equations[eq.index()].origin;
+                e.location = Some(self.tree.sources.location(origin));
             }
-            (e, r)
-        })
+        }
+        Ok((result, error))
     }
 }
 
@@ -319,15 +314,23 @@ impl Session<'_> {
 fn output_ids(dae: &Dae, outputs: &[String]) -> Result<Vec<unimo_dae::expr::ScalarId>, ApiError> {
     let ids: Vec<_> = dae.ids().collect();
     let names: Vec<String> = ids.iter().map(|&s| dae.name(s)).collect();
-    let cols = crate::simulate::select(&names, outputs)
+    let cols = crate::simulate::select(&names, &without_time(outputs))
         .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0003", m))?;
     Ok(cols.into_iter().map(|c| ids[c]).collect())
 }
 
-/// The columns of `names` that `outputs` select (all when empty).
+/// The columns of `names` that `outputs` select (all when empty; `time` is always
+/// there and selects nothing more).
 pub fn select_columns(names: &[String], outputs: &[String]) -> Result<Vec<usize>, ApiError> {
-    crate::simulate::select(names, outputs)
+    if !outputs.is_empty() && outputs.iter().all(|o| o == "time") {
+        return Ok(Vec::new());
+    }
+    crate::simulate::select(names, &without_time(outputs))
         .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0003", m))
+}
+
+fn without_time(outputs: &[String]) -> Vec<String> {
+    outputs.iter().filter(|o| *o != "time").cloned().collect()
 }
 
 /// The solver named as on the command line (`auto`, `bdf`, `radau5`, `dopri5`).

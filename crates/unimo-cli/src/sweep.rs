@@ -93,8 +93,8 @@ fn run_point(session: &mut api::Session<'_>, point: &Point, s: &SweepSettings) -
         }
     };
     let (result, error) = match session.simulate(&compiled, &s.overrides, s.method) {
-        Ok(r) => (Some(r), None),
-        Err((e, r)) => (r, Some(e)),
+        Ok((r, e)) => (Some(r), e),
+        Err(e) => (None, Some(e)),
     };
     let mut outcome = PointOutcome {
         error,

@@ -162,11 +162,7 @@ impl NativeModel {
         let compiled = Arc::clone(&self.compiled);
         let run =
             py.detach(move || api::on_large_stack(|| compiled.simulate(&spec.overrides, method)));
-        let (result, error) = match run {
-            Ok(r) => (r, None),
-            Err((e, r)) if r.is_some() => (r.unwrap_or_default(), Some(e)),
-            Err((e, _)) => return Err(to_py_err(py, &e)),
-        };
+        let (result, error) = run.map_err(|e| to_py_err(py, &e))?;
         let cols = api::select_columns(&result.names, &outputs).map_err(|e| to_py_err(py, &e))?;
         let out = result_dict(py, &self.compiled, &result, &cols)?;
         out.set_item("stats", stats_dict(py, &self.compiled.stats(&result))?)?;
