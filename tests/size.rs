@@ -15,6 +15,7 @@ const ENFORCED: &[&str] = &[
     "unimo-builtins",
     "unimo-cli",
     "unimo-geometry",
+    "unimo-python",
     "unimo-runtime",
     "unimo-solve",
     "unimo-source",

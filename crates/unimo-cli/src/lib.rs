@@ -4,6 +4,7 @@
 //! Exit codes, for the whole tool: 0 success, 1 errors in the model, 2 usage errors
 //! (bad flags, missing files), 3 simulation failure.
 
+pub mod api;
 mod bench;
 mod check;
 mod params;
@@ -13,6 +14,7 @@ pub mod render;
 pub mod results;
 mod simulate;
 mod stages;
+pub mod sweep;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::IsTerminal;
@@ -131,6 +133,18 @@ enum Command {
     /// end time, and the worst scd over the output grid. `--plot` writes a
     /// work-precision diagram (SVG).
     Bench(BenchArgs),
+    /// Run a parameter sweep on threads and write one CSV row per point.
+    ///
+    /// Each `-p` gives a parameter's values: `k=0.5:0.9:5` (5 points from 0.5 to 0.9),
+    /// `f=0.05,0.1` (a list) or `h0=2`; the sweep runs every combination. Each worker
+    /// thread parses the model once and compiles it per point with the point's values
+    /// as modifiers (as `simulate -p` does). A point that fails keeps its error code and
+    /// message in its row while the others run. Columns: the parameters, `status`
+    /// (`ok` or `failed`), `error_code`, `error_message`, then the final value of
+    /// `time` and of every variable (or of `--vars`). Exits 3 when a point failed.
+    ///
+    /// Example: `unimo sweep models/BouncingBall.mo -p e=0.5:0.9:5 -p h0=1,2 --jobs 2 -o sweep.csv`.
+    Sweep(SweepArgs),
     /// Plot columns of a result CSV as an SVG line chart.
     ///
     /// Each `--vars` column is a line against `--x` (default `time`); any column may
@@ -291,6 +305,43 @@ pub struct BenchArgs {
     pub plot: Option<PathBuf>,
 }
 
+#[derive(clap::Args, Debug, Clone)]
+pub struct SweepArgs {
+    /// The Modelica file with the model, then any other files it uses.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    /// The model (full dotted name); may be omitted when the file has one.
+    #[arg(long, value_name = "NAME")]
+    pub model: Option<String>,
+    /// Add a library folder.
+    #[arg(long = "lib", value_name = "DIR")]
+    pub libs: Vec<PathBuf>,
+    /// A parameter's values: `k=0.5:0.9:5` (n points from a to b), `f=0.05,0.1`, `h0=2`.
+    #[arg(short = 'p', long = "param", value_name = "NAME=VALUES")]
+    pub params: Vec<String>,
+    /// Worker threads [default: every core].
+    #[arg(long, short = 'j', value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Write the table here instead of standard output.
+    #[arg(long, short, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Report only these variables' final values (comma separated, as `simulate --vars`).
+    #[arg(long, value_name = "A,B.C", value_delimiter = ',')]
+    pub vars: Vec<String>,
+    /// Stop time [default: experiment StopTime].
+    #[arg(long = "stop-time", value_name = "T")]
+    pub stop_time: Option<f64>,
+    /// Relative tolerance [default: experiment Tolerance, else 1e-6].
+    #[arg(long, value_name = "RTOL")]
+    pub tolerance: Option<f64>,
+    /// Integration method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    pub method: MethodArg,
+    /// Keep these parameters tunable (see `simulate --tunable`).
+    #[arg(long, value_name = "P,Q.R", value_delimiter = ',')]
+    pub tunable: Vec<String>,
+}
+
 /// The format of `simulate`'s result file.
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum ResultFormat {
@@ -364,6 +415,7 @@ fn run_on_this_thread() -> i32 {
         } => check::flatten(&files, model.as_deref(), &libs, stats, color),
         Command::Simulate(args) => simulate::simulate(&args, color),
         Command::Bench(args) => bench::bench(&args, color),
+        Command::Sweep(args) => sweep::command(&args),
         Command::Plot(args) => plot::plot(&args),
         Command::Emit {
             stage,

@@ -25,7 +25,7 @@ pub fn method(m: MethodArg) -> Method {
 }
 
 /// Columns selected by `--vars` (all when empty); Err names an unknown selector.
-fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, String> {
+pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, String> {
     if wanted.is_empty() {
         return Ok((0..names.len()).collect());
     }
