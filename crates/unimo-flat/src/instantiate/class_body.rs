@@ -56,7 +56,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// `check_mods`: whether modified names are checked here (not again in bases).
-    pub(super) fn class_body_inner(
+    fn class_body_inner(
         &mut self,
         class: ClassId,
         prefix: &[RefPart],
@@ -263,7 +263,7 @@ impl Instantiator<'_, '_> {
 
     /// An `outer` component: no variables of its own; its references go to the nearest
     /// `inner` component of the same name in an enclosing instance (spec 5.4).
-    pub(super) fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
+    fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
         let name = d.name.text.as_str();
         // Inners declared in this very instance do not count: they are siblings.
         let own = scope.prefix.len();
@@ -292,12 +292,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// Every modified name must be an element of the class (or one of its bases).
-    pub(super) fn check_modified_names(
-        &mut self,
-        class: ClassId,
-        _composition: &Composition,
-        m: &Mod,
-    ) {
+    fn check_modified_names(&mut self, class: ClassId, _composition: &Composition, m: &Mod) {
         for (name, child) in &m.children {
             if !self.tree.has_component(class, name)
                 && self.tree.member_class(class, name).is_none()

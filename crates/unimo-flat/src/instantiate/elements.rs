@@ -43,7 +43,7 @@ impl Instantiator<'_, '_> {
         out
     }
 
-    pub(super) fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
+    fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
         if m.each {
             return m.clone();
         }
@@ -160,7 +160,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// Element `index` of an array value; `None` for a scalar (left to broadcast).
-    pub(super) fn pick_value(&self, mut v: Value, index: &[i64], span: Span) -> Option<Expr> {
+    fn pick_value(&self, mut v: Value, index: &[i64], span: Span) -> Option<Expr> {
         for &i in index {
             v = match v {
                 Value::Array(items) => items.into_iter().nth(usize::try_from(i - 1).ok()?)?,

@@ -96,7 +96,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// The branches of an `if` or `when` equation, conditions and bodies flattened.
-    pub(super) fn equation_branches(
+    fn equation_branches(
         &mut self,
         branches: &[(Expr, Vec<Equation>)],
         scope: &Scope,
@@ -114,7 +114,7 @@ impl Instantiator<'_, '_> {
         out
     }
 
-    pub(super) fn for_equation(
+    fn for_equation(
         &mut self,
         indices: &[ForIndex],
         body: &[Equation],
@@ -207,7 +207,7 @@ impl Instantiator<'_, '_> {
         self.statement_in(st, scope, &mut Vec::new(), locals, false)
     }
 
-    pub(super) fn statement_in(
+    fn statement_in(
         &mut self,
         st: &Statement,
         scope: &Scope,
@@ -299,7 +299,7 @@ impl Instantiator<'_, '_> {
 }
 
 /// Whether a loop body leaves the loop early (`break`, `return`) at any depth.
-pub(super) fn breaks(body: &[Statement]) -> bool {
+fn breaks(body: &[Statement]) -> bool {
     body.iter().any(|s| match &s.kind {
         StatementKind::Break | StatementKind::Return => true,
         StatementKind::If {
