@@ -48,32 +48,8 @@ impl Lowerer<'_> {
         }
         // Subscripts of an inner part (`p[i].x` in a loop) must be known here: they
         // select the component, hence the variable.
-        let folded;
-        let r = if r.parts[..r.parts.len().saturating_sub(1)]
-            .iter()
-            .any(|p| !p.subscripts.is_empty())
-        {
-            let mut c = r.clone();
-            let n = c.parts.len();
-            for part in &mut c.parts[..n - 1] {
-                for sub in &mut part.subscripts {
-                    if let Subscript::Expr(e) = sub {
-                        if matches!(e.kind, ExprKind::Integer(_)) {
-                            continue;
-                        }
-                        let k = self.constant_int(e)?;
-                        *e = Expr {
-                            kind: ExprKind::Integer(k),
-                            span: e.span,
-                        };
-                    }
-                }
-            }
-            folded = c;
-            &folded
-        } else {
-            r
-        };
+        let folded = self.fold_inner_subscripts(r)?;
+        let r = folded.as_ref().unwrap_or(r);
         let key = unimo_flat::eval::var_key(r);
         let builtin_enum = r.parts.len() == 2
             && matches!(
@@ -108,22 +84,13 @@ impl Lowerer<'_> {
         if !subs.is_empty() && subs.len() == dims.len() {
             if let Some(k) = self.constant_position(&dims, &subs)? {
                 let s = ScalarId(first.0 + k as u32);
-                let e = match self.assigned.as_ref().and_then(|m| m.get(&s)) {
-                    Some(&e) => e,
-                    None => self.var_value(s),
-                };
+                let e = self.current_value(s);
                 return Ok(Tensor::scalar(e));
             }
         }
         let n: usize = dims.iter().product();
         let data = (0..n)
-            .map(|k| {
-                let s = ScalarId(first.0 + k as u32);
-                match self.assigned.as_ref().and_then(|m| m.get(&s)) {
-                    Some(&e) => e,
-                    None => self.var_value(s),
-                }
-            })
+            .map(|k| self.current_value(ScalarId(first.0 + k as u32)))
             .collect();
         let t = Tensor { dims, data };
         let subs = r
@@ -132,6 +99,43 @@ impl Lowerer<'_> {
             .map(|p| p.subscripts.clone())
             .unwrap_or_default();
         self.subscript(t, &subs, r.span)
+    }
+
+    /// `r` with the subscripts of its inner parts folded to Integer literals, or `None`
+    /// when only its last part has subscripts.
+    fn fold_inner_subscripts(&mut self, r: &ComponentRef) -> DaeResult<Option<ComponentRef>> {
+        if !r.parts[..r.parts.len().saturating_sub(1)]
+            .iter()
+            .any(|p| !p.subscripts.is_empty())
+        {
+            return Ok(None);
+        }
+        let mut c = r.clone();
+        let n = c.parts.len();
+        for part in &mut c.parts[..n - 1] {
+            for sub in &mut part.subscripts {
+                if let Subscript::Expr(e) = sub {
+                    if matches!(e.kind, ExprKind::Integer(_)) {
+                        continue;
+                    }
+                    let k = self.constant_int(e)?;
+                    *e = Expr {
+                        kind: ExprKind::Integer(k),
+                        span: e.span,
+                    };
+                }
+            }
+        }
+        Ok(Some(c))
+    }
+
+    /// The value of the model scalar `s`: what the algorithm being lowered assigned to
+    /// it so far, else the variable.
+    fn current_value(&mut self, s: ScalarId) -> ExprId {
+        match self.assigned.as_ref().and_then(|m| m.get(&s)) {
+            Some(&e) => e,
+            None => self.var_value(s),
+        }
     }
 
     /// The row-major position selected by scalar constant subscripts, if they are.
