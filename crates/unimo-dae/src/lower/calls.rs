@@ -127,89 +127,8 @@ impl Lowerer<'_> {
                 Tensor { dims: x.dims, data }
             }
             "initial" => Tensor::scalar(self.a().initial()),
-            "collisionBody" => {
-                // Every argument, flattened in order; the runtime reads them by position
-                // (see `unimo_runtime::collision`).
-                let mut flat = Vec::new();
-                for e in &args.positional {
-                    flat.extend(self.expr(e)?.data);
-                }
-                let Some(named) = crate::dae::CollisionBodyArgs::from_flat(&flat) else {
-                    return Err(DaeError::new(
-                        "E3019",
-                        format!(
-                            "`collisionBody` takes {} scalar arguments, got {}; use \
-                             `Unimo.Collision.CollisionBody` instead of calling it directly",
-                            crate::dae::COLLISION_BODY_ARGS,
-                            flat.len()
-                        ),
-                        span,
-                    ));
-                };
-                // The codes of the shape and the damping law (the library passes its
-                // enumerations; a direct call may pass anything).
-                use crate::collision_args::{LawCode, ShapeCode};
-                let shape_ok = |x: f64| ShapeCode::from_value(x).is_some();
-                let law_ok = |x: f64| LawCode::from_value(x).is_some();
-                let checks = [
-                    (
-                        named.shape,
-                        "shape",
-                        ShapeCode::ALL.len(),
-                        &shape_ok as &dyn Fn(f64) -> bool,
-                    ),
-                    (named.law, "damping law", LawCode::ALL.len(), &law_ok),
-                ];
-                for (arg, what, count, valid) in checks {
-                    if let Some(code) = self.const_value(arg) {
-                        if !valid(code) {
-                            return Err(DaeError::new(
-                                "E3019",
-                                format!(
-                                    "`collisionBody`: {code} is not a {what} code (1..{count}); \
-                                     use `Unimo.Collision.CollisionBody`, whose enumerations \
-                                     give valid codes"
-                                ),
-                                span,
-                            ));
-                        }
-                    }
-                }
-                let site = self.dae.collision.len() as u32;
-                self.dae
-                    .collision
-                    .push(crate::dae::CollisionBody { args: named, span });
-                let data = (0..6).map(|k| self.dae.arena.external(site, k)).collect();
-                Tensor {
-                    dims: vec![6],
-                    data,
-                }
-            }
-            "collisionGaps" => {
-                let mut flat = Vec::new();
-                for e in &args.positional {
-                    flat.extend(self.expr(e)?.data);
-                }
-                let named = crate::dae::CollisionWorldArgs::from_flat(&flat);
-                let Some(named) = named.filter(|_| self.dae.collision_world.is_none()) else {
-                    return Err(DaeError::new(
-                        "E3019",
-                        format!(
-                            "`collisionGaps` takes {} scalar arguments and appears once per model; \
-                             use one `Unimo.Collision.CollisionWorld`",
-                            crate::dae::COLLISION_WORLD_ARGS
-                        ),
-                        span,
-                    ));
-                };
-                self.dae.collision_world = Some(crate::dae::CollisionWorld { args: named, span });
-                let g = crate::dae::COLLISION_GAPS_SITE;
-                let data = (0..2).map(|k| self.dae.arena.external(g, k)).collect();
-                Tensor {
-                    dims: vec![2],
-                    data,
-                }
-            }
+            "collisionBody" => self.collision_body(args, span)?,
+            "collisionGaps" => self.collision_gaps(args, span)?,
             "terminal" => {
                 self.dae.uses_terminal = true;
                 Tensor::scalar(self.a().terminal())
@@ -244,6 +163,94 @@ impl Lowerer<'_> {
             _ => return self.array_builtin(name, args, span),
         };
         Ok(Some(t))
+    }
+
+    /// `collisionGaps(...)`: the model's one collision world and its two gap outputs.
+    fn collision_gaps(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        let mut flat = Vec::new();
+        for e in &args.positional {
+            flat.extend(self.expr(e)?.data);
+        }
+        let named = crate::dae::CollisionWorldArgs::from_flat(&flat);
+        let Some(named) = named.filter(|_| self.dae.collision_world.is_none()) else {
+            return Err(DaeError::new(
+                "E3019",
+                format!(
+                    "`collisionGaps` takes {} scalar arguments and appears once per model; \
+                     use one `Unimo.Collision.CollisionWorld`",
+                    crate::dae::COLLISION_WORLD_ARGS
+                ),
+                span,
+            ));
+        };
+        self.dae.collision_world = Some(crate::dae::CollisionWorld { args: named, span });
+        let g = crate::dae::COLLISION_GAPS_SITE;
+        let data = (0..2).map(|k| self.dae.arena.external(g, k)).collect();
+        Ok(Tensor {
+            dims: vec![2],
+            data,
+        })
+    }
+
+    /// `collisionBody(...)`: its arguments by name in a new collision site (its shape and
+    /// law codes checked when constant), and the six outputs of the site (force, torque).
+    fn collision_body(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        // Every argument, flattened in order; the runtime reads them by position
+        // (see `unimo_runtime::collision`).
+        let mut flat = Vec::new();
+        for e in &args.positional {
+            flat.extend(self.expr(e)?.data);
+        }
+        let Some(named) = crate::dae::CollisionBodyArgs::from_flat(&flat) else {
+            return Err(DaeError::new(
+                "E3019",
+                format!(
+                    "`collisionBody` takes {} scalar arguments, got {}; use \
+                     `Unimo.Collision.CollisionBody` instead of calling it directly",
+                    crate::dae::COLLISION_BODY_ARGS,
+                    flat.len()
+                ),
+                span,
+            ));
+        };
+        // The codes of the shape and the damping law (the library passes its
+        // enumerations; a direct call may pass anything).
+        use crate::collision_args::{LawCode, ShapeCode};
+        let shape_ok = |x: f64| ShapeCode::from_value(x).is_some();
+        let law_ok = |x: f64| LawCode::from_value(x).is_some();
+        let checks = [
+            (
+                named.shape,
+                "shape",
+                ShapeCode::ALL.len(),
+                &shape_ok as &dyn Fn(f64) -> bool,
+            ),
+            (named.law, "damping law", LawCode::ALL.len(), &law_ok),
+        ];
+        for (arg, what, count, valid) in checks {
+            if let Some(code) = self.const_value(arg) {
+                if !valid(code) {
+                    return Err(DaeError::new(
+                        "E3019",
+                        format!(
+                            "`collisionBody`: {code} is not a {what} code (1..{count}); \
+                             use `Unimo.Collision.CollisionBody`, whose enumerations \
+                             give valid codes"
+                        ),
+                        span,
+                    ));
+                }
+            }
+        }
+        let site = self.dae.collision.len() as u32;
+        self.dae
+            .collision
+            .push(crate::dae::CollisionBody { args: named, span });
+        let data = (0..6).map(|k| self.dae.arena.external(site, k)).collect();
+        Ok(Tensor {
+            dims: vec![6],
+            data,
+        })
     }
 
     /// `sum(e for i in r)` and friends.
