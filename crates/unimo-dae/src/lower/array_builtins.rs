@@ -50,6 +50,112 @@ impl Lowerer<'_> {
                 let x = self.positional(args, 0, span)?;
                 tensor::transpose(&x, span)?
             }
+            "cross" => self.cross_product(args, span)?,
+            "skew" => self.skew_matrix(args, span)?,
+            "outerProduct" => {
+                let x = self.positional(args, 0, span)?;
+                let y = self.positional(args, 1, span)?;
+                let mut data = Vec::new();
+                for &a in &x.data {
+                    for &b in &y.data {
+                        data.push(self.dae.arena.mul(a, b));
+                    }
+                }
+                Tensor {
+                    dims: vec![x.data.len(), y.data.len()],
+                    data,
+                }
+            }
+            "scalar" => {
+                let x = self.positional(args, 0, span)?;
+                Tensor::scalar(x.as_scalar(span)?)
+            }
+            // `array(a, b, c)` is `{a, b, c}` (spec 10.4).
+            "array" => {
+                let items = args
+                    .positional
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<DaeResult<Vec<_>>>()?;
+                Tensor::stack(items, span)?
+            }
+            "vector" => {
+                let x = self.positional(args, 0, span)?;
+                Tensor::vector(x.data)
+            }
+            "matrix" => {
+                let x = self.positional(args, 0, span)?;
+                as_matrix(x)
+            }
+            "cat" => {
+                let k = self.constant_int(&args.positional[0])?;
+                let items = args.positional[1..]
+                    .iter()
+                    .map(|e| self.expr(e))
+                    .collect::<DaeResult<Vec<_>>>()?;
+                tensor::concatenate(&items, (k - 1).max(0) as usize, span)?
+            }
+            "String" => return Err(unsupported("`String` outside an assert message", span)),
+            "delay" | "spatialDistribution" | "cardinality" | "getInstanceName" => {
+                return Err(unsupported(format!("`{name}`"), span))
+            }
+            _ => return self.array_constructor(name, args, span),
+        };
+        Ok(Some(t))
+    }
+
+    /// `skew(x)`: the 3x3 matrix of the cross product with the 3-vector `x`.
+    fn skew_matrix(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        let x = self.positional(args, 0, span)?;
+        if x.dims != [3] {
+            return Err(tensor::size_error(&x.dims, &[3], span));
+        }
+        let ar = self.a();
+        let z = ar.zero();
+        let n = |ar: &mut ExprArena, k: usize| ar.neg(x.data[k]);
+        let data = vec![
+            z,
+            n(ar, 2),
+            x.data[1],
+            x.data[2],
+            z,
+            n(ar, 0),
+            n(ar, 1),
+            x.data[0],
+            z,
+        ];
+        Ok(Tensor {
+            dims: vec![3, 3],
+            data,
+        })
+    }
+
+    /// `cross(x, y)` of two 3-vectors.
+    fn cross_product(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        let x = self.positional(args, 0, span)?;
+        let y = self.positional(args, 1, span)?;
+        if x.dims != [3] || y.dims != [3] {
+            return Err(tensor::size_error(&x.dims, &y.dims, span));
+        }
+        let ar = self.a();
+        let c = |ar: &mut ExprArena, i: usize, j: usize| {
+            let p = ar.mul(x.data[i], y.data[j]);
+            let q = ar.mul(x.data[j], y.data[i]);
+            ar.sub(p, q)
+        };
+        let data = vec![c(ar, 1, 2), c(ar, 2, 0), c(ar, 0, 1)];
+        Ok(Tensor::vector(data))
+    }
+
+    /// The array constructors `zeros`, `ones`, `fill`, `identity`, `diagonal` and
+    /// `linspace`; `Ok(None)` when `name` is none of them.
+    fn array_constructor(
+        &mut self,
+        name: &str,
+        args: &CallArgs,
+        span: Span,
+    ) -> DaeResult<Option<Tensor>> {
+        let t = match name {
             "zeros" | "ones" => {
                 let dims = self.dims_args(args, 0)?;
                 let v = self.a().constant(if name == "ones" { 1.0 } else { 0.0 });
@@ -90,59 +196,6 @@ impl Lowerer<'_> {
                     data,
                 }
             }
-            "cross" => {
-                let x = self.positional(args, 0, span)?;
-                let y = self.positional(args, 1, span)?;
-                if x.dims != [3] || y.dims != [3] {
-                    return Err(tensor::size_error(&x.dims, &y.dims, span));
-                }
-                let ar = self.a();
-                let c = |ar: &mut ExprArena, i: usize, j: usize| {
-                    let p = ar.mul(x.data[i], y.data[j]);
-                    let q = ar.mul(x.data[j], y.data[i]);
-                    ar.sub(p, q)
-                };
-                let data = vec![c(ar, 1, 2), c(ar, 2, 0), c(ar, 0, 1)];
-                Tensor::vector(data)
-            }
-            "skew" => {
-                let x = self.positional(args, 0, span)?;
-                if x.dims != [3] {
-                    return Err(tensor::size_error(&x.dims, &[3], span));
-                }
-                let ar = self.a();
-                let z = ar.zero();
-                let n = |ar: &mut ExprArena, k: usize| ar.neg(x.data[k]);
-                let data = vec![
-                    z,
-                    n(ar, 2),
-                    x.data[1],
-                    x.data[2],
-                    z,
-                    n(ar, 0),
-                    n(ar, 1),
-                    x.data[0],
-                    z,
-                ];
-                Tensor {
-                    dims: vec![3, 3],
-                    data,
-                }
-            }
-            "outerProduct" => {
-                let x = self.positional(args, 0, span)?;
-                let y = self.positional(args, 1, span)?;
-                let mut data = Vec::new();
-                for &a in &x.data {
-                    for &b in &y.data {
-                        data.push(self.dae.arena.mul(a, b));
-                    }
-                }
-                Tensor {
-                    dims: vec![x.data.len(), y.data.len()],
-                    data,
-                }
-            }
             "linspace" => {
                 let a = self.positional(args, 0, span)?.as_scalar(span)?;
                 let b = self.positional(args, 1, span)?.as_scalar(span)?;
@@ -161,39 +214,6 @@ impl Lowerer<'_> {
                     data.push(ar.add(a, m));
                 }
                 Tensor::vector(data)
-            }
-            "scalar" => {
-                let x = self.positional(args, 0, span)?;
-                Tensor::scalar(x.as_scalar(span)?)
-            }
-            // `array(a, b, c)` is `{a, b, c}` (spec 10.4).
-            "array" => {
-                let items = args
-                    .positional
-                    .iter()
-                    .map(|a| self.expr(a))
-                    .collect::<DaeResult<Vec<_>>>()?;
-                Tensor::stack(items, span)?
-            }
-            "vector" => {
-                let x = self.positional(args, 0, span)?;
-                Tensor::vector(x.data)
-            }
-            "matrix" => {
-                let x = self.positional(args, 0, span)?;
-                as_matrix(x)
-            }
-            "cat" => {
-                let k = self.constant_int(&args.positional[0])?;
-                let items = args.positional[1..]
-                    .iter()
-                    .map(|e| self.expr(e))
-                    .collect::<DaeResult<Vec<_>>>()?;
-                tensor::concatenate(&items, (k - 1).max(0) as usize, span)?
-            }
-            "String" => return Err(unsupported("`String` outside an assert message", span)),
-            "delay" | "spatialDistribution" | "cardinality" | "getInstanceName" => {
-                return Err(unsupported(format!("`{name}`"), span))
             }
             _ => return Ok(None),
         };
