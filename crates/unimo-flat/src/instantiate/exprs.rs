@@ -60,30 +60,7 @@ impl Instantiator<'_, '_> {
             return r;
         }
         if component {
-            // A reference through an `outer` component goes to its `inner`.
-            let mut head = scope.prefix.to_vec();
-            head.push(r.parts[0].clone());
-            let parts = match self.outer_alias.get(&instance_key_no_subs(&head)) {
-                Some(inner) => {
-                    let mut p = inner.clone();
-                    if let Some(last) = p.last_mut() {
-                        if !r.parts[0].subscripts.is_empty() {
-                            last.subscripts = r.parts[0].subscripts.clone();
-                        }
-                    }
-                    p.extend(r.parts.into_iter().skip(1));
-                    p
-                }
-                None => {
-                    head.extend(r.parts.into_iter().skip(1));
-                    head
-                }
-            };
-            return ComponentRef {
-                global: false,
-                parts,
-                span: r.span,
-            };
+            return self.through_outer(r, scope);
         }
         // A class path: an enumeration literal or a package constant, made global.
         let names: Vec<&str> = r.parts.iter().map(|p| p.name.text.as_str()).collect();
@@ -120,6 +97,34 @@ impl Instantiator<'_, '_> {
             };
         }
         r
+    }
+
+    /// A reference whose first part is an `outer` component, sent to its `inner` (or
+    /// prefixed like any component when the instance has no `inner` for it).
+    fn through_outer(&self, r: ComponentRef, scope: &Scope) -> ComponentRef {
+        let mut head = scope.prefix.to_vec();
+        head.push(r.parts[0].clone());
+        let parts = match self.outer_alias.get(&instance_key_no_subs(&head)) {
+            Some(inner) => {
+                let mut p = inner.clone();
+                if let Some(last) = p.last_mut() {
+                    if !r.parts[0].subscripts.is_empty() {
+                        last.subscripts = r.parts[0].subscripts.clone();
+                    }
+                }
+                p.extend(r.parts.into_iter().skip(1));
+                p
+            }
+            None => {
+                head.extend(r.parts.into_iter().skip(1));
+                head
+            }
+        };
+        ComponentRef {
+            global: false,
+            parts,
+            span: r.span,
+        }
     }
 
     /// `e` flattened in `scope`, outside any loop.
