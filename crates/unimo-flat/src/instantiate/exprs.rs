@@ -6,6 +6,7 @@ use super::{instance_key_no_subs, instance_name, int_expr, part, Instantiator};
 use crate::eval::{self, Value};
 use crate::lookup::{is_builtin_function, Found};
 use crate::modif::Scope;
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -162,113 +163,10 @@ impl Instantiator<'_, '_> {
                 ExprKind::Ref(fr)
             }
             ExprKind::Call { func, args } => {
-                // `.asin(u)` names the built-in from the global scope.
-                let simple = func.parts.len() == 1;
-                if simple && func.parts[0].text == "getInstanceName" && args.positional.is_empty() {
-                    return instance_name(&self.model.name, &scope.prefix, span);
-                }
-                let func = if simple && is_builtin_function(&func.parts[0].text) {
-                    Name {
-                        global: false,
-                        ..func.clone()
-                    }
-                } else {
-                    let parts: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
-                    let found = if func.global {
-                        self.tree.lookup_dotted(None, &parts, false)
-                    } else {
-                        self.lookup_class_path(scope, &parts)
-                    };
-                    match found {
-                        Some(Found::Class(c)) => {
-                            let c = self.real_class(c);
-                            let def = self.tree.get(c).def.clone();
-                            let builtin = crate::external::builtin_alias(&def);
-                            let full = match builtin {
-                                Some(b) => b.to_owned(),
-                                // `Table(...)` of an external object class calls its
-                                // constructor.
-                                None if crate::external::is_external_object(&def) => {
-                                    format!("{}.constructor", self.tree.full_name(c))
-                                }
-                                None => self.tree.full_name(c),
-                            };
-                            Name {
-                                global: builtin.is_none(),
-                                parts: crate::flat::split_name(&full)
-                                    .into_iter()
-                                    .map(|p| Ident {
-                                        text: p.into(),
-                                        span: func.span,
-                                    })
-                                    .collect(),
-                                span: func.span,
-                            }
-                        }
-                        _ => func.clone(),
-                    }
-                };
-                // A reduction over component array elements (`sum(c[i].f for i in
-                // 1:n)`) is written out: `sum({c[1].f, c[2].f, ...})`.
-                if let (Some(body), true) = (args.positional.first(), args.positional.len() == 1) {
-                    if let Some(items) = self.unroll(body, &args.iterators, scope, iters, locals) {
-                        return Expr {
-                            kind: ExprKind::Call {
-                                func,
-                                args: Box::new(CallArgs {
-                                    positional: vec![Expr {
-                                        kind: ExprKind::Array(items),
-                                        span,
-                                    }],
-                                    named: Vec::new(),
-                                    iterators: Vec::new(),
-                                    span: args.span,
-                                }),
-                            },
-                            span,
-                        };
-                    }
-                }
-                let n = args.iterators.len();
-                let iterators = self.indices(&args.iterators, scope, iters, locals);
-                locals.extend(iterators.iter().map(|i| i.name.text.to_string()));
-                let positional = args
-                    .positional
-                    .iter()
-                    .map(|a| self.expr(a, scope, iters, locals))
-                    .collect();
-                let named = args
-                    .named
-                    .iter()
-                    .map(|a| NamedArg {
-                        name: a.name.clone(),
-                        value: self.expr(&a.value, scope, iters, locals),
-                    })
-                    .collect();
-                locals.truncate(locals.len() - n);
-                ExprKind::Call {
-                    func,
-                    args: Box::new(CallArgs {
-                        positional,
-                        named,
-                        iterators,
-                        span: args.span,
-                    }),
-                }
+                return self.call_expr((func, args), span, scope, iters, locals)
             }
             ExprKind::Comprehension { body, indices } => {
-                if let Some(items) = self.unroll(body, indices, scope, iters, locals) {
-                    return Expr {
-                        kind: ExprKind::Array(items),
-                        span,
-                    };
-                }
-                let indices = self.indices(indices, scope, iters, locals);
-                let n = indices.len();
-                locals.extend(indices.iter().map(|i| i.name.text.to_string()));
-                let body = Box::new(self.expr(body, scope, iters, locals));
-                locals.truncate(locals.len() - n);
-                ExprKind::Comprehension { body, indices }
+                self.comprehension_expr((body, indices), scope, iters, locals)
             }
             ExprKind::Unary { op, operand } => ExprKind::Unary {
                 op: *op,
@@ -325,6 +223,142 @@ impl Instantiator<'_, '_> {
             other => other.clone(),
         };
         Expr { kind, span }
+    }
+
+    /// A comprehension flattened: written out as an array when its body selects
+    /// components by the iterator, else with its body and ranges flattened.
+    fn comprehension_expr(
+        &mut self,
+        (body, indices): (&Expr, &[ForIndex]),
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> ExprKind {
+        if let Some(items) = self.unroll(body, indices, scope, iters, locals) {
+            return ExprKind::Array(items);
+        }
+        let indices = self.indices(indices, scope, iters, locals);
+        let n = indices.len();
+        locals.extend(indices.iter().map(|i| i.name.text.to_string()));
+        let body = Box::new(self.expr(body, scope, iters, locals));
+        locals.truncate(locals.len() - n);
+        ExprKind::Comprehension { body, indices }
+    }
+
+    /// A call flattened: its function named by its full name (a built-in's alias, an
+    /// external object's constructor), a reduction over component array elements
+    /// written out, its arguments flattened; `getInstanceName()` replaced by its text.
+    fn call_expr(
+        &mut self,
+        (func, args): (&Name, &CallArgs),
+        span: Span,
+        scope: &Scope,
+        iters: &mut Vec<(String, Value)>,
+        locals: &mut Vec<String>,
+    ) -> Expr {
+        let simple = func.parts.len() == 1;
+        if simple && func.parts[0].text == "getInstanceName" && args.positional.is_empty() {
+            return instance_name(&self.model.name, &scope.prefix, span);
+        }
+        let func = self.call_name(func, scope);
+        // A reduction over component array elements (`sum(c[i].f for i in
+        // 1:n)`) is written out: `sum({c[1].f, c[2].f, ...})`.
+        if let (Some(body), true) = (args.positional.first(), args.positional.len() == 1) {
+            if let Some(items) = self.unroll(body, &args.iterators, scope, iters, locals) {
+                return Expr {
+                    kind: ExprKind::Call {
+                        func,
+                        args: Box::new(CallArgs {
+                            positional: vec![Expr {
+                                kind: ExprKind::Array(items),
+                                span,
+                            }],
+                            named: Vec::new(),
+                            iterators: Vec::new(),
+                            span: args.span,
+                        }),
+                    },
+                    span,
+                };
+            }
+        }
+        let n = args.iterators.len();
+        let iterators = self.indices(&args.iterators, scope, iters, locals);
+        locals.extend(iterators.iter().map(|i| i.name.text.to_string()));
+        let positional = args
+            .positional
+            .iter()
+            .map(|a| self.expr(a, scope, iters, locals))
+            .collect();
+        let named = args
+            .named
+            .iter()
+            .map(|a| NamedArg {
+                name: a.name.clone(),
+                value: self.expr(&a.value, scope, iters, locals),
+            })
+            .collect();
+        locals.truncate(locals.len() - n);
+        Expr {
+            kind: ExprKind::Call {
+                func,
+                args: Box::new(CallArgs {
+                    positional,
+                    named,
+                    iterators,
+                    span: args.span,
+                }),
+            },
+            span,
+        }
+    }
+
+    /// The name a call's function is flattened to: a built-in stays as written (without
+    /// a leading dot), a class gets its full name.
+    fn call_name(&mut self, func: &Name, scope: &Scope) -> Name {
+        // `.asin(u)` names the built-in from the global scope.
+        let simple = func.parts.len() == 1;
+        if simple && is_builtin_function(&func.parts[0].text) {
+            Name {
+                global: false,
+                ..func.clone()
+            }
+        } else {
+            let parts: Vec<&str> = func.parts.iter().map(|p| p.text.as_str()).collect();
+            let found = if func.global {
+                self.tree.lookup_dotted(None, &parts, false)
+            } else {
+                self.lookup_class_path(scope, &parts)
+            };
+            match found {
+                Some(Found::Class(c)) => {
+                    let c = self.real_class(c);
+                    let def = self.tree.get(c).def.clone();
+                    let builtin = crate::external::builtin_alias(&def);
+                    let full = match builtin {
+                        Some(b) => b.to_owned(),
+                        // `Table(...)` of an external object class calls its
+                        // constructor.
+                        None if crate::external::is_external_object(&def) => {
+                            format!("{}.constructor", self.tree.full_name(c))
+                        }
+                        None => self.tree.full_name(c),
+                    };
+                    Name {
+                        global: builtin.is_none(),
+                        parts: crate::flat::split_name(&full)
+                            .into_iter()
+                            .map(|p| Ident {
+                                text: p.into(),
+                                span: func.span,
+                            })
+                            .collect(),
+                        span: func.span,
+                    }
+                }
+                _ => func.clone(),
+            }
+        }
     }
 
     /// The elements of a one-iterator comprehension whose body selects components by
