@@ -102,62 +102,14 @@ impl Instantiator<'_, '_> {
         self.register_class_redeclares(class, composition, prefix, m);
         // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
         // it travels into the bases like an extends modifier (under the instance's).
-        let mut own_redeclares = Mod::default();
-        for e in &composition.elements {
-            if let (true, ElementKind::Component(cc)) = (e.redeclare, &e.kind) {
-                for d in &cc.components {
-                    let mut dm = d
-                        .modification
-                        .as_ref()
-                        .map(|dm| Mod::from_modification(dm, &scope))
-                        .unwrap_or_default();
-                    dm.redeclare = Some((cc.type_name.clone(), scope.clone()));
-                    own_redeclares.children.push((d.name.text.clone(), dm));
-                }
-            }
-        }
+        let own_redeclares = own_redeclares(composition, &scope);
         let has_bases = crate::values::def_has_bases(&def);
         if has_bases {
             self.pending_own
                 .push((prefix_key.clone(), class, m.clone(), scope.clone()));
         }
-        // A class extension `model extends A(m)` first inherits the original `A`.
-        if let ClassBody::Long {
-            extends: Some(ext), ..
-        } = &def.body
-        {
-            if let Some(original) = self.tree.extended_original(class) {
-                let ext = ext
-                    .modification
-                    .as_ref()
-                    .map(|cm| Mod::from_class_mod(cm, &scope))
-                    .unwrap_or_default();
-                let base_mod = m.over(&own_redeclares.over(&ext));
-                self.class_body_inner(original, prefix, &base_mod, variability, top, false);
-            }
-        }
-        // Inherited elements first, each base with the extends modifier under ours.
-        for e in &composition.elements {
-            if let ElementKind::Extends(x) = &e.kind {
-                let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
-                match self.tree.lookup_dotted(Some(class), &parts, true) {
-                    Some(Found::Class(b)) => {
-                        let ext = x
-                            .modification
-                            .as_ref()
-                            .map(|cm| Mod::from_class_mod(cm, &scope))
-                            .unwrap_or_default();
-                        let base_mod = m.over(&own_redeclares.over(&ext));
-                        self.class_body_inner(b, prefix, &base_mod, variability, top, false);
-                    }
-                    Some(Found::Builtin("ExternalObject")) => {} // an external object class
-                    Some(Found::Builtin(_)) => {
-                        self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
-                    }
-                    _ => {} // reported by the name check
-                }
-            }
-        }
+        let base_mods = (m, &own_redeclares);
+        self.inherited_elements(class, &def, &scope, base_mods, variability, top);
         if has_bases {
             self.pending_own.pop();
         }
@@ -187,58 +139,137 @@ impl Instantiator<'_, '_> {
         }
         // Parameters and constants first: sizes and conditions of the others use them.
         for pass in 0..2 {
-            for e in &composition.elements {
-                let ElementKind::Component(cc) = &e.kind else {
-                    continue;
-                };
-                let is_param = matches!(
-                    cc.prefix.variability,
-                    Some(
-                        unimo_syntax::ast::Variability::Parameter
-                            | unimo_syntax::ast::Variability::Constant
-                    )
-                );
-                if (pass == 0) != is_param {
-                    continue;
-                }
-                if e.redeclare {
-                    continue; // instantiated in the base it replaces an element of
-                }
-                for d in &cc.components {
-                    if e.outer && !e.inner {
-                        continue; // aliased above
+            self.components(composition, &scope, m, (pass == 0, variability), top);
+        }
+        self.sections(composition, &scope);
+        self.inners.truncate(inners_before);
+        self.depth -= 1;
+    }
+
+    /// The inherited elements of `class` (instance `scope`), each base with its extends
+    /// modifier under the instance's `m` and the class's own redeclarations; a class
+    /// extension `model extends A(m)` first inherits the original `A`.
+    fn inherited_elements(
+        &mut self,
+        class: ClassId,
+        def: &ClassDef,
+        scope: &Scope,
+        (m, own_redeclares): (&Mod, &Mod),
+        variability: Option<Variability>,
+        top: bool,
+    ) {
+        let prefix = &scope.prefix[..];
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return;
+        };
+        if let ClassBody::Long {
+            extends: Some(ext), ..
+        } = &def.body
+        {
+            if let Some(original) = self.tree.extended_original(class) {
+                let ext = ext
+                    .modification
+                    .as_ref()
+                    .map(|cm| Mod::from_class_mod(cm, scope))
+                    .unwrap_or_default();
+                let base_mod = m.over(&own_redeclares.over(&ext));
+                self.class_body_inner(original, prefix, &base_mod, variability, top, false);
+            }
+        }
+        // Inherited elements first, each base with the extends modifier under ours.
+        for e in &composition.elements {
+            if let ElementKind::Extends(x) = &e.kind {
+                let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
+                match self.tree.lookup_dotted(Some(class), &parts, true) {
+                    Some(Found::Class(b)) => {
+                        let ext = x
+                            .modification
+                            .as_ref()
+                            .map(|cm| Mod::from_class_mod(cm, scope))
+                            .unwrap_or_default();
+                        let base_mod = m.over(&own_redeclares.over(&ext));
+                        self.class_body_inner(b, prefix, &base_mod, variability, top, false);
                     }
-                    if let Some(child) = m.child(&d.name.text) {
-                        self.check_element_modifier(e, d, child);
+                    Some(Found::Builtin("ExternalObject")) => {} // an external object class
+                    Some(Found::Builtin(_)) => {
+                        self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
                     }
-                    // `replaceable T x constrainedby C(mods)`: the constraining
-                    // modifiers apply to `x`, whatever type it ends up with.
-                    if let Some(cm) = e
-                        .constrainedby
-                        .as_ref()
-                        .and_then(|c| c.modification.as_ref())
-                    {
-                        let cmod = Mod::from_class_mod(cm, &scope);
-                        let mut m2 = m.clone();
-                        let name = d.name.text.clone();
-                        let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
-                        m2.children.retain(|(n, _)| *n != name);
-                        m2.children.push((name, child));
-                        self.element_final = e.is_final;
-                        self.component(&scope, &prefix_key, cc, d, &m2, variability, top);
-                        continue;
-                    }
-                    self.element_final = e.is_final;
-                    self.component(&scope, &prefix_key, cc, d, m, variability, top);
+                    _ => {} // reported by the name check
                 }
             }
         }
+    }
+
+    /// Instantiates the component declarations of a composition: its parameters and
+    /// constants (`parameters`) or its other components.
+    fn components(
+        &mut self,
+        composition: &Composition,
+        scope: &Scope,
+        m: &Mod,
+        (parameters, variability): (bool, Option<Variability>),
+        top: bool,
+    ) {
+        let prefix_key = &if scope.prefix.is_empty() {
+            String::new()
+        } else {
+            instance_key(&scope.prefix)
+        };
+        for e in &composition.elements {
+            let ElementKind::Component(cc) = &e.kind else {
+                continue;
+            };
+            let is_param = matches!(
+                cc.prefix.variability,
+                Some(
+                    unimo_syntax::ast::Variability::Parameter
+                        | unimo_syntax::ast::Variability::Constant
+                )
+            );
+            if parameters != is_param {
+                continue;
+            }
+            if e.redeclare {
+                continue; // instantiated in the base it replaces an element of
+            }
+            for d in &cc.components {
+                if e.outer && !e.inner {
+                    continue; // aliased above
+                }
+                if let Some(child) = m.child(&d.name.text) {
+                    self.check_element_modifier(e, d, child);
+                }
+                // `replaceable T x constrainedby C(mods)`: the constraining
+                // modifiers apply to `x`, whatever type it ends up with.
+                if let Some(cm) = e
+                    .constrainedby
+                    .as_ref()
+                    .and_then(|c| c.modification.as_ref())
+                {
+                    let cmod = Mod::from_class_mod(cm, scope);
+                    let mut m2 = m.clone();
+                    let name = d.name.text.clone();
+                    let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
+                    m2.children.retain(|(n, _)| *n != name);
+                    m2.children.push((name, child));
+                    self.element_final = e.is_final;
+                    self.component(scope, prefix_key, cc, d, &m2, variability, top);
+                    continue;
+                }
+                self.element_final = e.is_final;
+                self.component(scope, prefix_key, cc, d, m, variability, top);
+            }
+        }
+    }
+
+    /// The equation and algorithm sections of a composition, flattened into the model.
+    fn sections(&mut self, composition: &Composition, scope: &Scope) {
         for s in &composition.sections {
             match s {
                 Section::Equation(es) => {
                     let mut out = Vec::new();
                     for eq in &es.equations {
-                        self.equation(eq, &scope, &mut Vec::new(), &mut out);
+                        self.equation(eq, scope, &mut Vec::new(), &mut out);
                     }
                     if es.initial {
                         self.model.initial_equations.extend(out);
@@ -248,7 +279,7 @@ impl Instantiator<'_, '_> {
                 }
                 Section::Algorithm(al) => {
                     let mut stmts: Vec<Statement> = Vec::new();
-                    self.model_statements(&al.statements, &scope, &mut Vec::new(), &mut stmts);
+                    self.model_statements(&al.statements, scope, &mut Vec::new(), &mut stmts);
                     if al.initial {
                         self.model.initial_algorithms.push(stmts);
                     } else {
@@ -257,8 +288,6 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
-        self.inners.truncate(inners_before);
-        self.depth -= 1;
     }
 
     /// An `outer` component: no variables of its own; its references go to the nearest
@@ -315,4 +344,23 @@ impl Instantiator<'_, '_> {
             }
         }
     }
+}
+
+/// `redeclare T x(...)` elements of a class, as modifiers of the elements they replace.
+fn own_redeclares(composition: &Composition, scope: &Scope) -> Mod {
+    let mut own_redeclares = Mod::default();
+    for e in &composition.elements {
+        if let (true, ElementKind::Component(cc)) = (e.redeclare, &e.kind) {
+            for d in &cc.components {
+                let mut dm = d
+                    .modification
+                    .as_ref()
+                    .map(|dm| Mod::from_modification(dm, scope))
+                    .unwrap_or_default();
+                dm.redeclare = Some((cc.type_name.clone(), scope.clone()));
+                own_redeclares.children.push((d.name.text.clone(), dm));
+            }
+        }
+    }
+    own_redeclares
 }
