@@ -9,7 +9,8 @@ use crate::eval::{self, Value};
 use crate::flat::{FlatType, FlatVar, Variability};
 use crate::lookup::Found;
 use crate::modif::{Bound, Mod, Scope};
-use unimo_source::Diagnostic;
+use crate::tree::ClassId;
+use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -25,23 +26,8 @@ impl Instantiator<'_, '_> {
         top: bool,
     ) {
         let name = d.name.text.as_str();
-        let Some(level) = self.declared.last_mut() else {
+        if !self.first_declaration(scope, d) {
             return;
-        };
-        if let Some(seen) = level {
-            if let Some(first) = seen.get(name).copied() {
-                let owner = if scope.prefix.is_empty() {
-                    self.model.name.clone()
-                } else {
-                    instance_key(&scope.prefix)
-                };
-                self.diags.push(duplicate(name, &owner, d.name.span, first));
-                if let Some(f) = self.duplicate_found.last_mut() {
-                    *f = true;
-                }
-                return;
-            }
-            seen.insert(d.name.text.clone(), d.name.span);
         }
         let decl_mod = d
             .modification
@@ -62,24 +48,232 @@ impl Instantiator<'_, '_> {
             k.push_str(name);
             k
         };
-        if let Some(cond) = &d.condition {
-            let flat = self.expr(cond, scope, &mut Vec::new(), &mut Vec::new());
-            match eval::eval(&flat, self, &mut Vec::new()) {
-                Ok(Value::Bool(false)) => {
-                    self.absent.push(key);
-                    return;
-                }
-                Ok(Value::Bool(true)) => {}
-                Ok(_) => self.error(
-                    "E2003",
-                    "the condition of a conditional component must be Boolean".into(),
-                    cond.span,
-                    "not Boolean",
-                ),
-                Err(e) => self.eval_error(e, "condition of a conditional component"),
+        if !self.is_present(scope, d) {
+            self.absent.push(key);
+            return;
+        }
+        let found = self.clause_type(scope, cc, d, &mut merged);
+        let Some(found) = found else {
+            // The name check covers the flattened class and its nested classes; a type
+            // unknown in a class used from elsewhere (a record, a library model) is
+            // reported here (`flatten` drops the repeat of one already reported).
+            let d = crate::resolve::unknown_name(self.tree, scope.class, &cc.type_name, "type");
+            self.diags.push(d);
+            return;
+        };
+        let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, merged) else {
+            return;
+        };
+        let variability = match cc.prefix.variability {
+            Some(unimo_syntax::ast::Variability::Constant) => Some(Variability::Constant),
+            Some(unimo_syntax::ast::Variability::Parameter) => Some(Variability::Parameter),
+            Some(unimo_syntax::ast::Variability::Discrete) => Some(Variability::Discrete),
+            None => inherited,
+        };
+        let dims = self.component_dims(scope, cc, d, &merged, &short_dims);
+        let count = dims
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
+            .unwrap_or(usize::MAX);
+        if !self.spend(count, d.span) {
+            return;
+        }
+        match kind {
+            Kind::Builtin(ty) => {
+                let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
+                self.model.vars.push(var);
+            }
+            Kind::Class(c) => {
+                let declaration = (scope, cc, d);
+                self.structured_component(c, key, merged, dims, declaration, variability, top);
             }
         }
-        let found = match &merged.redeclare {
+    }
+
+    /// A component of a class type: a record's binding split into field bindings or
+    /// kept as a record equation, its causality passed down, its class body instantiated
+    /// once or per element of an array.
+    #[allow(clippy::too_many_arguments)]
+    fn structured_component(
+        &mut self,
+        c: ClassId,
+        key: String,
+        merged: Mod,
+        dims: Vec<usize>,
+        (scope, cc, d): (&Scope, &ComponentClause, &ComponentDecl),
+        variability: Option<Variability>,
+        top: bool,
+    ) {
+        let name = d.name.text.as_str();
+        if self.partial_instance(c, &key, d) {
+            return;
+        }
+        let mut path = Vec::with_capacity(scope.prefix.len() + 1);
+        path.extend_from_slice(&scope.prefix);
+        path.push(part(name, d.name.span));
+        let record = self.is_record(c);
+        // A record binding is split into field bindings where it can be
+        // (per element of an array of records).
+        let merged = if record && dims.is_empty() {
+            self.note_record_instance(&key, c);
+            self.split_record_binding(c, merged)
+        } else {
+            merged
+        };
+        // An array of records is bound element by element when its binding
+        // can be taken apart (an array of constructor calls, a record array).
+        let per_element = record
+            && !dims.is_empty()
+            && merged.binding.as_ref().is_some_and(|b| {
+                let first = vec![1; dims.len()];
+                self.pick_element(&b.expr, &b.scope, &first).is_some()
+            });
+        // A binding of a structured component left whole is a record equation.
+        if !per_element {
+            self.record_binding_equation(&merged, &path, variability, &key, d.span);
+        }
+        // `input`/`output` on a structured component applies to its variables;
+        // those of the top-level model's connectors are the model's interface.
+        let saved = self.inherited_causality;
+        self.inherited_causality = cc.prefix.causality.or(saved);
+        if self.tree.get(c).def.prefixes.expandable {
+            self.expandable.push(key.clone());
+        }
+        let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
+        if dims.is_empty() {
+            self.class_body(c, &path, &merged, variability, top);
+        } else {
+            let elements = (record, per_element);
+            self.structured_elements(c, &path, &merged, &dims, elements, variability, top, d.span);
+        }
+        self.inherited_causality = saved;
+    }
+
+    /// An instance of a partial class (spec 4.7; an `outer` component is not
+    /// instantiated here, it refers to its inner): `E2009`, and `true`.
+    fn partial_instance(&mut self, c: ClassId, key: &str, d: &ComponentDecl) -> bool {
+        if !self.tree.get(c).def.partial {
+            return false;
+        }
+        let class_name = self.tree.full_name(c);
+        self.diags.push(
+            Diagnostic::error(
+                "E2009",
+                format!(
+                    "component `{key}` is an instance of the partial class \
+                     `{class_name}`"
+                ),
+            )
+            .at(d.name.span, "instance of a partial class")
+            .with_label(self.tree.get(c).def.name.span, "declared `partial` here")
+            .with_help("use a class that extends it, or redeclare the component with one"),
+        );
+        true
+    }
+
+    /// The elements of an array of structured components, each with its part of the
+    /// modifiers (a record element with its part of the binding).
+    #[allow(clippy::too_many_arguments)]
+    fn structured_elements(
+        &mut self,
+        c: ClassId,
+        path: &[RefPart],
+        merged: &Mod,
+        dims: &[usize],
+        (record, per_element): (bool, bool),
+        variability: Option<Variability>,
+        top: bool,
+        span: Span,
+    ) {
+        for t in index_tuples(dims) {
+            let mut p = path.to_vec();
+            if let Some(last) = p.last_mut() {
+                last.subscripts = t
+                    .iter()
+                    .map(|i| Subscript::Expr(int_expr(*i, span)))
+                    .collect();
+            }
+            // A modifier without `each` gives element t its part of the
+            // array value (spec 7.2.5).
+            let mut element = self.element_mod(merged, &t);
+            if record {
+                let key = instance_key(&p);
+                self.note_record_instance(&key, c);
+                element.binding = if per_element {
+                    merged.binding.as_ref().and_then(|b| {
+                        let e = self.pick_element(&b.expr, &b.scope, &t)?;
+                        Some(Bound {
+                            expr: e,
+                            scope: b.scope.clone(),
+                        })
+                    })
+                } else {
+                    None
+                };
+                element = self.split_record_binding(c, element);
+                self.record_binding_equation(&element, &p, variability, &key, span);
+            }
+            self.class_body(c, &p, &element, variability, top);
+        }
+    }
+
+    /// Whether `d` is the first declaration of its name in the class being instantiated
+    /// (a second one is `E2005`, reported here).
+    fn first_declaration(&mut self, scope: &Scope, d: &ComponentDecl) -> bool {
+        let name = d.name.text.as_str();
+        let Some(level) = self.declared.last_mut() else {
+            return false;
+        };
+        if let Some(seen) = level {
+            if let Some(first) = seen.get(name).copied() {
+                let owner = if scope.prefix.is_empty() {
+                    self.model.name.clone()
+                } else {
+                    instance_key(&scope.prefix)
+                };
+                self.diags.push(duplicate(name, &owner, d.name.span, first));
+                if let Some(f) = self.duplicate_found.last_mut() {
+                    *f = true;
+                }
+                return false;
+            }
+            seen.insert(d.name.text.clone(), d.name.span);
+        }
+        true
+    }
+
+    /// Whether a component is present: not a conditional one whose condition is false.
+    fn is_present(&mut self, scope: &Scope, d: &ComponentDecl) -> bool {
+        let Some(cond) = &d.condition else {
+            return true;
+        };
+        let flat = self.expr(cond, scope, &mut Vec::new(), &mut Vec::new());
+        match eval::eval(&flat, self, &mut Vec::new()) {
+            Ok(Value::Bool(false)) => return false,
+            Ok(Value::Bool(true)) => {}
+            Ok(_) => self.error(
+                "E2003",
+                "the condition of a conditional component must be Boolean".into(),
+                cond.span,
+                "not Boolean",
+            ),
+            Err(e) => self.eval_error(e, "condition of a conditional component"),
+        }
+        true
+    }
+
+    /// The class or type of a component clause: its redeclared class (checked to fit),
+    /// or the clause's type with a replaceable class's constraining modifiers merged into
+    /// `merged`.
+    fn clause_type(
+        &mut self,
+        scope: &Scope,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+        merged: &mut Mod,
+    ) -> Option<Found> {
+        let name = d.name.text.as_str();
+        match &merged.redeclare {
             Some((n, s)) => {
                 let parts: Vec<&str> = n.parts.iter().map(|p| p.text.as_str()).collect();
                 let found = self.tree.lookup_dotted(Some(s.class), &parts, false);
@@ -104,7 +298,7 @@ impl Instantiator<'_, '_> {
                         let mut unconstrained = true;
                         if let Some(Found::Class(c)) = found {
                             if let Some(cmod) = self.class_constraint(scope, &parts, c, d.span) {
-                                merged = merged.over_into(cmod);
+                                *merged = std::mem::take(merged).over_into(cmod);
                                 unconstrained = false;
                             }
                         }
@@ -115,24 +309,19 @@ impl Instantiator<'_, '_> {
                     }
                 }
             }
-        };
-        let Some(found) = found else {
-            // The name check covers the flattened class and its nested classes; a type
-            // unknown in a class used from elsewhere (a record, a library model) is
-            // reported here (`flatten` drops the repeat of one already reported).
-            let d = crate::resolve::unknown_name(self.tree, scope.class, &cc.type_name, "type");
-            self.diags.push(d);
-            return;
-        };
-        let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, merged) else {
-            return;
-        };
-        let variability = match cc.prefix.variability {
-            Some(unimo_syntax::ast::Variability::Constant) => Some(Variability::Constant),
-            Some(unimo_syntax::ast::Variability::Parameter) => Some(Variability::Parameter),
-            Some(unimo_syntax::ast::Variability::Discrete) => Some(Variability::Discrete),
-            None => inherited,
-        };
+        }
+    }
+
+    /// A component's dimensions: the name's, the clause's, then those of short class
+    /// definitions of its type; `[:]` sized by the binding.
+    fn component_dims(
+        &mut self,
+        scope: &Scope,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+        merged: &Mod,
+        short_dims: &[(Subscript, Scope)],
+    ) -> Vec<usize> {
         let mut dims = Vec::new();
         // `Real[3] x[2]` is `Real x[2, 3]` (spec 10.1): the name's dimensions come first.
         for s in d.dims.iter().chain(&cc.type_dims) {
@@ -165,115 +354,14 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
-        for (sub, dim_scope) in &short_dims {
+        for (sub, dim_scope) in short_dims {
             if let Subscript::Expr(e) = sub {
                 if let Some(n) = self.dimension(e, dim_scope) {
                     dims.push(n);
                 }
             }
         }
-        let count = dims
-            .iter()
-            .try_fold(1usize, |acc, &n| acc.checked_mul(n))
-            .unwrap_or(usize::MAX);
-        if !self.spend(count, d.span) {
-            return;
-        }
-        match kind {
-            Kind::Builtin(ty) => {
-                let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
-                self.model.vars.push(var);
-            }
-            Kind::Class(c) => {
-                // An instance of a partial class (spec 4.7; an `outer` component is
-                // not instantiated here, it refers to its inner).
-                if self.tree.get(c).def.partial {
-                    let class_name = self.tree.full_name(c);
-                    self.diags.push(
-                        Diagnostic::error(
-                            "E2009",
-                            format!(
-                                "component `{key}` is an instance of the partial class \
-                                 `{class_name}`"
-                            ),
-                        )
-                        .at(d.name.span, "instance of a partial class")
-                        .with_label(self.tree.get(c).def.name.span, "declared `partial` here")
-                        .with_help(
-                            "use a class that extends it, or redeclare the component with one",
-                        ),
-                    );
-                    return;
-                }
-                let mut path = Vec::with_capacity(scope.prefix.len() + 1);
-                path.extend_from_slice(&scope.prefix);
-                path.push(part(name, d.name.span));
-                let record = self.is_record(c);
-                // A record binding is split into field bindings where it can be
-                // (per element of an array of records).
-                let merged = if record && dims.is_empty() {
-                    self.note_record_instance(&key, c);
-                    self.split_record_binding(c, merged)
-                } else {
-                    merged
-                };
-                // An array of records is bound element by element when its binding
-                // can be taken apart (an array of constructor calls, a record array).
-                let per_element = record
-                    && !dims.is_empty()
-                    && merged.binding.as_ref().is_some_and(|b| {
-                        let first = vec![1; dims.len()];
-                        self.pick_element(&b.expr, &b.scope, &first).is_some()
-                    });
-                // A binding of a structured component left whole is a record equation.
-                if !per_element {
-                    self.record_binding_equation(&merged, &path, variability, &key, d.span);
-                }
-                // `input`/`output` on a structured component applies to its variables;
-                // those of the top-level model's connectors are the model's interface.
-                let saved = self.inherited_causality;
-                self.inherited_causality = cc.prefix.causality.or(saved);
-                if self.tree.get(c).def.prefixes.expandable {
-                    self.expandable.push(key.clone());
-                }
-                let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
-                if dims.is_empty() {
-                    self.class_body(c, &path, &merged, variability, top);
-                } else {
-                    for t in index_tuples(&dims) {
-                        let mut p = path.clone();
-                        if let Some(last) = p.last_mut() {
-                            last.subscripts = t
-                                .iter()
-                                .map(|i| Subscript::Expr(int_expr(*i, d.span)))
-                                .collect();
-                        }
-                        // A modifier without `each` gives element t its part of the
-                        // array value (spec 7.2.5).
-                        let mut element = self.element_mod(&merged, &t);
-                        if record {
-                            let key = instance_key(&p);
-                            self.note_record_instance(&key, c);
-                            element.binding = if per_element {
-                                merged.binding.as_ref().and_then(|b| {
-                                    let e = self.pick_element(&b.expr, &b.scope, &t)?;
-                                    Some(Bound {
-                                        expr: e,
-                                        scope: b.scope.clone(),
-                                    })
-                                })
-                            } else {
-                                None
-                            };
-                            element = self.split_record_binding(c, element);
-                            self.record_binding_equation(&element, &p, variability, &key, d.span);
-                        }
-                        self.class_body(c, &p, &element, variability, top);
-                    }
-                }
-                self.inherited_causality = saved;
-            }
-        }
+        dims
     }
 
     #[allow(clippy::too_many_arguments)]
