@@ -99,7 +99,7 @@ impl Lowerer<'_> {
             "delay" | "spatialDistribution" | "cardinality" | "getInstanceName" => {
                 return Err(unsupported(format!("`{name}`"), span))
             }
-            _ => return self.array_constructor(name, args, span),
+            _ => return self.new_array(name, args, span),
         };
         Ok(Some(t))
     }
@@ -149,12 +149,7 @@ impl Lowerer<'_> {
 
     /// The array constructors `zeros`, `ones`, `fill`, `identity`, `diagonal` and
     /// `linspace`; `Ok(None)` when `name` is none of them.
-    fn array_constructor(
-        &mut self,
-        name: &str,
-        args: &CallArgs,
-        span: Span,
-    ) -> DaeResult<Option<Tensor>> {
+    fn new_array(&mut self, name: &str, args: &CallArgs, span: Span) -> DaeResult<Option<Tensor>> {
         let t = match name {
             "zeros" | "ones" => {
                 let dims = self.dims_args(args, 0)?;

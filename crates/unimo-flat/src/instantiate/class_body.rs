@@ -352,12 +352,7 @@ fn own_redeclares(composition: &Composition, scope: &Scope) -> Mod {
     for e in &composition.elements {
         if let (true, ElementKind::Component(cc)) = (e.redeclare, &e.kind) {
             for d in &cc.components {
-                let mut dm = d
-                    .modification
-                    .as_ref()
-                    .map(|dm| Mod::from_modification(dm, scope))
-                    .unwrap_or_default();
-                dm.redeclare = Some((cc.type_name.clone(), scope.clone()));
+                let dm = Mod::redeclaring(cc, d, scope);
                 own_redeclares.children.push((d.name.text.clone(), dm));
             }
         }
