@@ -14,6 +14,8 @@ const MAX_FN_LINES: usize = 100;
 const ENFORCED: &[&str] = &[
     "unimo-builtins",
     "unimo-cli",
+    "unimo-dae",
+    "unimo-flat",
     "unimo-geometry",
     "unimo-python",
     "unimo-runtime",

@@ -38,16 +38,7 @@ fn rank(dae: &Dae, s: ScalarId) -> (bool, bool, usize, std::cmp::Reverse<u32>) {
 
 pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     let mut stats = AliasStats::default();
-    let mut reinit_targets = rustc_hash::FxHashSet::default();
-    for w in &dae.whens {
-        for b in &w.branches {
-            for (a, _) in &b.actions {
-                if let WhenAction::Reinit { state, .. } = a {
-                    reinit_targets.insert(*state);
-                }
-            }
-        }
-    }
+    let reinit_targets = reinit_targets(dae);
     let mut map: HashMap<ScalarId, ExprId> = HashMap::default();
     // Representative -> the scalars currently mapped onto it (so that map values never
     // mention an eliminated scalar).
@@ -111,31 +102,7 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
                         eliminate(dae, &mut map, &mut members, elim, value, Some(rep));
                         *kept = false;
                         stats.aliases += 1;
-                        // A fixed start of the alias fixes the representative (unless
-                        // it is fixed itself); otherwise the representative inherits a
-                        // start value it lacks.
-                        let elim_fixed = dae.scalar(elim).fixed == Some(true);
-                        let rep_fixed = dae.scalar(rep).fixed == Some(true);
-                        if let (true, false, Some(st)) =
-                            (elim_fixed, rep_fixed, dae.scalar(elim).start)
-                        {
-                            let st = if value == rep_var {
-                                st
-                            } else {
-                                dae.arena.neg(st)
-                            };
-                            dae.scalars[rep.index()].start = Some(st);
-                            dae.scalars[rep.index()].fixed = Some(true);
-                        } else if dae.scalar(rep).start.is_none() {
-                            if let Some(st) = dae.scalar(elim).start {
-                                let st = if value == rep_var {
-                                    st
-                                } else {
-                                    dae.arena.neg(st)
-                                };
-                                dae.scalars[rep.index()].start = Some(st);
-                            }
-                        }
+                        inherit_start(dae, elim, rep, value == rep_var);
                     }
                 }
                 _ => {}
@@ -148,7 +115,56 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     if map.is_empty() {
         return stats;
     }
-    // Resolve chains (x -> y where y was eliminated later).
+    resolve_chains(dae, &mut map);
+    for (&s, &v) in &map {
+        dae.scalars[s.index()].alias = Some(v);
+    }
+    let mut k = 0;
+    dae.equations.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
+    substitute_aliases(dae, &map);
+    stats
+}
+
+/// The states some `reinit` assigns: they are never eliminated.
+fn reinit_targets(dae: &Dae) -> rustc_hash::FxHashSet<ScalarId> {
+    let mut reinit_targets = rustc_hash::FxHashSet::default();
+    for w in &dae.whens {
+        for b in &w.branches {
+            for (a, _) in &b.actions {
+                if let WhenAction::Reinit { state, .. } = a {
+                    reinit_targets.insert(*state);
+                }
+            }
+        }
+    }
+    reinit_targets
+}
+
+/// The start value the representative `rep` takes over from the eliminated `elim`
+/// (`elim = rep` when `same_sign`, else `elim = -rep`).
+fn inherit_start(dae: &mut Dae, elim: ScalarId, rep: ScalarId, same_sign: bool) {
+    // A fixed start of the alias fixes the representative (unless
+    // it is fixed itself); otherwise the representative inherits a
+    // start value it lacks.
+    let elim_fixed = dae.scalar(elim).fixed == Some(true);
+    let rep_fixed = dae.scalar(rep).fixed == Some(true);
+    if let (true, false, Some(st)) = (elim_fixed, rep_fixed, dae.scalar(elim).start) {
+        let st = if same_sign { st } else { dae.arena.neg(st) };
+        dae.scalars[rep.index()].start = Some(st);
+        dae.scalars[rep.index()].fixed = Some(true);
+    } else if dae.scalar(rep).start.is_none() {
+        if let Some(st) = dae.scalar(elim).start {
+            let st = if same_sign { st } else { dae.arena.neg(st) };
+            dae.scalars[rep.index()].start = Some(st);
+        }
+    }
+}
+
+/// Resolves chains (x -> y where y was eliminated later).
+fn resolve_chains(dae: &mut Dae, map: &mut HashMap<ScalarId, ExprId>) {
     let keys: Vec<ScalarId> = {
         let mut k: Vec<_> = map.keys().copied().collect();
         k.sort();
@@ -172,16 +188,13 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
             break;
         }
     }
-    for (&s, &v) in &map {
-        dae.scalars[s.index()].alias = Some(v);
-    }
+}
+
+/// Rewrites the equations, initial equations, `when` clauses, assertions and external
+/// sites' arguments with the eliminated scalars replaced by their values.
+fn substitute_aliases(dae: &mut Dae, map: &HashMap<ScalarId, ExprId>) {
     let mut memo = HashMap::default();
     let lookup = |s: ScalarId| map.get(&s).copied();
-    let mut k = 0;
-    dae.equations.retain(|_| {
-        k += 1;
-        keep[k - 1]
-    });
     for e in dae
         .equations
         .iter_mut()
@@ -218,7 +231,6 @@ pub fn eliminate_aliases(dae: &mut Dae) -> AliasStats {
     if let Some(w) = dae.collision_world.as_mut() {
         w.args = w.args.map(|x| dae.arena.substitute(x, &lookup, &mut memo));
     }
-    stats
 }
 
 /// Records `elim = value` and rewrites the scalars that were mapped onto `elim`.

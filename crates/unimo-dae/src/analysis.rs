@@ -279,80 +279,19 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     let blocks = st::blt(&graph, &matching, |v| dummies.is_unknown[v.index()])
         .map_err(|e| struct_error(&sys, e))?;
 
-    // Solvability of the edges inside blocks of size > 1 (for tearing).
-    let mut parameter_values: HashMap<ScalarId, f64> = HashMap::default();
-    let mut solvable: HashSet<(u32, u32)> = HashSet::default();
-    let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::default();
-    for b in &blocks {
-        if b.size() <= 1 {
-            continue;
-        }
-        for &e in &b.eqs {
-            let r = sys.dae.residual(EqId(e.0));
-            for &v in graph.eq_vars(e) {
-                if !b.vars.contains(&v) {
-                    continue;
-                }
-                let s = sys.scalar(v);
-                if let Some((sol, coef)) = solve_linear(&mut sys.dae.arena, r, s) {
-                    let known_coef = sys.dae.arena.vars(coef).iter().all(|&x| {
-                        !matches!(
-                            sys.dae.scalar(x).kind,
-                            ScalarKind::Continuous | ScalarKind::Derivative
-                        )
-                    });
-                    // A coefficient with a condition (an if-equation that solves this
-                    // variable in one branch only) may be 0 in the other branch: the
-                    // variable is then left to Newton, which sees the branch in force.
-                    if known_coef
-                        && !has_if(sys.dae, coef)
-                        && !mentions(sys.dae, coef, &selectors)
-                        && !zero_at_parameters(sys.dae, &mut parameter_values, coef)
-                    {
-                        solvable.insert((e.0, v.0));
-                        solutions.insert((e.0, v.0), sol);
-                    }
-                }
-            }
-        }
-    }
+    let (solvable, solutions) = solvable_edges(&mut sys, &graph, &blocks, &selectors);
     let mut tearing = st::Tearing::new();
     let solv = |e: st::EqId, v: st::VarId| solvable.contains(&(e.0, v.0));
 
-    let mut plan = Plan::default();
-    let mut states: Vec<ScalarId> = dummies.states.iter().map(|&v| sys.scalar(v)).collect();
-    states.sort();
-    for &s in &states {
-        let d = sys
-            .dae
-            .scalar(s)
-            .derivative
-            .expect("a state has a derivative");
-        plan.states.push(s);
-        plan.derivatives.push(d);
-    }
-    plan.dummy_derivatives = dummies.dummies.iter().map(|&v| sys.scalar(v)).collect();
+    let mut plan = plan_with_states(&sys, &dummies);
     plan.state_sets = state_sets;
     let mut torn_count = 0;
     let mut largest = 0;
     for b in &blocks {
         largest = largest.max(b.size());
         if b.size() == 1 {
-            let (e, v) = (b.eqs[0], b.vars[0]);
-            let eq = EqId(e.0);
-            let s = sys.scalar(v);
-            let r = sys.dae.residual(eq);
-            match solve_linear(&mut sys.dae.arena, r, s) {
-                Some((value, coef))
-                    if !has_if(sys.dae, coef) && !mentions(sys.dae, coef, &selectors) =>
-                {
-                    plan.steps.push(PlanStep::Assign { var: s, value, eq })
-                }
-                _ => {
-                    let block = newton_block(sys.dae, &[eq], &[s], &[], &[r]);
-                    plan.steps.push(PlanStep::Block(block));
-                }
-            }
+            let step = single_step(&mut sys, b.eqs[0], b.vars[0], &selectors);
+            plan.steps.push(step);
             continue;
         }
         let torn = tearing
@@ -396,6 +335,94 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         ..PlanStats::default()
     };
     Ok(Analysis { plan, dump })
+}
+
+/// A plan with no steps yet: the selected states (sorted) with their derivatives, and
+/// the dummy derivatives.
+fn plan_with_states(sys: &DaeSystem<'_>, dummies: &st::DummyDerivatives) -> Plan {
+    let mut plan = Plan::default();
+    let mut states: Vec<ScalarId> = dummies.states.iter().map(|&v| sys.scalar(v)).collect();
+    states.sort();
+    for &s in &states {
+        let d = sys
+            .dae
+            .scalar(s)
+            .derivative
+            .expect("a state has a derivative");
+        plan.states.push(s);
+        plan.derivatives.push(d);
+    }
+    plan.dummy_derivatives = dummies.dummies.iter().map(|&v| sys.scalar(v)).collect();
+    plan
+}
+
+/// Solvability of the edges inside blocks of size > 1 (for tearing): the edges whose
+/// equation is linear in the variable with a known coefficient that cannot be zero, and
+/// the solution of each.
+#[allow(clippy::type_complexity)]
+fn solvable_edges(
+    sys: &mut DaeSystem<'_>,
+    graph: &st::BipartiteGraph,
+    blocks: &[st::Block],
+    selectors: &HashSet<ScalarId>,
+) -> (HashSet<(u32, u32)>, HashMap<(u32, u32), ExprId>) {
+    let mut parameter_values: HashMap<ScalarId, f64> = HashMap::default();
+    let mut solvable: HashSet<(u32, u32)> = HashSet::default();
+    let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::default();
+    for b in blocks {
+        if b.size() <= 1 {
+            continue;
+        }
+        for &e in &b.eqs {
+            let r = sys.dae.residual(EqId(e.0));
+            for &v in graph.eq_vars(e) {
+                if !b.vars.contains(&v) {
+                    continue;
+                }
+                let s = sys.scalar(v);
+                if let Some((sol, coef)) = solve_linear(&mut sys.dae.arena, r, s) {
+                    let known_coef = sys.dae.arena.vars(coef).iter().all(|&x| {
+                        !matches!(
+                            sys.dae.scalar(x).kind,
+                            ScalarKind::Continuous | ScalarKind::Derivative
+                        )
+                    });
+                    // A coefficient with a condition (an if-equation that solves this
+                    // variable in one branch only) may be 0 in the other branch: the
+                    // variable is then left to Newton, which sees the branch in force.
+                    if known_coef
+                        && !has_if(sys.dae, coef)
+                        && !mentions(sys.dae, coef, selectors)
+                        && !zero_at_parameters(sys.dae, &mut parameter_values, coef)
+                    {
+                        solvable.insert((e.0, v.0));
+                        solutions.insert((e.0, v.0), sol);
+                    }
+                }
+            }
+        }
+    }
+    (solvable, solutions)
+}
+
+/// The step of a block of one equation `e` and one variable `v`: an assignment when
+/// the equation is linear in `v` with a coefficient free of conditions and selectors,
+/// otherwise a Newton block.
+fn single_step(
+    sys: &mut DaeSystem<'_>,
+    e: st::EqId,
+    v: st::VarId,
+    selectors: &HashSet<ScalarId>,
+) -> PlanStep {
+    let eq = EqId(e.0);
+    let s = sys.scalar(v);
+    let r = sys.dae.residual(eq);
+    match solve_linear(&mut sys.dae.arena, r, s) {
+        Some((value, coef)) if !has_if(sys.dae, coef) && !mentions(sys.dae, coef, selectors) => {
+            PlanStep::Assign { var: s, value, eq }
+        }
+        _ => PlanStep::Block(newton_block(sys.dae, &[eq], &[s], &[], &[r])),
+    }
 }
 
 /// Whether a component of a dummy level gets dynamic state selection: its candidates'
@@ -459,13 +486,7 @@ fn add_state_sets(sys: &mut DaeSystem<'_>, dummies: &mut st::DummyDerivatives) -
             .collect();
         let equations: Vec<EqId> = spec.eqs.iter().map(|e| EqId(e.0)).collect();
         let origin = sys.dae.equations[equations[0].index()].origin;
-        let mut jacobian = Vec::with_capacity(equations.len() * n);
-        for &e in &equations {
-            let r = sys.dae.residual(e);
-            for &d in &derivatives {
-                jacobian.push(partial(&mut sys.dae.arena, r, d));
-            }
-        }
+        let jacobian = set_jacobian(sys, &equations, &derivatives);
         // The first selection: the candidates the static order keeps as states.
         let initial: Vec<usize> = (0..n)
             .filter(|&j| !spec.initial.contains(&spec.candidates[j]))
@@ -492,18 +513,7 @@ fn add_state_sets(sys: &mut DaeSystem<'_>, dummies: &mut st::DummyDerivatives) -
             let mut sel = sys.dae.arena.zero();
             let mut dsel = sys.dae.arena.zero();
             for j in 0..n {
-                let mut a = crate::dae::Scalar::new(
-                    format!("{name}.A[{},{}]", i + 1, j + 1),
-                    ScalarKind::Discrete,
-                    crate::dae::ScalarType::Real,
-                    origin,
-                );
-                a.start = Some(
-                    sys.dae
-                        .arena
-                        .constant(if initial[i] == j { 1.0 } else { 0.0 }),
-                );
-                let a = sys.dae.add_scalar(a);
+                let a = add_selector(sys, &name, (i, j), initial[i] == j, origin);
                 selectors.push(a);
                 let av = sys.dae.arena.var(a);
                 let xv = sys.dae.arena.var(candidates[j]);
@@ -544,6 +554,41 @@ fn add_state_sets(sys: &mut DaeSystem<'_>, dummies: &mut st::DummyDerivatives) -
     }
     dummies.states.sort_unstable();
     sets
+}
+
+/// The Jacobian of a state set's equations by the candidates' derivatives, row by row.
+fn set_jacobian(
+    sys: &mut DaeSystem<'_>,
+    equations: &[EqId],
+    derivatives: &[ScalarId],
+) -> Vec<ExprId> {
+    let mut jacobian = Vec::with_capacity(equations.len() * derivatives.len());
+    for &e in equations {
+        let r = sys.dae.residual(e);
+        for &d in derivatives {
+            jacobian.push(partial(&mut sys.dae.arena, r, d));
+        }
+    }
+    jacobian
+}
+
+/// The discrete selection entry `A[i,j]` of the state set `name`, starting at 1 where
+/// the first selection picks candidate `j` for state `i`, else 0.
+fn add_selector(
+    sys: &mut DaeSystem<'_>,
+    name: &str,
+    (i, j): (usize, usize),
+    selected: bool,
+    origin: unimo_source::Span,
+) -> ScalarId {
+    let mut a = crate::dae::Scalar::new(
+        format!("{name}.A[{},{}]", i + 1, j + 1),
+        ScalarKind::Discrete,
+        crate::dae::ScalarType::Real,
+        origin,
+    );
+    a.start = Some(sys.dae.arena.constant(if selected { 1.0 } else { 0.0 }));
+    sys.dae.add_scalar(a)
 }
 
 /// Whether `e` mentions one of `scalars`.
@@ -827,22 +872,7 @@ fn structure_dump(
             );
         }
     }
-    // Derivative chains, one per base variable: `x -> der(x) -> der(der(x))`.
-    let mut chains: Vec<String> = Vec::new();
-    for k in 0..sys.graph.n_vars() {
-        let s = sys.scalar(st::VarId(k as u32));
-        let sc = dae.scalar(s);
-        if sc.derivative_of.is_some() || sc.derivative.is_none() {
-            continue;
-        }
-        let mut chain = vec![dae.name(s)];
-        let mut cur = sc.derivative;
-        while let Some(d) = cur {
-            chain.push(dae.name(d));
-            cur = dae.scalar(d).derivative;
-        }
-        chains.push(chain.join(" -> "));
-    }
+    let chains = derivative_chains(sys);
     if !chains.is_empty() {
         let _ = writeln!(o, "derivative chains:");
         for c in chains {
@@ -864,12 +894,7 @@ fn structure_dump(
             let _ = writeln!(o, "  {d}");
         }
     }
-    let names = |v: &[ScalarId]| {
-        v.iter()
-            .map(|&s| dae.name(s))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let names = |v: &[ScalarId]| scalar_names(dae, v);
     let _ = writeln!(o, "states: {}", names(&plan.states));
     let _ = writeln!(o, "dummy derivatives: {}", names(&plan.dummy_derivatives));
     for (k, set) in plan.state_sets.iter().enumerate() {
@@ -886,6 +911,43 @@ fn structure_dump(
         );
     }
     let _ = writeln!(o, "blocks: {}", blocks.len());
+    write_blocks(&mut o, dae, blocks, plan);
+    o
+}
+
+/// Derivative chains, one per base variable: `x -> der(x) -> der(der(x))`.
+fn derivative_chains(sys: &DaeSystem<'_>) -> Vec<String> {
+    let dae = &*sys.dae;
+    let mut chains: Vec<String> = Vec::new();
+    for k in 0..sys.graph.n_vars() {
+        let s = sys.scalar(st::VarId(k as u32));
+        let sc = dae.scalar(s);
+        if sc.derivative_of.is_some() || sc.derivative.is_none() {
+            continue;
+        }
+        let mut chain = vec![dae.name(s)];
+        let mut cur = sc.derivative;
+        while let Some(d) = cur {
+            chain.push(dae.name(d));
+            cur = dae.scalar(d).derivative;
+        }
+        chains.push(chain.join(" -> "));
+    }
+    chains
+}
+
+/// Scalars' names, separated by commas.
+fn scalar_names(dae: &Dae, v: &[ScalarId]) -> String {
+    v.iter()
+        .map(|&s| dae.name(s))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The blocks of the structure dump, each with its plan step.
+fn write_blocks(o: &mut String, dae: &Dae, blocks: &[st::Block], plan: &Plan) {
+    use std::fmt::Write;
+    let names = |v: &[ScalarId]| scalar_names(dae, v);
     for (k, (b, step)) in blocks.iter().zip(&plan.steps).enumerate() {
         match step {
             PlanStep::Assign { var, eq, value } => {
@@ -922,5 +984,4 @@ fn structure_dump(
             }
         }
     }
-    o
 }

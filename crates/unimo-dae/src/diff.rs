@@ -61,35 +61,7 @@ fn derivative_node(
                 a.constant(f64::NAN)
             }
         }
-        // A table's value: its slope times the derivative of its input (the last
-        // operand); the handle and column are constants. Piecewise constant functions
-        // (bounds, next event) have derivative zero.
-        Node::Ext(f, ops) => {
-            let [_, x, y, _] = ops;
-            let input = if f.arity() == 2 { y } else { x };
-            match f.slope() {
-                Some(slope) if f.arity() == 2 => {
-                    let dinput = d(a, input, seed);
-                    let s = a.intern(Node::Ext(slope, ops));
-                    a.mul(s, dinput)
-                }
-                // The slope of a slope is not provided: an index reduction that needs
-                // it evaluates to NaN and fails visibly.
-                _ if matches!(
-                    f,
-                    crate::external::ExtFn::Table1DSlope | crate::external::ExtFn::TimeTableSlope
-                ) =>
-                {
-                    let dinput = d(a, input, seed);
-                    if a.as_const(dinput) == Some(0.0) {
-                        a.zero()
-                    } else {
-                        a.constant(f64::NAN)
-                    }
-                }
-                _ => a.zero(),
-            }
-        }
+        Node::Ext(f, ops) => external_derivative(a, f, ops, seed, memo),
         Node::Add(x, y) => {
             let dx = d(a, x, seed);
             let dy = d(a, y, seed);
@@ -120,22 +92,7 @@ fn derivative_node(
         Node::Pow(x, y) => {
             let dx = d(a, x, seed);
             let dy = d(a, y, seed);
-            if let Some(n) = a.as_const(y) {
-                // n * x^(n-1) * dx
-                let n1 = a.constant(n - 1.0);
-                let p = a.pow(x, n1);
-                let c = a.constant(n);
-                let m = a.mul(c, p);
-                a.mul(m, dx)
-            } else {
-                // x^y * (dy*log(x) + y*dx/x)
-                let lx = a.fn1(Fn1::Log, x);
-                let t1 = a.mul(dy, lx);
-                let ydx = a.mul(y, dx);
-                let t2 = a.div(ydx, x);
-                let s = a.add(t1, t2);
-                a.mul(e, s)
-            }
+            power_derivative(a, e, (x, y), (dx, dy))
         }
         Node::Fn1(f, x) => {
             let dx = d(a, x, seed);
@@ -159,6 +116,68 @@ fn derivative_node(
             let dx = d(a, x, seed);
             a.no_event(dx)
         }
+    }
+}
+
+/// The derivative of a table's value: its slope times the derivative of its input (the
+/// last operand); the handle and column are constants. Piecewise constant functions
+/// (bounds, next event) have derivative zero.
+fn external_derivative(
+    a: &mut ExprArena,
+    f: crate::external::ExtFn,
+    ops: [ExprId; 4],
+    seed: &mut Seed<'_>,
+    memo: &mut HashMap<ExprId, ExprId>,
+) -> ExprId {
+    let [_, x, y, _] = ops;
+    let input = if f.arity() == 2 { y } else { x };
+    match f.slope() {
+        Some(slope) if f.arity() == 2 => {
+            let dinput = derivative(a, input, seed, memo);
+            let s = a.intern(Node::Ext(slope, ops));
+            a.mul(s, dinput)
+        }
+        // The slope of a slope is not provided: an index reduction that needs
+        // it evaluates to NaN and fails visibly.
+        _ if matches!(
+            f,
+            crate::external::ExtFn::Table1DSlope | crate::external::ExtFn::TimeTableSlope
+        ) =>
+        {
+            let dinput = derivative(a, input, seed, memo);
+            if a.as_const(dinput) == Some(0.0) {
+                a.zero()
+            } else {
+                a.constant(f64::NAN)
+            }
+        }
+        _ => a.zero(),
+    }
+}
+
+/// The derivative of `e = x^y` given `dx` and `dy`: `n * x^(n-1) * dx` for a constant
+/// exponent `n`, else `x^y * (dy*log(x) + y*dx/x)`.
+fn power_derivative(
+    a: &mut ExprArena,
+    e: ExprId,
+    (x, y): (ExprId, ExprId),
+    (dx, dy): (ExprId, ExprId),
+) -> ExprId {
+    if let Some(n) = a.as_const(y) {
+        // n * x^(n-1) * dx
+        let n1 = a.constant(n - 1.0);
+        let p = a.pow(x, n1);
+        let c = a.constant(n);
+        let m = a.mul(c, p);
+        a.mul(m, dx)
+    } else {
+        // x^y * (dy*log(x) + y*dx/x)
+        let lx = a.fn1(Fn1::Log, x);
+        let t1 = a.mul(dy, lx);
+        let ydx = a.mul(y, dx);
+        let t2 = a.div(ydx, x);
+        let s = a.add(t1, t2);
+        a.mul(e, s)
     }
 }
 

@@ -29,42 +29,7 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
         }
         let _ = writeln!(o, "{title}: {}", members.len());
         for s in members {
-            let mut line = format!("  {}", s.name);
-            match s.ty {
-                ScalarType::Real => {}
-                ScalarType::Integer => line.push_str(" : Integer"),
-                ScalarType::Boolean => line.push_str(" : Boolean"),
-                ScalarType::Enumeration(k) => {
-                    // Predefined enumerations (StateSelect, AssertionLevel) have no entry.
-                    let name = dae
-                        .enumerations
-                        .get(k as usize)
-                        .map_or("enumeration", |e| &e.0);
-                    let _ = write!(line, " : {name}");
-                }
-            }
-            if let Some(b) = s.binding {
-                let _ = write!(line, " = {}", show(b));
-            }
-            let mut attrs = Vec::new();
-            if let Some(x) = s.start {
-                attrs.push(format!("start = {}", show(x)));
-            }
-            if let Some(f) = s.fixed {
-                attrs.push(format!("fixed = {f}"));
-            }
-            if let Some(x) = s.nominal {
-                attrs.push(format!("nominal = {}", show(x)));
-            }
-            if s.state_select != StateSelect::Default {
-                attrs.push(format!("stateSelect = {:?}", s.state_select));
-            }
-            if s.input {
-                attrs.push("input".into());
-            }
-            if !attrs.is_empty() {
-                let _ = write!(line, " ({})", attrs.join(", "));
-            }
+            let line = scalar_line(dae, s);
             let _ = writeln!(o, "{line}");
         }
     }
@@ -88,31 +53,7 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
     };
     eqs(&mut o, "equations", &dae.equations);
     eqs(&mut o, "initial equations", &dae.initial_equations);
-    if !dae.whens.is_empty() {
-        let _ = writeln!(o, "when: {}", dae.whens.len());
-        for (k, w) in dae.whens.iter().enumerate() {
-            for (j, b) in w.branches.iter().enumerate() {
-                let conds: Vec<String> = b.conditions.iter().map(|&c| show(c)).collect();
-                let kw = if j == 0 { "when" } else { "elsewhen" };
-                let _ = writeln!(o, "  w{k}: {kw} {}", conds.join(", "));
-                for (a, _) in &b.actions {
-                    let text = match a {
-                        WhenAction::Assign { target, value } => {
-                            format!("{} := {}", dae.name(*target), show(*value))
-                        }
-                        WhenAction::Reinit { state, value } => {
-                            format!("reinit({}, {})", dae.name(*state), show(*value))
-                        }
-                        WhenAction::Terminate { message } => format!("terminate({message:?})"),
-                        WhenAction::Assert { condition, message } => {
-                            format!("assert({}, {message:?})", show(*condition))
-                        }
-                    };
-                    let _ = writeln!(o, "      {text}");
-                }
-            }
-        }
-    }
+    write_whens(&mut o, dae);
     if !dae.assertions.is_empty() {
         let _ = writeln!(o, "assertions: {}", dae.assertions.len());
         for a in &dae.assertions {
@@ -149,4 +90,76 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
         );
     }
     o
+}
+
+/// One scalar of the dump: its name, type (when not Real), binding and attributes.
+fn scalar_line(dae: &Dae, s: &Scalar) -> String {
+    let show = |e| dae.show(e);
+    let mut line = format!("  {}", s.name);
+    match s.ty {
+        ScalarType::Real => {}
+        ScalarType::Integer => line.push_str(" : Integer"),
+        ScalarType::Boolean => line.push_str(" : Boolean"),
+        ScalarType::Enumeration(k) => {
+            // Predefined enumerations (StateSelect, AssertionLevel) have no entry.
+            let name = dae
+                .enumerations
+                .get(k as usize)
+                .map_or("enumeration", |e| &e.0);
+            let _ = write!(line, " : {name}");
+        }
+    }
+    if let Some(b) = s.binding {
+        let _ = write!(line, " = {}", show(b));
+    }
+    let mut attrs = Vec::new();
+    if let Some(x) = s.start {
+        attrs.push(format!("start = {}", show(x)));
+    }
+    if let Some(f) = s.fixed {
+        attrs.push(format!("fixed = {f}"));
+    }
+    if let Some(x) = s.nominal {
+        attrs.push(format!("nominal = {}", show(x)));
+    }
+    if s.state_select != StateSelect::Default {
+        attrs.push(format!("stateSelect = {:?}", s.state_select));
+    }
+    if s.input {
+        attrs.push("input".into());
+    }
+    if !attrs.is_empty() {
+        let _ = write!(line, " ({})", attrs.join(", "));
+    }
+    line
+}
+
+/// The `when` clauses of the dump, each branch with its conditions and actions.
+fn write_whens(o: &mut String, dae: &Dae) {
+    let show = |e| dae.show(e);
+    if !dae.whens.is_empty() {
+        let _ = writeln!(o, "when: {}", dae.whens.len());
+        for (k, w) in dae.whens.iter().enumerate() {
+            for (j, b) in w.branches.iter().enumerate() {
+                let conds: Vec<String> = b.conditions.iter().map(|&c| show(c)).collect();
+                let kw = if j == 0 { "when" } else { "elsewhen" };
+                let _ = writeln!(o, "  w{k}: {kw} {}", conds.join(", "));
+                for (a, _) in &b.actions {
+                    let text = match a {
+                        WhenAction::Assign { target, value } => {
+                            format!("{} := {}", dae.name(*target), show(*value))
+                        }
+                        WhenAction::Reinit { state, value } => {
+                            format!("reinit({}, {})", dae.name(*state), show(*value))
+                        }
+                        WhenAction::Terminate { message } => format!("terminate({message:?})"),
+                        WhenAction::Assert { condition, message } => {
+                            format!("assert({}, {message:?})", show(*condition))
+                        }
+                    };
+                    let _ = writeln!(o, "      {text}");
+                }
+            }
+        }
+    }
 }

@@ -275,67 +275,8 @@ impl Lowerer<'_> {
     ) -> DaeResult<()> {
         let span = eq.span;
         match &eq.kind {
-            EquationKind::Simple { lhs, rhs } => {
-                let outs = match &lhs.kind {
-                    ExprKind::Tuple(_) => self.call_outputs(rhs)?,
-                    _ => vec![self.expr(rhs)?],
-                };
-                let targets: Vec<&Expr> = match &lhs.kind {
-                    ExprKind::Tuple(t) => t.iter().flatten().collect(),
-                    _ => vec![lhs],
-                };
-                for (t, v) in targets.into_iter().zip(outs) {
-                    let tt = self.expr(t)?;
-                    let v = broadcast(v, &tt.dims, span)?;
-                    for (&x, &e) in tt.data.iter().zip(&v.data) {
-                        let Node::Var(s) = self.dae.arena.node(x) else {
-                            return Err(DaeError::new(
-                                "E3007",
-                                "the left side of an equation in `when` must be a variable",
-                                t.span,
-                            ));
-                        };
-                        actions.push((
-                            WhenAction::Assign {
-                                target: s,
-                                value: e,
-                            },
-                            span,
-                        ));
-                    }
-                }
-                Ok(())
-            }
-            EquationKind::Call(e) => {
-                let ExprKind::Call { func, args } = &e.kind else {
-                    return Err(unsupported("this equation in `when`", span));
-                };
-                let name = func.to_dotted();
-                if name == "reinit" {
-                    if let Some(target) = args.positional.first() {
-                        let t = self.expr(target)?;
-                        if t.data.len() > 1 {
-                            let v = self.expr(&args.positional[1])?;
-                            let v = broadcast(v, &t.dims, span)?;
-                            for (&x, &e) in t.data.iter().zip(&v.data) {
-                                let Node::Var(s) = self.dae.arena.node(x) else {
-                                    return Err(DaeError::new(
-                                        "E3006",
-                                        "`reinit` needs a state variable",
-                                        target.span,
-                                    ));
-                                };
-                                actions.push((WhenAction::Reinit { state: s, value: e }, span));
-                            }
-                            return Ok(());
-                        }
-                    }
-                }
-                if let Some(a) = self.action_call(&name, args, span)? {
-                    actions.push((a, span));
-                }
-                Ok(())
-            }
+            EquationKind::Simple { lhs, rhs } => self.when_assignment(lhs, rhs, span, actions),
+            EquationKind::Call(e) => self.when_call(e, span, actions),
             EquationKind::If {
                 branches,
                 otherwise,
@@ -392,6 +333,84 @@ impl Lowerer<'_> {
             )),
             EquationKind::Connect { .. } => Err(unsupported("`connect` inside `when`", span)),
         }
+    }
+
+    /// A call in `when`: `reinit` (of an array too), `terminate`, `assert` and the other
+    /// actions.
+    fn when_call(
+        &mut self,
+        e: &Expr,
+        span: Span,
+        actions: &mut Vec<(WhenAction, Span)>,
+    ) -> DaeResult<()> {
+        let ExprKind::Call { func, args } = &e.kind else {
+            return Err(unsupported("this equation in `when`", span));
+        };
+        let name = func.to_dotted();
+        if name == "reinit" {
+            if let Some(target) = args.positional.first() {
+                let t = self.expr(target)?;
+                if t.data.len() > 1 {
+                    let v = self.expr(&args.positional[1])?;
+                    let v = broadcast(v, &t.dims, span)?;
+                    for (&x, &e) in t.data.iter().zip(&v.data) {
+                        let Node::Var(s) = self.dae.arena.node(x) else {
+                            return Err(DaeError::new(
+                                "E3006",
+                                "`reinit` needs a state variable",
+                                target.span,
+                            ));
+                        };
+                        actions.push((WhenAction::Reinit { state: s, value: e }, span));
+                    }
+                    return Ok(());
+                }
+            }
+        }
+        if let Some(a) = self.action_call(&name, args, span)? {
+            actions.push((a, span));
+        }
+        Ok(())
+    }
+
+    /// An equation `lhs = rhs` in `when` (`(a, b) = f(x)` too): one assignment per scalar
+    /// of the left side, which must be variables.
+    fn when_assignment(
+        &mut self,
+        lhs: &Expr,
+        rhs: &Expr,
+        span: Span,
+        actions: &mut Vec<(WhenAction, Span)>,
+    ) -> DaeResult<()> {
+        let outs = match &lhs.kind {
+            ExprKind::Tuple(_) => self.call_outputs(rhs)?,
+            _ => vec![self.expr(rhs)?],
+        };
+        let targets: Vec<&Expr> = match &lhs.kind {
+            ExprKind::Tuple(t) => t.iter().flatten().collect(),
+            _ => vec![lhs],
+        };
+        for (t, v) in targets.into_iter().zip(outs) {
+            let tt = self.expr(t)?;
+            let v = broadcast(v, &tt.dims, span)?;
+            for (&x, &e) in tt.data.iter().zip(&v.data) {
+                let Node::Var(s) = self.dae.arena.node(x) else {
+                    return Err(DaeError::new(
+                        "E3007",
+                        "the left side of an equation in `when` must be a variable",
+                        t.span,
+                    ));
+                };
+                actions.push((
+                    WhenAction::Assign {
+                        target: s,
+                        value: e,
+                    },
+                    span,
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn merge_when_if(

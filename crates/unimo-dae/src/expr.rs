@@ -612,18 +612,7 @@ impl ExprArena {
         if out.len() > limit {
             return Err(fmt::Error);
         }
-        let prec = match self.node(id) {
-            Node::If(..) => 1,
-            Node::Or(..) => 2,
-            Node::And(..) => 3,
-            Node::Not(_) => 4,
-            Node::Rel(..) => 5,
-            Node::Add(..) => 6,
-            Node::Neg(_) => 7,
-            Node::Mul(..) | Node::Div(..) => 8,
-            Node::Pow(..) => 9,
-            _ => 10,
-        };
+        let prec = precedence(self.node(id));
         let paren = prec < outer || (prec == 7 && outer == 7);
         if paren {
             out.push('(');
@@ -644,22 +633,7 @@ impl ExprArena {
             Node::Initial => out.push_str("initial()"),
             Node::Terminal => out.push_str("terminal()"),
             Node::External(site, k) => write!(out, "external({site}, {k})")?,
-            Node::Add(a, b) => {
-                w(a, 6, out)?;
-                match self.node(b) {
-                    Node::Neg(x) => {
-                        out.push_str(" - ");
-                        w(x, 7, out)?;
-                    }
-                    Node::Const(c) if f64::from_bits(c) < 0.0 => {
-                        write!(out, " - {}", fmt_num(-f64::from_bits(c)))?;
-                    }
-                    _ => {
-                        out.push_str(" + ");
-                        w(b, 6, out)?;
-                    }
-                }
-            }
+            Node::Add(a, b) => self.write_sum(a, b, name, out, limit)?,
             Node::Mul(a, b) => {
                 w(a, 8, out)?;
                 out.push_str(" * ");
@@ -679,18 +653,8 @@ impl ExprArena {
                 out.push('-');
                 w(a, 8, out)?;
             }
-            Node::Fn1(f, a) => {
-                write!(out, "{}(", f.name())?;
-                w(a, 0, out)?;
-                out.push(')');
-            }
-            Node::Fn2(f, a, b) => {
-                write!(out, "{}(", f.name())?;
-                w(a, 0, out)?;
-                out.push_str(", ");
-                w(b, 0, out)?;
-                out.push(')');
-            }
+            Node::Fn1(f, a) => self.write_call(f.name(), &[a], name, out, limit)?,
+            Node::Fn2(f, a, b) => self.write_call(f.name(), &[a, b], name, out, limit)?,
             Node::Rel(op, a, b) => {
                 w(a, 6, out)?;
                 write!(out, " {} ", op.symbol())?;
@@ -718,31 +682,65 @@ impl ExprArena {
                 out.push_str(" else ");
                 w(b, 1, out)?;
             }
-            Node::NoEvent(a) => {
-                out.push_str("noEvent(");
-                w(a, 0, out)?;
-                out.push(')');
-            }
-            Node::Sample(a, b) => {
-                out.push_str("sample(");
-                w(a, 0, out)?;
-                out.push_str(", ");
-                w(b, 0, out)?;
-                out.push(')');
-            }
-            Node::Ext(f, [a, b, c, d]) => {
-                write!(out, "{}(", f.name())?;
-                w(a, 0, out)?;
-                for x in [b, c, d].into_iter().take(f.arity()) {
-                    out.push_str(", ");
-                    w(x, 0, out)?;
-                }
-                out.push(')');
+            Node::NoEvent(a) => self.write_call("noEvent", &[a], name, out, limit)?,
+            Node::Sample(a, b) => self.write_call("sample", &[a, b], name, out, limit)?,
+            Node::Ext(f, args) => {
+                let n = (1 + f.arity()).min(args.len());
+                self.write_call(f.name(), &args[..n], name, out, limit)?
             }
         }
         if paren {
             out.push(')');
         }
+        Ok(())
+    }
+
+    /// A sum `a + b`, written `a - x` when `b` is `-x` or a negative constant.
+    fn write_sum(
+        &self,
+        a: ExprId,
+        b: ExprId,
+        name: &dyn Fn(ScalarId) -> String,
+        out: &mut String,
+        limit: usize,
+    ) -> fmt::Result {
+        use std::fmt::Write;
+        let w = |x: ExprId, p: u8, out: &mut String| self.write_prec(x, name, out, p, limit);
+        w(a, 6, out)?;
+        match self.node(b) {
+            Node::Neg(x) => {
+                out.push_str(" - ");
+                w(x, 7, out)?;
+            }
+            Node::Const(c) if f64::from_bits(c) < 0.0 => {
+                write!(out, " - {}", fmt_num(-f64::from_bits(c)))?;
+            }
+            _ => {
+                out.push_str(" + ");
+                w(b, 6, out)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A call `func(args...)`, each argument written as a whole.
+    fn write_call(
+        &self,
+        func: &str,
+        args: &[ExprId],
+        name: &dyn Fn(ScalarId) -> String,
+        out: &mut String,
+        limit: usize,
+    ) -> fmt::Result {
+        out.push_str(func);
+        out.push('(');
+        for (k, &x) in args.iter().enumerate() {
+            if k > 0 {
+                out.push_str(", ");
+            }
+            self.write_prec(x, name, out, 0, limit)?;
+        }
+        out.push(')');
         Ok(())
     }
 
@@ -780,5 +778,21 @@ pub trait EvalEnv {
 impl EvalEnv for [f64] {
     fn value(&self, s: ScalarId) -> f64 {
         self[s.index()]
+    }
+}
+
+/// The precedence of a node when printed: the higher, the tighter it binds.
+fn precedence(node: Node) -> u8 {
+    match node {
+        Node::If(..) => 1,
+        Node::Or(..) => 2,
+        Node::And(..) => 3,
+        Node::Not(_) => 4,
+        Node::Rel(..) => 5,
+        Node::Add(..) => 6,
+        Node::Neg(_) => 7,
+        Node::Mul(..) | Node::Div(..) => 8,
+        Node::Pow(..) => 9,
+        _ => 10,
     }
 }

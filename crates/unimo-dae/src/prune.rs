@@ -3,7 +3,7 @@
 //! removed, so the compiled model only computes what is used.
 
 use crate::dae::{Dae, WhenAction};
-use crate::events::zero_crossings;
+use crate::events::{zero_crossings, Crossings};
 use crate::expr::{ExprId, ScalarId};
 use crate::plan::{Plan, PlanStep};
 use rustc_hash::FxHashSet as HashSet;
@@ -11,64 +11,11 @@ use rustc_hash::FxHashSet as HashSet;
 /// Removes unneeded steps; `wanted` are the outputs the user asked for (their alias
 /// representatives are kept too). Returns the number of equations left out.
 pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
-    let mut needed: HashSet<ScalarId> = plan.derivatives.iter().copied().collect();
+    let zc = zero_crossings(dae);
+    let mut needed = needed_by_events_and_outputs(dae, plan, wanted, &zc);
     let add = |needed: &mut HashSet<ScalarId>, e| {
         needed.extend(dae.arena.vars(e));
     };
-    for &s in wanted {
-        needed.insert(s);
-        if let Some(a) = dae.scalar(s).alias {
-            add(&mut needed, a);
-        }
-    }
-    let zc = zero_crossings(dae);
-    for &r in zc.relations.iter().chain(&zc.samples).chain(&zc.held) {
-        add(&mut needed, r);
-    }
-    for w in &dae.whens {
-        for b in &w.branches {
-            for &c in &b.conditions {
-                add(&mut needed, c);
-            }
-            for (a, _) in &b.actions {
-                match a {
-                    WhenAction::Assign { target, value } => {
-                        needed.insert(*target);
-                        add(&mut needed, *value);
-                    }
-                    WhenAction::Reinit { value, .. } => add(&mut needed, *value),
-                    WhenAction::Assert { condition, .. } => add(&mut needed, *condition),
-                    WhenAction::Terminate { .. } => {}
-                }
-            }
-        }
-    }
-    for a in &dae.assertions {
-        add(&mut needed, a.condition);
-    }
-    // Initialization reads what the initial equations and start values name, even when
-    // nothing after the start does (e.g. a closed-form initial guess of an integrated
-    // quantity).
-    for e in &dae.initial_equations {
-        add(&mut needed, e.lhs);
-        add(&mut needed, e.rhs);
-    }
-    for s in dae.ids() {
-        if let Some(start) = dae.scalar(s).start {
-            add(&mut needed, start);
-        }
-        // `fixed = true` on a variable that is not a state is the initial equation
-        // `v = start`: `v` must be computed at the start.
-        if dae.scalar(s).fixed == Some(true) {
-            needed.insert(s);
-        }
-    }
-    // Discrete variables defined by equations take part in event iteration.
-    for s in dae.ids() {
-        if dae.scalar(s).kind == crate::dae::ScalarKind::Discrete {
-            needed.insert(s);
-        }
-    }
     // A held rounding (`floor`, `mod`, ... with events) takes its new value where the
     // step computing it runs, in event mode: that step must stay, or after an event its
     // zero crossings would be crossed again at once (chattering).
@@ -135,4 +82,73 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
     });
     plan.stats.pruned_equations = pruned;
     pruned
+}
+
+/// The scalars needed whatever steps compute them: state derivatives, the outputs the
+/// user asked for, what zero crossings, `when` clauses, assertions, initial equations
+/// and start values read, variables with `fixed = true` and discrete variables.
+fn needed_by_events_and_outputs(
+    dae: &Dae,
+    plan: &Plan,
+    wanted: &[ScalarId],
+    zc: &Crossings,
+) -> HashSet<ScalarId> {
+    let mut needed: HashSet<ScalarId> = plan.derivatives.iter().copied().collect();
+    let add = |needed: &mut HashSet<ScalarId>, e| {
+        needed.extend(dae.arena.vars(e));
+    };
+    for &s in wanted {
+        needed.insert(s);
+        if let Some(a) = dae.scalar(s).alias {
+            add(&mut needed, a);
+        }
+    }
+    for &r in zc.relations.iter().chain(&zc.samples).chain(&zc.held) {
+        add(&mut needed, r);
+    }
+    for w in &dae.whens {
+        for b in &w.branches {
+            for &c in &b.conditions {
+                add(&mut needed, c);
+            }
+            for (a, _) in &b.actions {
+                match a {
+                    WhenAction::Assign { target, value } => {
+                        needed.insert(*target);
+                        add(&mut needed, *value);
+                    }
+                    WhenAction::Reinit { value, .. } => add(&mut needed, *value),
+                    WhenAction::Assert { condition, .. } => add(&mut needed, *condition),
+                    WhenAction::Terminate { .. } => {}
+                }
+            }
+        }
+    }
+    for a in &dae.assertions {
+        add(&mut needed, a.condition);
+    }
+    // Initialization reads what the initial equations and start values name, even when
+    // nothing after the start does (e.g. a closed-form initial guess of an integrated
+    // quantity).
+    for e in &dae.initial_equations {
+        add(&mut needed, e.lhs);
+        add(&mut needed, e.rhs);
+    }
+    for s in dae.ids() {
+        if let Some(start) = dae.scalar(s).start {
+            add(&mut needed, start);
+        }
+        // `fixed = true` on a variable that is not a state is the initial equation
+        // `v = start`: `v` must be computed at the start.
+        if dae.scalar(s).fixed == Some(true) {
+            needed.insert(s);
+        }
+    }
+    // Discrete variables defined by equations take part in event iteration.
+    for s in dae.ids() {
+        if dae.scalar(s).kind == crate::dae::ScalarKind::Discrete {
+            needed.insert(s);
+        }
+    }
+    needed
 }

@@ -174,32 +174,8 @@ pub fn verify_dae(dae: &Dae) -> Result<(), VerifyError> {
 pub fn verify_plan(dae: &Dae, plan: &Plan) -> Result<(), VerifyError> {
     let n = dae.scalars.len();
     let name = |s: ScalarId| dae.scalars.get(s.index()).map_or("?", |x| &x.name);
-    if plan.states.len() != plan.derivatives.len() {
-        return Err(plan_error(format!(
-            "{} states and {} derivatives",
-            plan.states.len(),
-            plan.derivatives.len()
-        )));
-    }
-    for (&s, &d) in plan.states.iter().zip(&plan.derivatives) {
-        if s.index() >= n || d.index() >= n || dae.scalars[s.index()].derivative != Some(d) {
-            return Err(plan_error(format!(
-                "state {} does not have {} as its derivative",
-                name(s),
-                name(d)
-            )));
-        }
-    }
-    // Known before the plan runs.
-    let mut known = vec![false; n];
-    for (k, s) in dae.scalars.iter().enumerate() {
-        known[k] = s.alias.is_some()
-            || s.input
-            || matches!(
-                s.kind,
-                ScalarKind::Constant | ScalarKind::Parameter | ScalarKind::Discrete
-            );
-    }
+    verify_states(dae, plan)?;
+    let mut known = known_before_plan(dae);
     let mut computed = vec![false; n];
     for &s in &plan.states {
         known[s.index()] = true;
@@ -271,4 +247,43 @@ pub fn verify_plan(dae: &Dae, plan: &Plan) -> Result<(), VerifyError> {
         }
     }
     Ok(())
+}
+
+/// The plan's states, each paired with its derivative.
+fn verify_states(dae: &Dae, plan: &Plan) -> Result<(), VerifyError> {
+    let n = dae.scalars.len();
+    let name = |s: ScalarId| dae.scalars.get(s.index()).map_or("?", |x| &x.name);
+    if plan.states.len() != plan.derivatives.len() {
+        return Err(plan_error(format!(
+            "{} states and {} derivatives",
+            plan.states.len(),
+            plan.derivatives.len()
+        )));
+    }
+    for (&s, &d) in plan.states.iter().zip(&plan.derivatives) {
+        if s.index() >= n || d.index() >= n || dae.scalars[s.index()].derivative != Some(d) {
+            return Err(plan_error(format!(
+                "state {} does not have {} as its derivative",
+                name(s),
+                name(d)
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The scalars known before the plan runs: aliases, inputs, constants, parameters and
+/// discrete variables.
+fn known_before_plan(dae: &Dae) -> Vec<bool> {
+    let n = dae.scalars.len();
+    let mut known = vec![false; n];
+    for (k, s) in dae.scalars.iter().enumerate() {
+        known[k] = s.alias.is_some()
+            || s.input
+            || matches!(
+                s.kind,
+                ScalarKind::Constant | ScalarKind::Parameter | ScalarKind::Discrete
+            );
+    }
+    known
 }

@@ -84,101 +84,8 @@ impl Shapes<'_> {
 
     fn of(&self, e: &Expr) -> Vec<usize> {
         match &e.kind {
-            ExprKind::Ref(r) => {
-                let d = {
-                    let mut buf = self.buf.borrow_mut();
-                    crate::eval::var_key_into(&mut buf, &r.parts);
-                    self.dims.get(buf.as_str()).copied()
-                };
-                let Some(d) = d else {
-                    if self.record_sizes.is_empty() {
-                        return Vec::new();
-                    }
-                    let key = var_key(r);
-                    // A record: as many scalars as its variables.
-                    let mut instance = key;
-                    if let Some(last) = r.parts.last() {
-                        instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
-                    }
-                    return match self.record_sizes.get(instance.as_str()) {
-                        Some(&n) if n > 0 => vec![n],
-                        _ => Vec::new(),
-                    };
-                };
-                let subs = r
-                    .parts
-                    .last()
-                    .map(|p| p.subscripts.as_slice())
-                    .unwrap_or(&[]);
-                let mut out = Vec::new();
-                for (k, n) in d.iter().enumerate() {
-                    match subs.get(k) {
-                        None | Some(Subscript::Colon(_)) => out.push(*n),
-                        Some(Subscript::Expr(x)) => {
-                            if let ExprKind::Range {
-                                start,
-                                step: None,
-                                stop,
-                            } = &x.kind
-                            {
-                                if let (Some(a), Some(b)) =
-                                    (self.int_value(start, 0), self.int_value(stop, 0))
-                                {
-                                    out.push((b - a + 1).max(0) as usize);
-                                }
-                            }
-                        }
-                    }
-                }
-                out
-            }
-            ExprKind::Call { func, args } => {
-                let name = func.to_dotted();
-                if self.records.contains_key(name.trim_start_matches('.')) {
-                    // A record constructor: its arguments side by side.
-                    let n: usize = args
-                        .positional
-                        .iter()
-                        .chain(args.named.iter().map(|a| &a.value))
-                        .map(|a| sat_product(&self.of(a)))
-                        .sum();
-                    return vec![n];
-                }
-                let arg = |k: usize| {
-                    args.positional
-                        .get(k)
-                        .map(|a| self.of(a))
-                        .unwrap_or_default()
-                };
-                match name.as_str() {
-                    f if unimo_builtins::is_elementwise(f) => arg(0),
-                    "smooth" => arg(1),
-                    "cross" => vec![3],
-                    "collisionBody" => vec![6],
-                    "collisionGaps" => vec![2],
-                    "transpose" => {
-                        let mut d = arg(0);
-                        d.reverse();
-                        d
-                    }
-                    "zeros" | "ones" | "fill" => {
-                        let skip = usize::from(name == "fill");
-                        args.positional
-                            .iter()
-                            .skip(skip)
-                            .filter_map(|a| match a.kind {
-                                ExprKind::Integer(n) => Some(n.max(0) as usize),
-                                _ => None,
-                            })
-                            .collect()
-                    }
-                    "identity" => match args.positional.first().map(|a| &a.kind) {
-                        Some(ExprKind::Integer(n)) => vec![*n as usize; 2],
-                        _ => Vec::new(),
-                    },
-                    _ => Vec::new(),
-                }
-            }
+            ExprKind::Ref(r) => self.of_ref(r),
+            ExprKind::Call { func, args } => self.of_call(func, args),
             ExprKind::Unary { operand, .. } => self.of(operand),
             ExprKind::Binary { op, lhs, rhs } => {
                 let (a, b) = (self.of(lhs), self.of(rhs));
@@ -236,6 +143,107 @@ impl Shapes<'_> {
                 .unwrap_or_default(),
             _ => Vec::new(),
         }
+    }
+
+    /// The dimensions of a call: a record constructor's arguments side by side, or a
+    /// built-in's result.
+    fn of_call(&self, func: &Name, args: &CallArgs) -> Vec<usize> {
+        let name = func.to_dotted();
+        if self.records.contains_key(name.trim_start_matches('.')) {
+            // A record constructor: its arguments side by side.
+            let n: usize = args
+                .positional
+                .iter()
+                .chain(args.named.iter().map(|a| &a.value))
+                .map(|a| sat_product(&self.of(a)))
+                .sum();
+            return vec![n];
+        }
+        let arg = |k: usize| {
+            args.positional
+                .get(k)
+                .map(|a| self.of(a))
+                .unwrap_or_default()
+        };
+        match name.as_str() {
+            f if unimo_builtins::is_elementwise(f) => arg(0),
+            "smooth" => arg(1),
+            "cross" => vec![3],
+            "collisionBody" => vec![6],
+            "collisionGaps" => vec![2],
+            "transpose" => {
+                let mut d = arg(0);
+                d.reverse();
+                d
+            }
+            "zeros" | "ones" | "fill" => {
+                let skip = usize::from(name == "fill");
+                args.positional
+                    .iter()
+                    .skip(skip)
+                    .filter_map(|a| match a.kind {
+                        ExprKind::Integer(n) => Some(n.max(0) as usize),
+                        _ => None,
+                    })
+                    .collect()
+            }
+            "identity" => match args.positional.first().map(|a| &a.kind) {
+                Some(ExprKind::Integer(n)) => vec![*n as usize; 2],
+                _ => Vec::new(),
+            },
+            _ => Vec::new(),
+        }
+    }
+
+    /// The dimensions of a reference: a variable's, less its scalar subscripts; a record
+    /// instance counts as a vector of its scalars.
+    fn of_ref(&self, r: &ComponentRef) -> Vec<usize> {
+        let d = {
+            let mut buf = self.buf.borrow_mut();
+            crate::eval::var_key_into(&mut buf, &r.parts);
+            self.dims.get(buf.as_str()).copied()
+        };
+        let Some(d) = d else {
+            if self.record_sizes.is_empty() {
+                return Vec::new();
+            }
+            let key = var_key(r);
+            // A record: as many scalars as its variables.
+            let mut instance = key;
+            if let Some(last) = r.parts.last() {
+                instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+            }
+            return match self.record_sizes.get(instance.as_str()) {
+                Some(&n) if n > 0 => vec![n],
+                _ => Vec::new(),
+            };
+        };
+        let subs = r
+            .parts
+            .last()
+            .map(|p| p.subscripts.as_slice())
+            .unwrap_or(&[]);
+        let mut out = Vec::new();
+        for (k, n) in d.iter().enumerate() {
+            match subs.get(k) {
+                None | Some(Subscript::Colon(_)) => out.push(*n),
+                Some(Subscript::Expr(x)) => {
+                    if let ExprKind::Range {
+                        start,
+                        step: None,
+                        stop,
+                    } = &x.kind
+                    {
+                        if let (Some(a), Some(b)) =
+                            (self.int_value(start, 0), self.int_value(stop, 0))
+                        {
+                            out.push((b - a + 1).max(0) as usize);
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     fn size(&self, e: &Expr) -> usize {

@@ -194,29 +194,7 @@ pub fn equations(
         None => connects,
     };
     let mut diags = Vec::new();
-    let mut nodes: Vec<Node> = Vec::new();
-    // Node of (variable, outside) at `2 * var + outside`; `usize::MAX`: none yet.
-    // Elements of array variables by (variable, element, outside).
-    let mut index: Vec<usize> = vec![usize::MAX; 2 * model.vars.len()];
-    let mut element_index: HashMap<(usize, u32, bool), usize> = HashMap::default();
-    let mut parent: Vec<usize> = Vec::new();
-    let mut node = |n: Node, nodes: &mut Vec<Node>, parent: &mut Vec<usize>| -> usize {
-        let slot = if n.elem == WHOLE {
-            &mut index[2 * n.var + usize::from(n.outside)]
-        } else {
-            element_index
-                .entry((n.var, n.elem, n.outside))
-                .or_insert(usize::MAX)
-        };
-        if *slot == usize::MAX {
-            nodes.push(n);
-            parent.push(parent.len());
-            *slot = parent.len() - 1;
-        }
-        *slot
-    };
-    // The first `connect` that named each node, by node.
-    let mut spans: Vec<Option<Span>> = Vec::new();
+    let mut graph = ConnectionSets::new(model.vars.len());
     let keys: Vec<(String, String)> = connects
         .iter()
         .map(|c| (var_key_full(&c.a), var_key_full(&c.b)))
@@ -229,14 +207,8 @@ pub fn equations(
         .iter()
         .flat_map(|(a, b)| [a, b])
         .any(|k| !has_members(k));
-    let by_name: HashMap<&str, usize> = if unmatched {
-        model
-            .vars
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| !v.dims.is_empty())
-            .map(|(i, v)| (v.name.as_str(), i))
-            .collect()
+    let by_name = if unmatched {
+        array_vars_by_name(model)
     } else {
         HashMap::default()
     };
@@ -253,7 +225,6 @@ pub fn equations(
             split[v] = true;
         }
     }
-    let is_split = |v: usize| split.get(v).copied().unwrap_or(false);
     let element_members: Vec<(Members, Members)> = keys
         .iter()
         .map(|(ka, kb)| {
@@ -286,131 +257,325 @@ pub fn equations(
             );
             continue;
         }
-        let same = ma.len() == mb.len() && ma.iter().zip(mb).all(|(a, b)| a.0 == b.0);
-        if !same {
-            let sa: Vec<&str> = ma.iter().map(|(s, _)| *s).collect();
-            let sb: Vec<&str> = mb.iter().map(|(s, _)| *s).collect();
-            let missing: Vec<&str> = sa
-                .iter()
-                .filter(|s| !sb.contains(s))
-                .chain(sb.iter().filter(|s| !sa.contains(s)))
-                .copied()
-                .collect();
-            diags.push(
-                Diagnostic::error(
-                    "E2006",
-                    format!("connectors `{ka}` and `{kb}` do not match"),
-                )
-                .at(c.span, "in this connect")
-                .with_note(format!(
-                    "variables on one side only: {}",
-                    missing.join(", ")
-                )),
-            );
+        if let Some(d) = members_mismatch(c, (ka, kb), ma, mb) {
+            diags.push(d);
             continue;
         }
-        for ((_, va), (_, vb)) in ma.iter().zip(mb) {
-            let (xa, xb) = (&model.vars[*va], &model.vars[*vb]);
-            // Parameters and constants of connectors (a signal port's size `n`) are not
-            // connected (spec 9.3).
-            let fixed = |v: &crate::flat::FlatVar| {
-                matches!(
-                    v.variability,
-                    crate::flat::Variability::Parameter | crate::flat::Variability::Constant
-                )
-            };
-            if fixed(xa) || fixed(xb) {
-                continue;
-            }
-            // The shape connected on each side: an element is a scalar.
-            let (da, db): (&[usize], &[usize]) = (
-                if ea.is_some() { &[] } else { &xa.dims },
-                if eb.is_some() { &[] } else { &xb.dims },
-            );
-            if xa.flow != xb.flow || da != db || !same_kind(&xa.ty, &xb.ty) {
-                diags.push(
-                    Diagnostic::error(
-                        "E2006",
-                        format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
-                    )
-                    .at(c.span, "in this connect")
-                    .with_note(mismatch(xa, xb)),
-                );
-                continue;
-            }
-            let both_outputs = xa.causality == Some(unimo_syntax::ast::Causality::Output)
-                && xb.causality == Some(unimo_syntax::ast::Causality::Output)
-                && !c.a_outside
-                && !c.b_outside;
-            if both_outputs {
-                diags.push(
-                    Diagnostic::error(
-                        "E2007",
-                        format!("two outputs connected: `{}` and `{}`", xa.name, xb.name),
-                    )
-                    .at(c.span, "in this connect")
-                    .with_help(
-                        "an output may drive several inputs, but two outputs cannot be connected",
-                    ),
-                );
-                continue;
-            }
-            // Pairs of primitives: whole variables, one element each, or a split array
-            // variable element by element.
-            let n_elems: usize = da.iter().product();
-            let pairs: Vec<(u32, u32)> = match (ea, eb) {
-                (Some((_, a)), Some((_, b))) => vec![(a, b)],
-                (Some((_, a)), None) => vec![(a, WHOLE)],
-                (None, Some((_, b))) => vec![(WHOLE, b)],
-                (None, None) if !da.is_empty() && (is_split(*va) || is_split(*vb)) => {
-                    (0..n_elems as u32).map(|i| (i, i)).collect()
-                }
-                (None, None) => vec![(WHOLE, WHOLE)],
-            };
-            for (ia, ib) in pairs {
-                let na = node(
-                    Node {
-                        var: *va,
-                        elem: ia,
-                        outside: c.a_outside,
-                    },
-                    &mut nodes,
-                    &mut parent,
-                );
-                let nb = node(
-                    Node {
-                        var: *vb,
-                        elem: ib,
-                        outside: c.b_outside,
-                    },
-                    &mut nodes,
-                    &mut parent,
-                );
-                let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
-                if ra != rb {
-                    parent[ra] = rb;
-                }
-                if spans.len() < nodes.len() {
-                    spans.resize(nodes.len(), None);
-                }
-                spans[na].get_or_insert(c.span);
-            }
+        let sides = ConnectedSides {
+            ea,
+            eb,
+            split: &split,
+        };
+        connect_members(model, c, &sides, ma, mb, &mut graph, &mut diags);
+    }
+    let mut new_eqs = Vec::new();
+    for set in &graph.sets() {
+        set_equations(model, &graph, set, &mut new_eqs);
+    }
+    unconnected_flow_equations(model, &graph.nodes, &mut new_eqs);
+    (new_eqs, diags)
+}
+
+/// The array variables of `model` by name.
+fn array_vars_by_name(model: &FlatModel) -> HashMap<&str, usize> {
+    model
+        .vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| !v.dims.is_empty())
+        .map(|(i, v)| (v.name.as_str(), i))
+        .collect()
+}
+
+/// The nodes of the connections (whole variables or elements, from either side) in a
+/// union-find, with the first `connect` that named each node.
+struct ConnectionSets {
+    nodes: Vec<Node>,
+    parent: Vec<usize>,
+    /// The first `connect` that named each node, by node.
+    spans: Vec<Option<Span>>,
+    /// Node of (variable, outside) at `2 * var + outside`; `usize::MAX`: none yet.
+    index: Vec<usize>,
+    /// Elements of array variables by (variable, element, outside).
+    element_index: HashMap<(usize, u32, bool), usize>,
+}
+
+impl ConnectionSets {
+    fn new(n_vars: usize) -> Self {
+        ConnectionSets {
+            nodes: Vec::new(),
+            parent: Vec::new(),
+            spans: Vec::new(),
+            index: vec![usize::MAX; 2 * n_vars],
+            element_index: HashMap::default(),
         }
     }
-    // Group the nodes by set, in order of first appearance.
-    let mut sets: Vec<Vec<usize>> = Vec::new();
-    let mut set_of_root: Vec<usize> = vec![usize::MAX; nodes.len()];
-    for n in 0..nodes.len() {
-        let r = find(&mut parent, n);
-        if set_of_root[r] == usize::MAX {
-            sets.push(Vec::new());
-            set_of_root[r] = sets.len() - 1;
+
+    /// The number of node `n`, added when new.
+    fn node(&mut self, n: Node) -> usize {
+        let slot = if n.elem == WHOLE {
+            &mut self.index[2 * n.var + usize::from(n.outside)]
+        } else {
+            self.element_index
+                .entry((n.var, n.elem, n.outside))
+                .or_insert(usize::MAX)
+        };
+        if *slot == usize::MAX {
+            self.nodes.push(n);
+            self.parent.push(self.parent.len());
+            *slot = self.parent.len() - 1;
         }
-        sets[set_of_root[r]].push(n);
+        *slot
     }
+
+    /// Puts `a` and `b` in one set; `span` is the `connect` that names them.
+    fn connect(&mut self, a: Node, b: Node, span: Span) {
+        let na = self.node(a);
+        let nb = self.node(b);
+        let (ra, rb) = (find(&mut self.parent, na), find(&mut self.parent, nb));
+        if ra != rb {
+            self.parent[ra] = rb;
+        }
+        if self.spans.len() < self.nodes.len() {
+            self.spans.resize(self.nodes.len(), None);
+        }
+        self.spans[na].get_or_insert(span);
+    }
+
+    /// The nodes grouped by set, in order of first appearance.
+    fn sets(&mut self) -> Vec<Vec<usize>> {
+        let mut sets: Vec<Vec<usize>> = Vec::new();
+        let mut set_of_root: Vec<usize> = vec![usize::MAX; self.nodes.len()];
+        for n in 0..self.nodes.len() {
+            let r = find(&mut self.parent, n);
+            if set_of_root[r] == usize::MAX {
+                sets.push(Vec::new());
+                set_of_root[r] = sets.len() - 1;
+            }
+            sets[set_of_root[r]].push(n);
+        }
+        sets
+    }
+}
+
+/// `E2006` when the two sides of a `connect` do not have the same variables.
+fn members_mismatch(
+    c: &Connect,
+    (ka, kb): (&str, &str),
+    ma: &Members,
+    mb: &Members,
+) -> Option<Diagnostic> {
+    let same = ma.len() == mb.len() && ma.iter().zip(mb).all(|(a, b)| a.0 == b.0);
+    if same {
+        return None;
+    }
+    let sa: Vec<&str> = ma.iter().map(|(s, _)| *s).collect();
+    let sb: Vec<&str> = mb.iter().map(|(s, _)| *s).collect();
+    let missing: Vec<&str> = sa
+        .iter()
+        .filter(|s| !sb.contains(s))
+        .chain(sb.iter().filter(|s| !sa.contains(s)))
+        .copied()
+        .collect();
+    Some(
+        Diagnostic::error(
+            "E2006",
+            format!("connectors `{ka}` and `{kb}` do not match"),
+        )
+        .at(c.span, "in this connect")
+        .with_note(format!(
+            "variables on one side only: {}",
+            missing.join(", ")
+        )),
+    )
+}
+
+/// What one `connect` names on each side: the array element, if it names one, and which
+/// array variables are connected element by element.
+struct ConnectedSides<'s> {
+    ea: Option<(usize, u32)>,
+    eb: Option<(usize, u32)>,
+    split: &'s [bool],
+}
+
+/// Connects the variables `ma` and `mb` of the two sides of `c` pairwise (they have the
+/// same names), skipping parameters and constants; mismatched pairs are diagnosed.
+fn connect_members(
+    model: &FlatModel,
+    c: &Connect,
+    sides: &ConnectedSides<'_>,
+    ma: &Members,
+    mb: &Members,
+    graph: &mut ConnectionSets,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let (ea, eb) = (sides.ea, sides.eb);
+    let is_split = |v: usize| sides.split.get(v).copied().unwrap_or(false);
+    for ((_, va), (_, vb)) in ma.iter().zip(mb) {
+        let (xa, xb) = (&model.vars[*va], &model.vars[*vb]);
+        // Parameters and constants of connectors (a signal port's size `n`) are not
+        // connected (spec 9.3).
+        if is_fixed(xa) || is_fixed(xb) {
+            continue;
+        }
+        // The shape connected on each side: an element is a scalar.
+        let (da, db): (&[usize], &[usize]) = (
+            if ea.is_some() { &[] } else { &xa.dims },
+            if eb.is_some() { &[] } else { &xb.dims },
+        );
+        if let Some(d) = pair_mismatch(c, xa, xb, da == db) {
+            diags.push(d);
+            continue;
+        }
+        // Pairs of primitives: whole variables, one element each, or a split array
+        // variable element by element.
+        let n_elems: usize = da.iter().product();
+        let pairs: Vec<(u32, u32)> = match (ea, eb) {
+            (Some((_, a)), Some((_, b))) => vec![(a, b)],
+            (Some((_, a)), None) => vec![(a, WHOLE)],
+            (None, Some((_, b))) => vec![(WHOLE, b)],
+            (None, None) if !da.is_empty() && (is_split(*va) || is_split(*vb)) => {
+                (0..n_elems as u32).map(|i| (i, i)).collect()
+            }
+            (None, None) => vec![(WHOLE, WHOLE)],
+        };
+        for (ia, ib) in pairs {
+            let a = Node {
+                var: *va,
+                elem: ia,
+                outside: c.a_outside,
+            };
+            let b = Node {
+                var: *vb,
+                elem: ib,
+                outside: c.b_outside,
+            };
+            graph.connect(a, b, c.span);
+        }
+    }
+}
+
+/// Whether `v` is a parameter or a constant.
+fn is_fixed(v: &crate::flat::FlatVar) -> bool {
+    matches!(
+        v.variability,
+        crate::flat::Variability::Parameter | crate::flat::Variability::Constant
+    )
+}
+
+/// `E2006` when `xa` and `xb` differ in flow prefix, shape (`same_shape`) or type;
+/// `E2007` when both are outputs connected from inside.
+fn pair_mismatch(
+    c: &Connect,
+    xa: &crate::flat::FlatVar,
+    xb: &crate::flat::FlatVar,
+    same_shape: bool,
+) -> Option<Diagnostic> {
+    if xa.flow != xb.flow || !same_shape || !same_kind(&xa.ty, &xb.ty) {
+        return Some(
+            Diagnostic::error(
+                "E2006",
+                format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
+            )
+            .at(c.span, "in this connect")
+            .with_note(mismatch(xa, xb)),
+        );
+    }
+    let both_outputs = xa.causality == Some(unimo_syntax::ast::Causality::Output)
+        && xb.causality == Some(unimo_syntax::ast::Causality::Output)
+        && !c.a_outside
+        && !c.b_outside;
+    if both_outputs {
+        return Some(
+            Diagnostic::error(
+                "E2007",
+                format!("two outputs connected: `{}` and `{}`", xa.name, xb.name),
+            )
+            .at(c.span, "in this connect")
+            .with_help("an output may drive several inputs, but two outputs cannot be connected"),
+        );
+    }
+    None
+}
+
+/// The equations of one connection set: the flows sum to zero (inside minus outside),
+/// the other variables are equal.
+fn set_equations(
+    model: &FlatModel,
+    graph: &ConnectionSets,
+    set: &[usize],
+    out: &mut Vec<Equation>,
+) {
+    let nodes = &graph.nodes;
+    let span = set
+        .iter()
+        .find_map(|&n| graph.spans.get(n).copied().flatten())
+        .unwrap_or_default();
+    let first = &nodes[set[0]];
+    if model.vars[first.var].flow {
+        if let Some(sum) = flow_sum(model, nodes, set, span) {
+            out.push(eq(
+                sum,
+                Expr {
+                    kind: ExprKind::Real(0.0),
+                    span,
+                },
+                span,
+            ));
+        }
+    } else {
+        let mut seen = vec![(first.var, first.elem)];
+        for &n in &set[1..] {
+            let v = (nodes[n].var, nodes[n].elem);
+            if seen.contains(&v) {
+                continue;
+            }
+            seen.push(v);
+            out.push(eq(
+                prim_ref(model, first.var, first.elem, span),
+                prim_ref(model, v.0, v.1, span),
+                span,
+            ));
+        }
+    }
+}
+
+/// The sum of a set's flows, inside ones added and outside ones subtracted.
+fn flow_sum(model: &FlatModel, nodes: &[Node], set: &[usize], span: Span) -> Option<Expr> {
+    let mut sum: Option<Expr> = None;
+    for &n in set {
+        let v = prim_ref(model, nodes[n].var, nodes[n].elem, span);
+        sum = Some(match (sum, nodes[n].outside) {
+            (None, false) => v,
+            (None, true) => Expr {
+                kind: ExprKind::Unary {
+                    op: unimo_syntax::ast::UnaryOp::Neg,
+                    operand: Box::new(v),
+                },
+                span,
+            },
+            (Some(acc), outside) => Expr {
+                kind: ExprKind::Binary {
+                    op: if outside {
+                        BinaryOp::Sub
+                    } else {
+                        BinaryOp::Add
+                    },
+                    lhs: Box::new(acc),
+                    rhs: Box::new(v),
+                },
+                span,
+            },
+        });
+    }
+    sum
+}
+
+/// `f = 0` for every flow variable (or element) that no connection reaches from inside.
+fn unconnected_flow_equations(model: &FlatModel, nodes: &[Node], out: &mut Vec<Equation>) {
     let mut connected_inside = vec![false; model.vars.len()];
     let mut elements_inside: HashMap<usize, Vec<u32>> = HashMap::default();
-    for n in &nodes {
+    for n in nodes {
         if !n.outside {
             if n.elem == WHOLE {
                 connected_inside[n.var] = true;
@@ -419,73 +584,12 @@ pub fn equations(
             }
         }
     }
-    let mut new_eqs = Vec::new();
-    for set in &sets {
-        let span = set
-            .iter()
-            .find_map(|&n| spans.get(n).copied().flatten())
-            .unwrap_or_default();
-        let first = &nodes[set[0]];
-        if model.vars[first.var].flow {
-            // Sum of inside minus outside flows is zero.
-            let mut sum: Option<Expr> = None;
-            for &n in set {
-                let v = prim_ref(model, nodes[n].var, nodes[n].elem, span);
-                sum = Some(match (sum, nodes[n].outside) {
-                    (None, false) => v,
-                    (None, true) => Expr {
-                        kind: ExprKind::Unary {
-                            op: unimo_syntax::ast::UnaryOp::Neg,
-                            operand: Box::new(v),
-                        },
-                        span,
-                    },
-                    (Some(acc), outside) => Expr {
-                        kind: ExprKind::Binary {
-                            op: if outside {
-                                BinaryOp::Sub
-                            } else {
-                                BinaryOp::Add
-                            },
-                            lhs: Box::new(acc),
-                            rhs: Box::new(v),
-                        },
-                        span,
-                    },
-                });
-            }
-            if let Some(sum) = sum {
-                new_eqs.push(eq(
-                    sum,
-                    Expr {
-                        kind: ExprKind::Real(0.0),
-                        span,
-                    },
-                    span,
-                ));
-            }
-        } else {
-            let mut seen = vec![(first.var, first.elem)];
-            for &n in &set[1..] {
-                let v = (nodes[n].var, nodes[n].elem);
-                if seen.contains(&v) {
-                    continue;
-                }
-                seen.push(v);
-                new_eqs.push(eq(
-                    prim_ref(model, first.var, first.elem, span),
-                    prim_ref(model, v.0, v.1, span),
-                    span,
-                ));
-            }
-        }
-    }
     for (i, v) in model.vars.iter().enumerate() {
         if let (true, false, Some(done)) = (v.flow, connected_inside[i], elements_inside.get(&i)) {
             // Some elements connected: the others are zero one by one.
             let n: usize = v.dims.iter().product();
             for k in (0..n as u32).filter(|k| !done.contains(k)) {
-                new_eqs.push(eq(
+                out.push(eq(
                     prim_ref(model, i, k, v.origin),
                     Expr {
                         kind: ExprKind::Real(0.0),
@@ -497,7 +601,7 @@ pub fn equations(
             continue;
         }
         if v.flow && !connected_inside[i] {
-            new_eqs.push(eq(
+            out.push(eq(
                 var_ref(&v.name, v.origin),
                 Expr {
                     kind: ExprKind::Real(0.0),
@@ -507,7 +611,6 @@ pub fn equations(
             ));
         }
     }
-    (new_eqs, diags)
 }
 
 /// What differs between two variables that cannot be connected.

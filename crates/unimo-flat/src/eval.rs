@@ -165,28 +165,7 @@ pub fn eval(
         ExprKind::Real(r) => Ok(Value::Real(*r)),
         ExprKind::Bool(b) => Ok(Value::Bool(*b)),
         ExprKind::String(s) => Ok(Value::Str(s.clone())),
-        ExprKind::Ref(r) => {
-            if r.parts.len() == 1 {
-                let n = r.parts[0].name.text.as_str();
-                if let Some((_, v)) = iterators.iter().rev().find(|(k, _)| k == n) {
-                    let v = v.clone();
-                    return index(e, v, &r.parts[0].subscripts, env, iterators);
-                }
-                if n == "time" {
-                    return Err(EvalError::NotConstant {
-                        span: e.span,
-                        what: "time".into(),
-                    });
-                }
-            }
-            let v = env.var(&var_key(r), e.span)?;
-            let subs = &r
-                .parts
-                .last()
-                .map(|p| p.subscripts.clone())
-                .unwrap_or_default();
-            index(e, v, subs, env, iterators)
-        }
+        ExprKind::Ref(r) => reference(e, r, env, iterators),
         ExprKind::Unary { op, operand } => {
             let v = eval(operand, env, iterators)?;
             match op {
@@ -233,40 +212,76 @@ pub fn eval(
                 .map(|i| eval(i, env, iterators))
                 .collect::<Result<_, _>>()?,
         )),
-        ExprKind::Matrix(rows) => {
-            // `[a, b; c, d]`: each row concatenated along columns, the rows along rows;
-            // a scalar is a 1x1 matrix and a vector a column (spec 10.4.2).
-            let mut out: Vec<Vec<Value>> = Vec::new();
-            for r in rows {
-                let mut block: Vec<Vec<Value>> = Vec::new();
-                for item in r {
-                    let m = as_matrix(eval(item, env, iterators)?);
-                    if block.is_empty() {
-                        block = m;
-                    } else if block.len() == m.len() {
-                        for (row, more) in block.iter_mut().zip(m) {
-                            row.extend(more);
-                        }
-                    } else {
-                        return Err(unsupported(
-                            item,
-                            "a matrix row of parts with different numbers of rows",
-                        ));
-                    }
-                }
-                if let (Some(first), Some(new)) = (out.first(), block.first()) {
-                    if first.len() != new.len() {
-                        return Err(unsupported(e, "matrix rows of different lengths"));
-                    }
-                }
-                out.extend(block);
-            }
-            Ok(Value::Array(out.into_iter().map(Value::Array).collect()))
-        }
+        ExprKind::Matrix(rows) => matrix(e, rows, env, iterators),
         ExprKind::Comprehension { body, indices } => comprehension(body, indices, env, iterators),
         ExprKind::Call { func, args } => call(e, func, args, env, iterators),
         _ => Err(unsupported(e, "this expression")),
     }
+}
+
+/// The value of a reference `e`: a `for` index's or a variable's, subscripted.
+fn reference(
+    e: &Expr,
+    r: &ComponentRef,
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    if r.parts.len() == 1 {
+        let n = r.parts[0].name.text.as_str();
+        if let Some((_, v)) = iterators.iter().rev().find(|(k, _)| k == n) {
+            let v = v.clone();
+            return index(e, v, &r.parts[0].subscripts, env, iterators);
+        }
+        if n == "time" {
+            return Err(EvalError::NotConstant {
+                span: e.span,
+                what: "time".into(),
+            });
+        }
+    }
+    let v = env.var(&var_key(r), e.span)?;
+    let subs = &r
+        .parts
+        .last()
+        .map(|p| p.subscripts.clone())
+        .unwrap_or_default();
+    index(e, v, subs, env, iterators)
+}
+
+/// `[a, b; c, d]`: each row concatenated along columns, the rows along rows; a scalar
+/// is a 1x1 matrix and a vector a column (spec 10.4.2).
+fn matrix(
+    e: &Expr,
+    rows: &[Vec<Expr>],
+    env: &mut dyn Env,
+    iterators: &mut Vec<(String, Value)>,
+) -> Result<Value, EvalError> {
+    let mut out: Vec<Vec<Value>> = Vec::new();
+    for r in rows {
+        let mut block: Vec<Vec<Value>> = Vec::new();
+        for item in r {
+            let m = as_matrix(eval(item, env, iterators)?);
+            if block.is_empty() {
+                block = m;
+            } else if block.len() == m.len() {
+                for (row, more) in block.iter_mut().zip(m) {
+                    row.extend(more);
+                }
+            } else {
+                return Err(unsupported(
+                    item,
+                    "a matrix row of parts with different numbers of rows",
+                ));
+            }
+        }
+        if let (Some(first), Some(new)) = (out.first(), block.first()) {
+            if first.len() != new.len() {
+                return Err(unsupported(e, "matrix rows of different lengths"));
+            }
+        }
+        out.extend(block);
+    }
+    Ok(Value::Array(out.into_iter().map(Value::Array).collect()))
 }
 
 /// `size(a, k)` (or `size(a)` without `k`) of an array of sizes `d`.

@@ -187,41 +187,7 @@ impl Instantiator<'_, '_> {
             }
             match &st.kind {
                 StatementKind::Assign { target, value } => {
-                    let v = self.eval_local(value, scope, locals)?;
-                    let name = target.to_dotted();
-                    let subs = target
-                        .parts
-                        .last()
-                        .map(|p| p.subscripts.clone())
-                        .unwrap_or_default();
-                    if subs.is_empty() {
-                        locals.insert(name, v);
-                    } else {
-                        let mut idx = Vec::new();
-                        for s in &subs {
-                            let Subscript::Expr(e) = s else {
-                                return Err(EvalError::Unsupported {
-                                    span: st.span,
-                                    what: "assignment to a slice".into(),
-                                });
-                            };
-                            let i =
-                                self.eval_local(e, scope, locals)?.as_int().ok_or_else(|| {
-                                    EvalError::Unsupported {
-                                        span: st.span,
-                                        what: "a non-Integer index".into(),
-                                    }
-                                })?;
-                            idx.push(i);
-                        }
-                        let slot = locals.get_mut(&name).ok_or_else(|| {
-                            not_constant(st.span, format!("`{name}` before it has a value"))
-                        })?;
-                        set_element(slot, &idx, v).ok_or_else(|| EvalError::Unsupported {
-                            span: st.span,
-                            what: "an index out of bounds".into(),
-                        })?;
-                    }
+                    self.exec_assign(st, (target, value), scope, locals)?
                 }
                 StatementKind::If {
                     branches,
@@ -244,31 +210,10 @@ impl Instantiator<'_, '_> {
                     }
                 }
                 StatementKind::For { indices, body } => {
-                    let Some(first) = indices.first() else {
-                        continue;
-                    };
-                    let range = match &first.range {
-                        Some(r) => self.eval_local(r, scope, locals)?,
-                        None => {
-                            return Err(EvalError::Unsupported {
-                                span: st.span,
-                                what: "a `for` without range".into(),
-                            })
-                        }
-                    };
-                    let Value::Array(values) = range else {
-                        return Err(EvalError::Unsupported {
-                            span: st.span,
-                            what: "a `for` range that is not an array".into(),
-                        });
-                    };
-                    for v in values {
-                        locals.insert(first.name.text.to_string(), v);
-                        match self.exec(body, scope, locals, steps, span)? {
-                            Flow::Next => {}
-                            Flow::Break => break,
-                            Flow::Return => return Ok(Flow::Return),
-                        }
+                    if let Flow::Return =
+                        self.exec_for(st, (indices, body), scope, locals, steps, span)?
+                    {
+                        return Ok(Flow::Return);
                     }
                 }
                 StatementKind::While { condition, body } => {
@@ -299,23 +244,7 @@ impl Instantiator<'_, '_> {
                     kind: ExprKind::Call { func, args },
                     ..
                 }) if func.to_dotted() == "assert" && !args.positional.is_empty() => {
-                    let holds = self
-                        .eval_local(&args.positional[0], scope, locals)?
-                        .as_bool()
-                        .ok_or_else(|| EvalError::Unsupported {
-                            span: st.span,
-                            what: "an assertion whose condition is not Boolean".into(),
-                        })?;
-                    if !holds {
-                        let message = match args.positional.get(1).map(|m| &m.kind) {
-                            Some(ExprKind::String(text)) => text.to_string(),
-                            _ => "an assertion".into(),
-                        };
-                        return Err(EvalError::Unsupported {
-                            span: st.span,
-                            what: format!("this call: its assertion \"{message}\" fails"),
-                        });
-                    }
+                    self.exec_assert(st, args, scope, locals)?
                 }
                 StatementKind::Call(_)
                 | StatementKind::MultiAssign { .. }
@@ -328,6 +257,120 @@ impl Instantiator<'_, '_> {
             }
         }
         Ok(Flow::Next)
+    }
+
+    /// `assert(condition, message)` in a function evaluated at compile time: checked
+    /// here (a failing one stops the evaluation with its message).
+    fn exec_assert(
+        &mut self,
+        st: &Statement,
+        args: &CallArgs,
+        scope: &Scope,
+        locals: &mut HashMap<String, Value>,
+    ) -> Result<(), EvalError> {
+        let holds = self
+            .eval_local(&args.positional[0], scope, locals)?
+            .as_bool()
+            .ok_or_else(|| EvalError::Unsupported {
+                span: st.span,
+                what: "an assertion whose condition is not Boolean".into(),
+            })?;
+        if !holds {
+            let message = match args.positional.get(1).map(|m| &m.kind) {
+                Some(ExprKind::String(text)) => text.to_string(),
+                _ => "an assertion".into(),
+            };
+            return Err(EvalError::Unsupported {
+                span: st.span,
+                what: format!("this call: its assertion \"{message}\" fails"),
+            });
+        }
+        Ok(())
+    }
+
+    /// A `for` loop over the values of its (first) range: `Flow::Return` when its body
+    /// returns, else `Flow::Next`.
+    fn exec_for(
+        &mut self,
+        st: &Statement,
+        (indices, body): (&[ForIndex], &[Statement]),
+        scope: &Scope,
+        locals: &mut HashMap<String, Value>,
+        steps: &mut usize,
+        span: Span,
+    ) -> Result<Flow, EvalError> {
+        let Some(first) = indices.first() else {
+            return Ok(Flow::Next);
+        };
+        let range = match &first.range {
+            Some(r) => self.eval_local(r, scope, locals)?,
+            None => {
+                return Err(EvalError::Unsupported {
+                    span: st.span,
+                    what: "a `for` without range".into(),
+                })
+            }
+        };
+        let Value::Array(values) = range else {
+            return Err(EvalError::Unsupported {
+                span: st.span,
+                what: "a `for` range that is not an array".into(),
+            });
+        };
+        for v in values {
+            locals.insert(first.name.text.to_string(), v);
+            match self.exec(body, scope, locals, steps, span)? {
+                Flow::Next => {}
+                Flow::Break => break,
+                Flow::Return => return Ok(Flow::Return),
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    /// An assignment to a local, whole or one element.
+    fn exec_assign(
+        &mut self,
+        st: &Statement,
+        (target, value): (&ComponentRef, &Expr),
+        scope: &Scope,
+        locals: &mut HashMap<String, Value>,
+    ) -> Result<(), EvalError> {
+        let v = self.eval_local(value, scope, locals)?;
+        let name = target.to_dotted();
+        let subs = target
+            .parts
+            .last()
+            .map(|p| p.subscripts.clone())
+            .unwrap_or_default();
+        if subs.is_empty() {
+            locals.insert(name, v);
+        } else {
+            let mut idx = Vec::new();
+            for s in &subs {
+                let Subscript::Expr(e) = s else {
+                    return Err(EvalError::Unsupported {
+                        span: st.span,
+                        what: "assignment to a slice".into(),
+                    });
+                };
+                let i = self.eval_local(e, scope, locals)?.as_int().ok_or_else(|| {
+                    EvalError::Unsupported {
+                        span: st.span,
+                        what: "a non-Integer index".into(),
+                    }
+                })?;
+                idx.push(i);
+            }
+            let slot = locals
+                .get_mut(&name)
+                .ok_or_else(|| not_constant(st.span, format!("`{name}` before it has a value")))?;
+            set_element(slot, &idx, v).ok_or_else(|| EvalError::Unsupported {
+                span: st.span,
+                what: "an index out of bounds".into(),
+            })?;
+        }
+        Ok(())
     }
 }
 

@@ -5,7 +5,8 @@
 use crate::tree::ClassId;
 use smol_str::SmolStr;
 use unimo_syntax::ast::{
-    Argument, ClassModification, Expr, Modification, Name, RedeclaredElement, RefPart,
+    Argument, ClassModification, ComponentClause, ComponentDecl, Expr, Modification, Name,
+    RedeclaredElement, RefPart,
 };
 
 /// Where an expression was written: the class (for name lookup) and the instance path
@@ -152,12 +153,7 @@ impl Mod {
                     }
                     if let RedeclaredElement::Component(cc) = element {
                         for d in &cc.components {
-                            let mut m = d
-                                .modification
-                                .as_ref()
-                                .map(|m| Mod::from_modification(m, scope))
-                                .unwrap_or_default();
-                            m.redeclare = Some((cc.type_name.clone(), scope.clone()));
+                            let mut m = Mod::redeclaring(cc, d, scope);
                             m.each |= *each;
                             out = Mod {
                                 children: vec![(d.name.text.clone(), m)],
@@ -170,6 +166,18 @@ impl Mod {
             }
         }
         out
+    }
+
+    /// The modifier `redeclare T x(...)` gives `x` (declaration `d` of clause `cc`): its
+    /// own modification and the new type `T`, both in `scope`.
+    pub(crate) fn redeclaring(cc: &ComponentClause, d: &ComponentDecl, scope: &Scope) -> Mod {
+        let mut m = d
+            .modification
+            .as_ref()
+            .map(|m| Mod::from_modification(m, scope))
+            .unwrap_or_default();
+        m.redeclare = Some((cc.type_name.clone(), scope.clone()));
+        m
     }
 
     /// The modification of one declaration or modifier argument, in `scope`.

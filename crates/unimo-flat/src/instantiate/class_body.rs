@@ -1,0 +1,361 @@
+//! Instantiation of a class body: its elements, extends clauses, equations and
+//! algorithms at an instance prefix; `outer` components; the check that every modified
+//! name is an element of the class.
+
+use super::{instance_key, part, Instantiator, Kind, MAX_DEPTH, MAX_SELF_NESTING};
+use crate::flat::Variability;
+use crate::lookup::Found;
+use crate::modif::{Mod, Scope};
+use crate::tree::ClassId;
+use unimo_source::{Diagnostic, Span};
+use unimo_syntax::ast::*;
+
+impl Instantiator<'_, '_> {
+    /// Instantiates the elements and equations of `class` at `prefix`.
+    pub(super) fn class_body(
+        &mut self,
+        class: ClassId,
+        prefix: &[RefPart],
+        m: &Mod,
+        variability: Option<Variability>,
+        top: bool,
+    ) {
+        // A class inside itself (a record with a component of its own type): legal
+        // only while conditions stop the recursion, which they do within a few levels;
+        // past MAX_SELF_NESTING it would grow exponentially until memory runs out.
+        let nesting = self.ancestors.iter().filter(|&&c| c == class).count();
+        if nesting >= MAX_SELF_NESTING {
+            if !self.stopped {
+                self.stopped = true;
+                let def = &self.tree.get(class).def;
+                let (name, span) = (def.name.text.clone(), def.name.span);
+                self.error(
+                    "E2011",
+                    format!("instances of `{name}` nested {MAX_SELF_NESTING} deep in each other (a recursive model?)"),
+                    span,
+                    "this class contains itself",
+                );
+            }
+            return;
+        }
+        self.ancestors.push(class);
+        let check = !self.duplicate_free.contains(&class);
+        let level = check.then(|| self.declared_pool.pop().unwrap_or_default());
+        self.declared.push(level);
+        self.duplicate_found.push(false);
+        self.class_body_inner(class, prefix, m, variability, top, true);
+        self.ancestors.pop();
+        let found = self.duplicate_found.pop().unwrap_or(true);
+        if let Some(Some(mut level)) = self.declared.pop() {
+            level.clear();
+            self.declared_pool.push(level);
+            if !found {
+                self.duplicate_free.insert(class);
+            }
+        }
+    }
+
+    /// `check_mods`: whether modified names are checked here (not again in bases).
+    fn class_body_inner(
+        &mut self,
+        class: ClassId,
+        prefix: &[RefPart],
+        m: &Mod,
+        variability: Option<Variability>,
+        top: bool,
+        check_mods: bool,
+    ) {
+        if self.stopped {
+            return;
+        }
+        if self.depth >= MAX_DEPTH {
+            let span = self.tree.get(class).def.name.span;
+            self.error(
+                "E2011",
+                format!("instances nested more than {MAX_DEPTH} deep (a recursive model?)"),
+                span,
+                "in this class",
+            );
+            return;
+        }
+        self.depth += 1;
+        let def = self.tree.get(class).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            // A short class used as a model: instantiate its base with its modifiers.
+            if let Some((Kind::Class(c), m2)) = self.resolve_type(Found::Class(class), m) {
+                if c != class {
+                    self.class_body(c, prefix, &m2, variability, top);
+                }
+            }
+            self.depth -= 1;
+            return;
+        };
+        let scope = Scope {
+            class,
+            prefix: std::sync::Arc::from(prefix),
+        };
+        let prefix_key = if prefix.is_empty() {
+            String::new()
+        } else {
+            instance_key(prefix)
+        };
+        self.register_class_redeclares(class, composition, prefix, m);
+        // `redeclare T x(...)` as an element of this class replaces the inherited `x`:
+        // it travels into the bases like an extends modifier (under the instance's).
+        let own_redeclares = own_redeclares(composition, &scope);
+        let has_bases = crate::values::def_has_bases(&def);
+        if has_bases {
+            self.pending_own
+                .push((prefix_key.clone(), class, m.clone(), scope.clone()));
+        }
+        let base_mods = (m, &own_redeclares);
+        self.inherited_elements(class, &def, &scope, base_mods, variability, top);
+        if has_bases {
+            self.pending_own.pop();
+        }
+        if check_mods {
+            self.check_modified_names(class, composition, m);
+        }
+        // `inner` components of this instance are visible to `outer` ones below it.
+        let inners_before = self.inners.len();
+        for e in &composition.elements {
+            if let (true, ElementKind::Component(cc)) = (e.inner, &e.kind) {
+                for d in &cc.components {
+                    let mut path = prefix.to_vec();
+                    path.push(part(&d.name.text, d.name.span));
+                    self.inners.push((d.name.text.clone(), path));
+                }
+            }
+        }
+        // `outer` components first: parameter bindings may refer through them.
+        for e in &composition.elements {
+            if let (true, false, false, ElementKind::Component(cc)) =
+                (e.outer, e.inner, e.redeclare, &e.kind)
+            {
+                for d in &cc.components {
+                    self.outer_component(&scope, d);
+                }
+            }
+        }
+        // Parameters and constants first: sizes and conditions of the others use them.
+        for pass in 0..2 {
+            self.components(composition, &scope, m, (pass == 0, variability), top);
+        }
+        self.sections(composition, &scope);
+        self.inners.truncate(inners_before);
+        self.depth -= 1;
+    }
+
+    /// The inherited elements of `class` (instance `scope`), each base with its extends
+    /// modifier under the instance's `m` and the class's own redeclarations; a class
+    /// extension `model extends A(m)` first inherits the original `A`.
+    fn inherited_elements(
+        &mut self,
+        class: ClassId,
+        def: &ClassDef,
+        scope: &Scope,
+        (m, own_redeclares): (&Mod, &Mod),
+        variability: Option<Variability>,
+        top: bool,
+    ) {
+        let prefix = &scope.prefix[..];
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return;
+        };
+        if let ClassBody::Long {
+            extends: Some(ext), ..
+        } = &def.body
+        {
+            if let Some(original) = self.tree.extended_original(class) {
+                let ext = ext
+                    .modification
+                    .as_ref()
+                    .map(|cm| Mod::from_class_mod(cm, scope))
+                    .unwrap_or_default();
+                let base_mod = m.over(&own_redeclares.over(&ext));
+                self.class_body_inner(original, prefix, &base_mod, variability, top, false);
+            }
+        }
+        // Inherited elements first, each base with the extends modifier under ours.
+        for e in &composition.elements {
+            if let ElementKind::Extends(x) = &e.kind {
+                let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
+                match self.tree.lookup_dotted(Some(class), &parts, true) {
+                    Some(Found::Class(b)) => {
+                        let ext = x
+                            .modification
+                            .as_ref()
+                            .map(|cm| Mod::from_class_mod(cm, scope))
+                            .unwrap_or_default();
+                        let base_mod = m.over(&own_redeclares.over(&ext));
+                        self.class_body_inner(b, prefix, &base_mod, variability, top, false);
+                    }
+                    Some(Found::Builtin("ExternalObject")) => {} // an external object class
+                    Some(Found::Builtin(_)) => {
+                        self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
+                    }
+                    _ => {} // reported by the name check
+                }
+            }
+        }
+    }
+
+    /// Instantiates the component declarations of a composition: its parameters and
+    /// constants (`parameters`) or its other components.
+    fn components(
+        &mut self,
+        composition: &Composition,
+        scope: &Scope,
+        m: &Mod,
+        (parameters, variability): (bool, Option<Variability>),
+        top: bool,
+    ) {
+        let prefix_key = &if scope.prefix.is_empty() {
+            String::new()
+        } else {
+            instance_key(&scope.prefix)
+        };
+        for e in &composition.elements {
+            let ElementKind::Component(cc) = &e.kind else {
+                continue;
+            };
+            let is_param = matches!(
+                cc.prefix.variability,
+                Some(
+                    unimo_syntax::ast::Variability::Parameter
+                        | unimo_syntax::ast::Variability::Constant
+                )
+            );
+            if parameters != is_param {
+                continue;
+            }
+            if e.redeclare {
+                continue; // instantiated in the base it replaces an element of
+            }
+            for d in &cc.components {
+                if e.outer && !e.inner {
+                    continue; // aliased above
+                }
+                if let Some(child) = m.child(&d.name.text) {
+                    self.check_element_modifier(e, d, child);
+                }
+                // `replaceable T x constrainedby C(mods)`: the constraining
+                // modifiers apply to `x`, whatever type it ends up with.
+                if let Some(cm) = e
+                    .constrainedby
+                    .as_ref()
+                    .and_then(|c| c.modification.as_ref())
+                {
+                    let cmod = Mod::from_class_mod(cm, scope);
+                    let mut m2 = m.clone();
+                    let name = d.name.text.clone();
+                    let child = m.child(&name).cloned().unwrap_or_default().over(&cmod);
+                    m2.children.retain(|(n, _)| *n != name);
+                    m2.children.push((name, child));
+                    self.element_final = e.is_final;
+                    self.component(scope, prefix_key, cc, d, &m2, variability, top);
+                    continue;
+                }
+                self.element_final = e.is_final;
+                self.component(scope, prefix_key, cc, d, m, variability, top);
+            }
+        }
+    }
+
+    /// The equation and algorithm sections of a composition, flattened into the model.
+    fn sections(&mut self, composition: &Composition, scope: &Scope) {
+        for s in &composition.sections {
+            match s {
+                Section::Equation(es) => {
+                    let mut out = Vec::new();
+                    for eq in &es.equations {
+                        self.equation(eq, scope, &mut Vec::new(), &mut out);
+                    }
+                    if es.initial {
+                        self.model.initial_equations.extend(out);
+                    } else {
+                        self.model.equations.extend(out);
+                    }
+                }
+                Section::Algorithm(al) => {
+                    let mut stmts: Vec<Statement> = Vec::new();
+                    self.model_statements(&al.statements, scope, &mut Vec::new(), &mut stmts);
+                    if al.initial {
+                        self.model.initial_algorithms.push(stmts);
+                    } else {
+                        self.model.algorithms.push(stmts);
+                    }
+                }
+            }
+        }
+    }
+
+    /// An `outer` component: no variables of its own; its references go to the nearest
+    /// `inner` component of the same name in an enclosing instance (spec 5.4).
+    fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
+        let name = d.name.text.as_str();
+        // Inners declared in this very instance do not count: they are siblings.
+        let own = scope.prefix.len();
+        let found = self
+            .inners
+            .iter()
+            .rev()
+            .find(|(n, path)| n == name && path.len() <= own)
+            .map(|(_, p)| p.clone());
+        let mut key_path = scope.prefix.to_vec();
+        key_path.push(part(name, d.name.span));
+        let key = instance_key(&key_path);
+        match found {
+            Some(inner) => {
+                self.outer_alias.insert(key, inner);
+            }
+            None => self.diags.push(
+                Diagnostic::error(
+                    "E2013",
+                    format!("`outer {name}` has no matching `inner` declaration"),
+                )
+                .at(d.name.span, "declared `outer` here")
+                .with_help(format!("declare `inner ... {name}` in an enclosing model")),
+            ),
+        }
+    }
+
+    /// Every modified name must be an element of the class (or one of its bases).
+    fn check_modified_names(&mut self, class: ClassId, _composition: &Composition, m: &Mod) {
+        for (name, child) in &m.children {
+            if !self.tree.has_component(class, name)
+                && self.tree.member_class(class, name).is_none()
+            {
+                let span = child
+                    .binding
+                    .as_ref()
+                    .map_or(Span::default(), |b| b.expr.span);
+                let cname = self.tree.full_name(class);
+                self.diags.push(
+                    Diagnostic::error(
+                        "E2004",
+                        format!("modifier of `{name}`, which `{cname}` does not have"),
+                    )
+                    .at(span, "value given here")
+                    .with_help(format!(
+                        "the modified element must be declared in `{cname}` or a class it extends"
+                    )),
+                );
+            }
+        }
+    }
+}
+
+/// `redeclare T x(...)` elements of a class, as modifiers of the elements they replace.
+fn own_redeclares(composition: &Composition, scope: &Scope) -> Mod {
+    let mut own_redeclares = Mod::default();
+    for e in &composition.elements {
+        if let (true, ElementKind::Component(cc)) = (e.redeclare, &e.kind) {
+            for d in &cc.components {
+                let dm = Mod::redeclaring(cc, d, scope);
+                own_redeclares.children.push((d.name.text.clone(), dm));
+            }
+        }
+    }
+    own_redeclares
+}

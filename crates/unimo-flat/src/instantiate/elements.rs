@@ -1,0 +1,172 @@
+//! Array elements: dimensions evaluated at compile time, and the modifier or binding
+//! of one element of a component array picked out.
+
+use super::{int_expr, Instantiator};
+use crate::eval::{self, Value};
+use crate::modif::{Mod, Scope};
+use unimo_source::Span;
+use unimo_syntax::ast::*;
+
+impl Instantiator<'_, '_> {
+    /// An array dimension evaluated at compile time (`E2003` when it is not a
+    /// non-negative Integer).
+    pub(super) fn dimension(&mut self, e: &Expr, scope: &Scope) -> Option<usize> {
+        let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+        match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
+            Ok(Some(n)) if n >= 0 => Some(n as usize),
+            Ok(_) => {
+                self.error(
+                    "E2003",
+                    "an array dimension must be a non-negative Integer".into(),
+                    e.span,
+                    "here",
+                );
+                None
+            }
+            Err(err) => {
+                self.eval_error(err, "array dimension");
+                None
+            }
+        }
+    }
+
+    /// The modification of element `index` of a component array: the bindings of
+    /// modifiers without `each` are subscripted (a literal array gives its element, a
+    /// reference gets the subscripts, a constant is evaluated and picked).
+    pub(super) fn element_mod(&mut self, m: &Mod, index: &[i64]) -> Mod {
+        let mut out = m.clone();
+        out.children = m
+            .children
+            .iter()
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect();
+        out
+    }
+
+    fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
+        if m.each {
+            return m.clone();
+        }
+        let mut out = m.clone();
+        if let Some(b) = &m.binding {
+            if let Some(e) = self.pick_element(&b.expr, &b.scope, index) {
+                out.binding = Some(crate::modif::Bound {
+                    expr: e,
+                    scope: b.scope.clone(),
+                });
+            }
+        }
+        out.children = m
+            .children
+            .iter()
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect();
+        out
+    }
+
+    pub(crate) fn pick_element(&mut self, e: &Expr, scope: &Scope, index: &[i64]) -> Option<Expr> {
+        let Some((&first, rest)) = index.split_first() else {
+            return Some(e.clone());
+        };
+        match &e.kind {
+            ExprKind::Array(items) => {
+                let item = items.get(usize::try_from(first - 1).ok()?)?;
+                self.pick_element(item, scope, rest)
+            }
+            ExprKind::Ref(r) => {
+                // Subscripted only when it names an array: a parameter array is
+                // evaluated, a variable is looked up; a scalar is left as it is.
+                let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+                if let Ok(v) = eval::eval(&flat, self, &mut Vec::new()) {
+                    return self.pick_value(v, index, e.span);
+                }
+                let key = match &flat.kind {
+                    ExprKind::Ref(fr) => eval::var_key(fr),
+                    _ => return None,
+                };
+                let id = self.var_id(&key)?;
+                if self.model.vars[id.0 as usize].dims.len() < index.len() {
+                    return None;
+                }
+                let mut r = r.clone();
+                let last = r.parts.last_mut()?;
+                last.subscripts
+                    .extend(index.iter().map(|&i| Subscript::Expr(int_expr(i, e.span))));
+                Some(Expr {
+                    kind: ExprKind::Ref(r),
+                    span: e.span,
+                })
+            }
+            _ => {
+                // A constant array: evaluate it and pick the element.
+                let flat = self.expr(e, scope, &mut Vec::new(), &mut Vec::new());
+                if let Ok(v) = eval::eval(&flat, self, &mut Vec::new()) {
+                    return self.pick_value(v, index, e.span);
+                }
+                // An element-wise expression of arrays that are not constant
+                // (`u = us + ones(n)`): the element of each operand.
+                let picked = |this: &mut Self, x: &Expr| this.pick_element(x, scope, index);
+                let kind = match &e.kind {
+                    ExprKind::Binary { op, lhs, rhs } => {
+                        let elementwise = crate::lookup::is_elementwise(*op);
+                        let (l, r) = (picked(self, lhs), picked(self, rhs));
+                        match (l, r) {
+                            (Some(l), Some(r)) if elementwise => ExprKind::Binary {
+                                op: *op,
+                                lhs: Box::new(l),
+                                rhs: Box::new(r),
+                            },
+                            // An array scaled by a scalar.
+                            (Some(l), None)
+                                if elementwise || matches!(op, BinaryOp::Mul | BinaryOp::Div) =>
+                            {
+                                ExprKind::Binary {
+                                    op: *op,
+                                    lhs: Box::new(l),
+                                    rhs: rhs.clone(),
+                                }
+                            }
+                            (None, Some(r)) if elementwise || matches!(op, BinaryOp::Mul) => {
+                                ExprKind::Binary {
+                                    op: *op,
+                                    lhs: lhs.clone(),
+                                    rhs: Box::new(r),
+                                }
+                            }
+                            _ => return None,
+                        }
+                    }
+                    ExprKind::Unary { op, operand } => ExprKind::Unary {
+                        op: *op,
+                        operand: Box::new(picked(self, operand)?),
+                    },
+                    ExprKind::Call { func, args } => {
+                        let x = picked(self, crate::lookup::elementwise_arg(func, args)?)?;
+                        ExprKind::Call {
+                            func: func.clone(),
+                            args: Box::new(CallArgs {
+                                positional: vec![x],
+                                named: Vec::new(),
+                                iterators: Vec::new(),
+                                span: args.span,
+                            }),
+                        }
+                    }
+                    _ => return None,
+                };
+                Some(Expr { kind, span: e.span })
+            }
+        }
+    }
+
+    /// Element `index` of an array value; `None` for a scalar (left to broadcast).
+    fn pick_value(&self, mut v: Value, index: &[i64], span: Span) -> Option<Expr> {
+        for &i in index {
+            v = match v {
+                Value::Array(items) => items.into_iter().nth(usize::try_from(i - 1).ok()?)?,
+                _ => return None,
+            };
+        }
+        Some(v.to_expr(span))
+    }
+}
