@@ -174,9 +174,12 @@ enum Command {
         /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
         #[arg(long = "lib", value_name = "DIR")]
         libs: Vec<PathBuf>,
-        /// Keep every parameter tunable (the DAE, structure and tape then name the
-        /// parameters instead of showing their folded values).
-        #[arg(long)]
+        /// Keep these parameters tunable (see `simulate --tunable`): the DAE, structure
+        /// and tape name them instead of showing their folded values.
+        #[arg(long, value_delimiter = ',', value_name = "P,Q.R")]
+        tunable: Vec<String>,
+        /// Keep every parameter tunable.
+        #[arg(long, conflicts_with = "tunable")]
         tunable_all: bool,
     },
 }
@@ -422,6 +425,7 @@ fn run_on_this_thread() -> i32 {
             files,
             model,
             libs,
+            tunable,
             tunable_all,
         } => match stage {
             Stage::Ast => match files.first() {
@@ -435,14 +439,14 @@ fn run_on_this_thread() -> i32 {
             Stage::Dae | Stage::Structure | Stage::Tape => {
                 let fold = unimo_dae::FoldOptions {
                     tunable_all,
-                    ..Default::default()
+                    tunable,
                 };
-                let m = model.as_deref();
-                match stage {
-                    Stage::Dae => stages::emit_dae(&files, m, &libs, &fold, color),
-                    Stage::Structure => stages::emit_structure(&files, m, &libs, &fold, color),
-                    _ => stages::emit_tape(&files, m, &libs, &fold, color),
-                }
+                let back = match stage {
+                    Stage::Dae => stages::BackStage::Dae,
+                    Stage::Structure => stages::BackStage::Structure,
+                    _ => stages::BackStage::Tape,
+                };
+                stages::emit(back, &files, model.as_deref(), &libs, &fold, color)
             }
         },
     }

@@ -20,7 +20,21 @@ pub fn origin(map: &SourceMap, span: Span) -> String {
     format!("{name}:{}", lc.line)
 }
 
-pub fn emit_dae(
+/// The back-end stage `emit` prints.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackStage {
+    /// The hybrid DAE after lowering and alias elimination.
+    Dae,
+    /// The structural analysis and causal plan.
+    Structure,
+    /// The compiled tapes.
+    Tape,
+}
+
+/// `emit --stage dae|structure|tape`: the model flattened, lowered with `fold`'s choice
+/// of tunable parameters (`E0020` for a name that covers none), and the stage printed.
+pub fn emit(
+    stage: BackStage,
     files: &[PathBuf],
     model: Option<&str>,
     libs: &[PathBuf],
@@ -28,57 +42,34 @@ pub fn emit_dae(
     color: bool,
 ) -> i32 {
     with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        let (mut dae, diags) = unimo_dae::lower_with(flat, fold);
-        if render_stage(&diags, map, color) {
-            return EXIT_MODEL_ERROR;
+        if let Err(msg) = crate::simulate::check_tunable(flat, fold) {
+            eprintln!("{msg}");
+            return crate::EXIT_USAGE;
         }
-        unimo_dae::alias::eliminate_aliases(&mut dae);
-        print!("{}", unimo_dae::dump::dump(&dae, &|s| origin(map, s)));
+        if stage == BackStage::Dae {
+            let (mut dae, diags) = unimo_dae::lower_with(flat, fold);
+            if render_stage(&diags, map, color) {
+                return EXIT_MODEL_ERROR;
+            }
+            unimo_dae::alias::eliminate_aliases(&mut dae);
+            print!("{}", unimo_dae::dump::dump(&dae, &|s| origin(map, s)));
+            return EXIT_OK;
+        }
+        let (dae, analysis) = match unimo_dae::analyze_model_with(flat, fold) {
+            Ok(done) => done,
+            Err(diags) => {
+                render_stage(&diags, map, color);
+                return EXIT_MODEL_ERROR;
+            }
+        };
+        if stage == BackStage::Structure {
+            print!("{}", analysis.dump);
+        } else {
+            let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+            let names: Vec<String> = dae.ids().map(|s| dae.name(s)).collect();
+            println!("tape {}", dae.name);
+            print!("{}", unimo_runtime::dump::tape_dump(&compiled, &names));
+        }
         EXIT_OK
-    })
-}
-
-pub fn emit_tape(
-    files: &[PathBuf],
-    model: Option<&str>,
-    libs: &[PathBuf],
-    fold: &unimo_dae::FoldOptions,
-    color: bool,
-) -> i32 {
-    with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        match unimo_dae::analyze_model_with(flat, fold) {
-            Ok((dae, analysis)) => {
-                let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
-                let names: Vec<String> = dae.ids().map(|s| dae.name(s)).collect();
-                println!("tape {}", dae.name);
-                print!("{}", unimo_runtime::dump::tape_dump(&compiled, &names));
-                EXIT_OK
-            }
-            Err(diags) => {
-                render_stage(&diags, map, color);
-                EXIT_MODEL_ERROR
-            }
-        }
-    })
-}
-
-pub fn emit_structure(
-    files: &[PathBuf],
-    model: Option<&str>,
-    libs: &[PathBuf],
-    fold: &unimo_dae::FoldOptions,
-    color: bool,
-) -> i32 {
-    with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        match unimo_dae::analyze_model_with(flat, fold) {
-            Ok((_, analysis)) => {
-                print!("{}", analysis.dump);
-                EXIT_OK
-            }
-            Err(diags) => {
-                render_stage(&diags, map, color);
-                EXIT_MODEL_ERROR
-            }
-        }
     })
 }

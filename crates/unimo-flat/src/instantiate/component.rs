@@ -64,6 +64,7 @@ impl Instantiator<'_, '_> {
         let Some((kind, merged, short_dims)) = self.resolve_type_dims(found, merged) else {
             return;
         };
+        let type_causality = self.type_causality.take();
         let variability = match cc.prefix.variability {
             Some(unimo_syntax::ast::Variability::Constant) => Some(Variability::Constant),
             Some(unimo_syntax::ast::Variability::Parameter) => Some(Variability::Parameter),
@@ -78,6 +79,9 @@ impl Instantiator<'_, '_> {
         if !self.spend(count, d.span) {
             return;
         }
+        // `connector RealInput = input Real`: the type's prefix, under the clause's own.
+        let saved = self.inherited_causality;
+        self.inherited_causality = type_causality.or(saved);
         match kind {
             Kind::Builtin(ty) => {
                 let var = self.builtin_var(key, ty, &merged, cc, d, variability, dims, top);
@@ -88,6 +92,7 @@ impl Instantiator<'_, '_> {
                 self.structured_component(c, key, merged, dims, declaration, variability, top);
             }
         }
+        self.inherited_causality = saved;
     }
 
     /// A component of a class type: a record's binding split into field bindings or

@@ -99,6 +99,10 @@ pub(crate) struct Instantiator<'t, 'p> {
     pub(crate) call_depth: usize,
     /// `input`/`output` of the enclosing structured component, passed to its variables.
     inherited_causality: Option<Causality>,
+    /// The `input`/`output` of the short class definitions the last
+    /// [`Self::resolve_type_dims`] followed (`connector RealInput = input Real`), the
+    /// outermost one's.
+    type_causality: Option<Causality>,
     /// Scalars and instances created so far, against [`MAX_SCALARS`].
     budget_used: usize,
     /// Set when the budget ran out: instantiation stops.
@@ -248,6 +252,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             inners: Vec::new(),
             call_depth: 0,
             inherited_causality: None,
+            type_causality: None,
             budget_used: 0,
             stopped: false,
             outer_alias: HashMap::default(),
@@ -377,6 +382,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         mut m: Mod,
     ) -> Option<(Kind, Mod, Vec<(Subscript, Scope)>)> {
         let mut type_dims: Vec<(Subscript, Scope)> = Vec::new();
+        self.type_causality = None;
         for _ in 0..MAX_DEPTH {
             let c = match found {
                 Found::Builtin(b) => {
@@ -407,11 +413,13 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             }
             match &def.body {
                 ClassBody::Short {
+                    causality,
                     base,
                     modification,
                     dims,
                     ..
                 } => {
+                    self.type_causality = self.type_causality.or(*causality);
                     let parent = self.tree.get(c).parent;
                     let dim_scope = Scope {
                         class: parent.unwrap_or(c),
