@@ -313,6 +313,49 @@ fn pruning_keeps_what_initialization_reads() {
     assert!((y1 - 3.0 * (-1.0f64).exp()).abs() < 1e-6, "y(1) = {y1}");
 }
 
+/// Pruning reaches events: a relation that only a left-out equation holds is no zero
+/// crossing (no root function, no event) and the algebraic loop nobody reads goes, while
+/// the requested state follows the same trajectory (the run with the events restarts
+/// the integrator at each one, so the two agree at the tolerance, not to round-off).
+#[test]
+fn pruning_leaves_out_the_events_of_what_is_left_out() {
+    let file = "tests/simulate/PruneLeavesOutEvents.mo";
+    let m = load(file);
+    let id = |name: &str| m.dae.ids().find(|&s| m.dae.name(s) == name).unwrap();
+    let o = SimOptions {
+        start: 0.0,
+        stop: 3.0,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.01,
+        every_step: false,
+    };
+    let mut outcomes = Vec::new();
+    for wanted in [vec![id("x")], vec![id("x"), id("above")]] {
+        let mut plan = m.analysis.plan.clone();
+        let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &wanted);
+        let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+        let r = simulate(&compiled, &o);
+        assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
+        let k = r.names.iter().position(|n| n == "x").unwrap();
+        let x: Vec<f64> = r.rows.iter().map(|row| row[k]).collect();
+        outcomes.push((pruned, compiled.roots.len(), r.stats.events, x, r.times));
+    }
+    let (pruned, roots, events, x, times) = &outcomes[0];
+    assert_eq!((*pruned, *roots, *events), (3, 0, 0), "x alone");
+    let (pruned_both, roots_both, events_both, x_both, times_both) = &outcomes[1];
+    assert_eq!((*pruned_both, *roots_both), (2, 1), "x and above");
+    assert!(*events_both >= 2, "x crosses 0.5: {events_both} events");
+    // Compare at the output times (the run with events has extra rows at them).
+    let mut worst = 0.0f64;
+    for (t, v) in times.iter().zip(x) {
+        let i = times_both.iter().rposition(|u| u == t).unwrap();
+        worst = worst.max((v - x_both[i]).abs());
+    }
+    assert!(worst <= 1e-6, "x differs by {worst:e}");
+}
+
 /// Requesting only `s_rel` (the state index reduction chose) must keep the variable
 /// whose fixed start determines it. With x = s + 0.5: x'' = -x - d x', x(0) = 0.5,
 /// x'(0) = 0, so x = 0.5 e^(-dt/2) (cos wt + d/(2w) sin wt), w = sqrt(1 - d^2/4), and

@@ -3,7 +3,7 @@
 //! events, plus the event-generating integer functions (`floor`, `ceil`, `integer`,
 //! `div`, `mod`, `rem` of a continuous-time argument, MLS 3.7.2).
 
-use crate::dae::Dae;
+use crate::dae::{Dae, EqId};
 use crate::expr::{ExprId, Node};
 use rustc_hash::FxHashSet as HashSet;
 
@@ -20,12 +20,24 @@ pub struct Crossings {
 }
 
 pub fn zero_crossings(dae: &Dae) -> Crossings {
+    zero_crossings_except(dae, &[])
+}
+
+/// [`zero_crossings`] of the model without the equations `left_out` (those a pruned
+/// plan does not compute): a relation only they hold is no crossing.
+pub fn zero_crossings_except(dae: &Dae, left_out: &[EqId]) -> Crossings {
     let mut out = Crossings::default();
     let mut seen = HashSet::default();
     let mut roots: Vec<ExprId> = Vec::new();
-    for e in &dae.equations {
-        roots.push(e.lhs);
-        roots.push(e.rhs);
+    let mut skip = vec![false; dae.equations.len()];
+    for &e in left_out {
+        skip[e.index()] = true;
+    }
+    for (k, e) in dae.equations.iter().enumerate() {
+        if !skip[k] {
+            roots.push(e.lhs);
+            roots.push(e.rhs);
+        }
     }
     for w in &dae.whens {
         for b in &w.branches {

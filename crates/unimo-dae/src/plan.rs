@@ -92,5 +92,8 @@ pub struct Plan {
     pub steps: Vec<PlanStep>,
     /// Dynamically selected state sets (their states are among `states`).
     pub state_sets: Vec<StateSet>,
+    /// Equations [`crate::prune::prune`] left out: their relations are no zero
+    /// crossings (nothing computes their operands).
+    pub pruned: Vec<EqId>,
     pub stats: PlanStats,
 }

@@ -1,9 +1,12 @@
 //! Leaving out what a scene does not need: plan steps whose results reach no state
 //! derivative, zero crossing, `when` clause, assertion or requested output are
-//! removed, so the compiled model only computes what is used.
+//! removed (a whole algebraic loop with them: inside a strongly connected block every
+//! variable feeds the others), so the compiled model only computes what is used. The
+//! equations left out are listed in [`Plan::pruned`]: a relation only they hold is no
+//! zero crossing (no root function, no event).
 
-use crate::dae::{Dae, WhenAction};
-use crate::events::{zero_crossings, Crossings};
+use crate::dae::{Dae, EqId, WhenAction};
+use crate::events::{zero_crossings, zero_crossings_except, Crossings};
 use crate::expr::{ExprId, ScalarId};
 use crate::plan::{Plan, PlanStep};
 use rustc_hash::FxHashSet as HashSet;
@@ -39,10 +42,14 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
     let mut keep = vec![false; plan.steps.len()];
     for (k, step) in plan.steps.iter().enumerate().rev() {
         match step {
-            PlanStep::Assign { var, value, .. } => {
+            PlanStep::Assign { var, value, eq } => {
                 if needed.contains(var) || holds(&mut std::iter::once(*value)) {
                     keep[k] = true;
                     add(&mut needed, *value);
+                    // The relations of the equation as written (its operands).
+                    let e = &dae.equations[eq.index()];
+                    add(&mut needed, e.lhs);
+                    add(&mut needed, e.rhs);
                 }
             }
             PlanStep::Block(b) => {
@@ -57,6 +64,11 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
                     );
                 if used {
                     keep[k] = true;
+                    for &eq in &b.equations {
+                        let e = &dae.equations[eq.index()];
+                        add(&mut needed, e.lhs);
+                        add(&mut needed, e.rhs);
+                    }
                     for &r in &b.residuals {
                         add(&mut needed, r);
                     }
@@ -68,18 +80,28 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
         }
     }
     let mut pruned = 0;
+    let mut left_out = Vec::new();
     let mut k = 0;
     plan.steps.retain(|step| {
         let kept = keep[k];
         k += 1;
         if !kept {
-            pruned += match step {
-                PlanStep::Assign { .. } => 1,
-                PlanStep::Block(b) => b.equations.len(),
-            };
+            match step {
+                PlanStep::Assign { eq, .. } => {
+                    pruned += 1;
+                    left_out.push(*eq);
+                }
+                PlanStep::Block(b) => {
+                    pruned += b.equations.len();
+                    left_out.extend_from_slice(&b.equations);
+                }
+            }
         }
         kept
     });
+    left_out.sort();
+    left_out.dedup();
+    plan.pruned = left_out;
     plan.stats.pruned_equations = pruned;
     pruned
 }
@@ -103,7 +125,25 @@ fn needed_by_events_and_outputs(
             add(&mut needed, a);
         }
     }
-    for &r in zc.relations.iter().chain(&zc.samples).chain(&zc.held) {
+    // The relations of equations that a step computes are needed only if the step
+    // is (its expression holds them); those of equations no step covers, of `when`
+    // conditions and assertions always.
+    let covered: Vec<EqId> = plan
+        .steps
+        .iter()
+        .flat_map(|s| match s {
+            PlanStep::Assign { eq, .. } => std::slice::from_ref(eq),
+            PlanStep::Block(b) => b.equations.as_slice(),
+        })
+        .copied()
+        .collect();
+    let uncovered = zero_crossings_except(dae, &covered);
+    for &r in uncovered
+        .relations
+        .iter()
+        .chain(&zc.samples)
+        .chain(&zc.held)
+    {
         add(&mut needed, r);
     }
     for w in &dae.whens {

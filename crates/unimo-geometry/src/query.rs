@@ -87,6 +87,89 @@ pub fn contacts(
     check_placement(pa)?;
     check_placement(pb)?;
     let before = out.len();
+    if let Some(c) = sphere_contact(a, pa, b, pb) {
+        // Spheres against spheres and planes in closed form: no general convex query.
+        if c.dist <= prediction {
+            out.push(c);
+        }
+        return Ok(out.len() - before);
+    }
+    contacts_general(a, pa, b, pb, prediction, scratch, out)?;
+    Ok(out.len() - before)
+}
+
+/// The closed-form contact of a sphere with a sphere or a half-space (either order),
+/// `None` for any other pair. The sphere's centre is its body origin.
+fn sphere_contact(a: &Shape, pa: &Placement, b: &Shape, pb: &Placement) -> Option<ContactPoint> {
+    match (&a.kind, &b.kind) {
+        (ShapeKind::Sphere { radius: ra }, ShapeKind::Sphere { radius: rb }) => {
+            Some(sphere_sphere(pa.r, *ra, pb.r, *rb))
+        }
+        (ShapeKind::Sphere { radius }, ShapeKind::HalfSpace) => {
+            Some(sphere_plane(pa.r, *radius, pb))
+        }
+        (ShapeKind::HalfSpace, ShapeKind::Sphere { radius }) => {
+            Some(flip(sphere_plane(pb.r, *radius, pa)))
+        }
+        _ => None,
+    }
+}
+
+/// Two spheres: the normal along the line of centres, from A to B (`+z` for
+/// coincident centres).
+pub fn sphere_sphere(ca: V3, ra: f64, cb: V3, rb: f64) -> ContactPoint {
+    let d = [cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]];
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let n = if len > 0.0 {
+        [d[0] / len, d[1] / len, d[2] / len]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    ContactPoint {
+        point_a: [ca[0] + ra * n[0], ca[1] + ra * n[1], ca[2] + ra * n[2]],
+        point_b: [cb[0] - rb * n[0], cb[1] - rb * n[1], cb[2] - rb * n[2]],
+        normal: n,
+        dist: len - ra - rb,
+    }
+}
+
+/// A sphere (A) against the half-space `z <= 0` of `plane`'s frame: the normal from A
+/// into the half-space is `-n`, `n` the plane's outward normal.
+pub fn sphere_plane(c: V3, radius: f64, plane: &Placement) -> ContactPoint {
+    let n = plane.rotate([0.0, 0.0, 1.0]);
+    let height =
+        (c[0] - plane.r[0]) * n[0] + (c[1] - plane.r[1]) * n[1] + (c[2] - plane.r[2]) * n[2];
+    ContactPoint {
+        point_a: [
+            c[0] - radius * n[0],
+            c[1] - radius * n[1],
+            c[2] - radius * n[2],
+        ],
+        point_b: [
+            c[0] - height * n[0],
+            c[1] - height * n[1],
+            c[2] - height * n[2],
+        ],
+        normal: [-n[0], -n[1], -n[2]],
+        dist: height - radius,
+    }
+}
+
+/// [`contacts`] by parry's general queries (and the ellipsoid's closed form or support
+/// map), for every pair, spheres included: the path a pair takes without the closed
+/// forms (benchmarks compare the two).
+pub fn contacts_general(
+    a: &Shape,
+    pa: &Placement,
+    b: &Shape,
+    pb: &Placement,
+    prediction: f64,
+    scratch: &mut Scratch,
+    out: &mut Vec<ContactPoint>,
+) -> Result<usize, Unsupported> {
+    check_placement(pa)?;
+    check_placement(pb)?;
+    let before = out.len();
     match (a.ellipsoid.as_ref(), b.ellipsoid.as_ref()) {
         (None, None) => {
             let (ga, gb) = (a.parry.as_ref().unwrap(), b.parry.as_ref().unwrap());
@@ -381,6 +464,75 @@ pub fn time_of_impact(
 ) -> Option<f64> {
     check_placement(pa).ok()?;
     check_placement(pb).ok()?;
+    match (&a.kind, &b.kind) {
+        (ShapeKind::Sphere { radius: ra }, ShapeKind::Sphere { radius: rb }) => {
+            let rel = sub3(pb.r, pa.r);
+            return sphere_sweep(rel, sub3(vb, va), ra + rb, max_time);
+        }
+        (ShapeKind::Sphere { radius }, ShapeKind::HalfSpace) => {
+            return plane_sweep(pa.r, va, *radius, pb, vb, max_time);
+        }
+        (ShapeKind::HalfSpace, ShapeKind::Sphere { radius }) => {
+            return plane_sweep(pb.r, vb, *radius, pa, va, max_time);
+        }
+        _ => {}
+    }
+    time_of_impact_general(a, pa, va, b, pb, vb, max_time)
+}
+
+fn sub3(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The first time in `[0, max_time]` at which `|rel + s w| = reach` (0 when already
+/// within reach).
+fn sphere_sweep(rel: V3, w: V3, reach: f64, max_time: f64) -> Option<f64> {
+    let c = dot3(rel, rel) - reach * reach;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let (a, b) = (dot3(w, w), dot3(rel, w));
+    let disc = b * b - a * c;
+    if a == 0.0 || b >= 0.0 || disc < 0.0 {
+        return None;
+    }
+    // The smaller root, written to avoid cancellation: c / (-b + sqrt(disc)).
+    let s = c / (-b + disc.sqrt());
+    (s <= max_time).then_some(s)
+}
+
+/// A sphere (centre `c`, velocity `v`) moving toward a half-space moving with `vp`.
+fn plane_sweep(c: V3, v: V3, radius: f64, plane: &Placement, vp: V3, max_time: f64) -> Option<f64> {
+    let n = plane.rotate([0.0, 0.0, 1.0]);
+    let height = dot3(sub3(c, plane.r), n) - radius;
+    if height <= 0.0 {
+        return Some(0.0);
+    }
+    let rate = dot3(sub3(v, vp), n);
+    if rate >= 0.0 {
+        return None;
+    }
+    let s = -height / rate;
+    (s <= max_time).then_some(s)
+}
+
+/// [`time_of_impact`] by parry's shape cast for every pair (the path spheres take
+/// without their closed forms).
+pub fn time_of_impact_general(
+    a: &Shape,
+    pa: &Placement,
+    va: V3,
+    b: &Shape,
+    pb: &Placement,
+    vb: V3,
+    max_time: f64,
+) -> Option<f64> {
+    check_placement(pa).ok()?;
+    check_placement(pb).ok()?;
     let (ga, gb) = (a.parry.as_ref()?, b.parry.as_ref()?);
     let hit = query::cast_shapes(
         &pa.pose(),
@@ -617,5 +769,131 @@ mod tests {
             ),
             None
         );
+    }
+    /// A deterministic stream of numbers in [-1, 1).
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+        fn v3(&mut self, scale: f64) -> V3 {
+            [
+                self.next() * scale,
+                self.next() * scale,
+                self.next() * scale,
+            ]
+        }
+        /// A rotation: Rodrigues' formula about a random axis.
+        fn placement(&mut self, scale: f64) -> Placement {
+            let (k, angle) = (self.v3(1.0), self.next() * 3.0);
+            let len = dot3(k, k).sqrt().max(1e-9);
+            let k = [k[0] / len, k[1] / len, k[2] / len];
+            let (s, c) = angle.sin_cos();
+            let mut rot = [[0.0; 3]; 3];
+            for (i, row) in rot.iter_mut().enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    let cross = match (i, j) {
+                        (0, 1) => -k[2],
+                        (0, 2) => k[1],
+                        (1, 0) => k[2],
+                        (1, 2) => -k[0],
+                        (2, 0) => -k[1],
+                        (2, 1) => k[0],
+                        _ => 0.0,
+                    };
+                    let id = if i == j { 1.0 } else { 0.0 };
+                    *x = c * id + s * cross + (1.0 - c) * k[i] * k[j];
+                }
+            }
+            Placement {
+                r: self.v3(scale),
+                rot,
+            }
+        }
+    }
+
+    fn close3(a: V3, b: V3, tol: f64) -> bool {
+        (0..3).all(|k| (a[k] - b[k]).abs() <= tol)
+    }
+
+    /// The closed forms of spheres against spheres and planes give parry's general
+    /// queries' answers: 2,000 random pairs (both orders), distances and points to
+    /// 1e-12, normals to 1e-9 (parry's are unit vectors of its own rounding).
+    #[test]
+    fn sphere_closed_forms_agree_with_the_general_queries() {
+        let mut rng = Lcg(7);
+        let (mut fast, mut general) = (Vec::new(), Vec::new());
+        let mut scratch = Scratch::default();
+        for case in 0..2000 {
+            let ra = 0.1 + rng.next().abs();
+            let a = sh(K::Sphere { radius: ra });
+            let b = if case % 2 == 0 {
+                sh(K::Sphere {
+                    radius: 0.1 + rng.next().abs(),
+                })
+            } else {
+                sh(K::HalfSpace)
+            };
+            let (pa, pb) = (rng.placement(2.0), rng.placement(2.0));
+            for (x, px, y, py) in [(&a, &pa, &b, &pb), (&b, &pb, &a, &pa)] {
+                fast.clear();
+                general.clear();
+                contacts(x, px, y, py, 10.0, &mut scratch, &mut fast).unwrap();
+                contacts_general(x, px, y, py, 10.0, &mut scratch, &mut general).unwrap();
+                assert_eq!(fast.len(), general.len(), "case {case}");
+                for (f, g) in fast.iter().zip(&general) {
+                    assert!((f.dist - g.dist).abs() <= 1e-12, "case {case}: {f:?} {g:?}");
+                    assert!(
+                        close3(f.point_a, g.point_a, 1e-12),
+                        "case {case}: {f:?} {g:?}"
+                    );
+                    assert!(
+                        close3(f.point_b, g.point_b, 1e-12),
+                        "case {case}: {f:?} {g:?}"
+                    );
+                    assert!(close3(f.normal, g.normal, 1e-9), "case {case}: {f:?} {g:?}");
+                }
+            }
+        }
+    }
+
+    /// Sweeps of spheres against spheres and planes: the closed form's first contact
+    /// time equals parry's shape cast's to 1e-9 (its tolerance), hits and misses alike.
+    #[test]
+    fn sphere_sweeps_agree_with_the_shape_cast() {
+        let mut rng = Lcg(11);
+        let mut hits = 0;
+        for case in 0..2000 {
+            let a = sh(K::Sphere {
+                radius: 0.1 + 0.3 * rng.next().abs(),
+            });
+            let b = if case % 2 == 0 {
+                sh(K::Sphere {
+                    radius: 0.1 + 0.3 * rng.next().abs(),
+                })
+            } else {
+                sh(K::HalfSpace)
+            };
+            let (pa, pb) = (rng.placement(2.0), rng.placement(2.0));
+            let (va, vb) = (rng.v3(3.0), rng.v3(3.0));
+            for (x, px, vx, y, py, vy) in [(&a, &pa, va, &b, &pb, vb), (&b, &pb, vb, &a, &pa, va)] {
+                let fast = time_of_impact(x, px, vx, y, py, vy, 1.0);
+                let general = time_of_impact_general(x, px, vx, y, py, vy, 1.0);
+                match (fast, general) {
+                    (Some(f), Some(g)) => {
+                        hits += 1;
+                        assert!((f - g).abs() <= 1e-9, "case {case}: {f} {g}");
+                    }
+                    (None, None) => {}
+                    other => panic!("case {case}: {other:?}"),
+                }
+            }
+        }
+        assert!(hits > 500, "{hits} hits");
     }
 }

@@ -8,7 +8,7 @@ use super::{Action, CompiledBlock, CompiledModel, CompiledStateSet, CompiledStep
 use crate::tape::{Compiler, Layout, Op, Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::dae::{Dae, ScalarKind, WhenAction};
-use unimo_dae::events::{zero_crossings, Crossings};
+use unimo_dae::events::{zero_crossings_except, Crossings};
 use unimo_dae::expr::{ExprId, Node, ScalarId};
 use unimo_dae::plan::{Plan, PlanStep};
 
@@ -392,7 +392,7 @@ fn nominals(dae: &Dae, plan: &Plan) -> Vec<f64> {
 
 pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     let layout = Layout::new(dae.scalars.len());
-    let zc = zero_crossings(dae);
+    let zc = zero_crossings_except(dae, &plan.pruned);
     let relation_index = index_of(&zc.relations);
     let sample_index = index_of(&zc.samples);
     let held_index = index_of(&zc.held);

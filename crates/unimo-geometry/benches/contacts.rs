@@ -1,0 +1,84 @@
+//! The narrowphase of sphere scenes: the closed forms of sphere–sphere and
+//! sphere–plane contacts and sweeps against parry's general queries for the same pairs
+//! (`contacts` vs `contacts_general`, `time_of_impact` vs `time_of_impact_general`).
+
+use unimo_geometry::query::{contacts_general, time_of_impact_general};
+use unimo_geometry::{contacts, time_of_impact, Placement, Scratch, Shape, ShapeKind};
+
+fn main() {
+    divan::main();
+}
+
+/// A ball of radius 0.0286 (a billiard ball) against another ball or the table.
+fn pair(plane: bool) -> (Shape, Placement, Shape, Placement) {
+    let ball = Shape::new(ShapeKind::Sphere { radius: 0.0286 }).unwrap();
+    if plane {
+        let table = Shape::new(ShapeKind::HalfSpace).unwrap();
+        (
+            ball,
+            Placement::at([0.1, 0.2, 0.0285]),
+            table,
+            Placement::IDENTITY,
+        )
+    } else {
+        let other = Shape::new(ShapeKind::Sphere { radius: 0.0286 }).unwrap();
+        (
+            ball,
+            Placement::at([0.0, 0.0, 0.0]),
+            other,
+            Placement::at([0.0571, 0.001, 0.0]),
+        )
+    }
+}
+
+#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
+fn contact_closed_form(b: divan::Bencher, case: &str) {
+    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
+    let (mut scratch, mut out) = (Scratch::default(), Vec::new());
+    b.bench_local(|| {
+        out.clear();
+        contacts(
+            &sa,
+            divan::black_box(&pa),
+            &sb,
+            &pb,
+            1e-3,
+            &mut scratch,
+            &mut out,
+        )
+    });
+}
+
+#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
+fn contact_general(b: divan::Bencher, case: &str) {
+    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
+    let (mut scratch, mut out) = (Scratch::default(), Vec::new());
+    b.bench_local(|| {
+        out.clear();
+        contacts_general(
+            &sa,
+            divan::black_box(&pa),
+            &sb,
+            &pb,
+            1e-3,
+            &mut scratch,
+            &mut out,
+        )
+    });
+}
+
+#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
+fn sweep_closed_form(b: divan::Bencher, case: &str) {
+    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
+    let v = [0.0, 0.0, -1.0];
+    b.bench_local(|| time_of_impact(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0));
+}
+
+#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
+fn sweep_general(b: divan::Bencher, case: &str) {
+    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
+    let v = [0.0, 0.0, -1.0];
+    b.bench_local(|| {
+        time_of_impact_general(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0)
+    });
+}
