@@ -207,3 +207,46 @@ fn the_cost_report_shows_what_friction_costs_and_where() {
     assert_eq!(r.zero_crossings - s.zero_crossings, 2);
     assert!(s.ops < r.ops, "{} >= {}", s.ops, r.ops);
 }
+
+/// The cost report's time is measured: every plan step of a run is timed
+/// (`Simulator::profile`), and the components' seconds are those times shared out, so
+/// they sum to the profile's total, and every component with plan operations got time.
+#[test]
+fn the_cost_report_shares_out_measured_step_times() {
+    let m = load(
+        "tests/paper_a/Extremes.mo",
+        "Extremes.Base",
+        &FoldOptions::default(),
+    );
+    let sink = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let o = SimOptions {
+        start: 0.0,
+        stop: 0.5,
+        rtol: 1e-8,
+        atol: 1e-10,
+        method: Method::Bdf,
+        interval: 0.01,
+        every_step: false,
+    };
+    let r = unimo_runtime::sim::Simulator::new(&m.compiled)
+        .profile(sink.clone())
+        .run(&o);
+    assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
+    let steps: Vec<f64> = sink
+        .lock()
+        .unwrap()
+        .iter()
+        .map(std::time::Duration::as_secs_f64)
+        .collect();
+    assert_eq!(steps.len(), m.compiled.steps.len());
+    assert!(steps.iter().all(|&s| s > 0.0), "{steps:?}");
+    let rows = m.compiled.cost_by_component_timed(1, &steps);
+    let (shared, measured): (f64, f64) = (rows.iter().map(|c| c.seconds).sum(), steps.iter().sum());
+    assert!(
+        (shared - measured).abs() <= 1e-9 * measured,
+        "{shared} vs {measured}"
+    );
+    for c in &rows {
+        assert_eq!(c.ops > 0.0, c.seconds > 0.0, "{c:?}");
+    }
+}

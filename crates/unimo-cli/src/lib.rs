@@ -244,9 +244,10 @@ pub struct SimulateArgs {
     /// (`fixed = false`) and those bound to a tunable one are never folded.
     #[arg(long, value_name = "P,Q.R", value_delimiter = ',')]
     pub tunable: Vec<String>,
-    /// After the run, print where the work goes (stderr): plan operations per
-    /// evaluation, their share, zero crossings and states per component instance, at
-    /// DEPTH levels of the instance tree [default: 1].
+    /// After the run, print where the work goes (stderr): per component instance, at
+    /// DEPTH levels of the instance tree [default: 1], the plan operations per
+    /// evaluation, the time spent evaluating them in this run (every plan step is timed)
+    /// with their shares, the zero crossings and the states.
     #[arg(long, value_name = "DEPTH", num_args = 0..=1, default_missing_value = "1")]
     pub cost: Option<usize>,
     /// Keep every parameter tunable: fold only constants, parameters declared with

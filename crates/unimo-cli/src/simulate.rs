@@ -7,7 +7,8 @@ use crate::{
 };
 use std::io::Write;
 use std::path::Path;
-use std::time::Instant;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 use unimo_dae::plan::Plan;
 use unimo_dae::Dae;
 use unimo_runtime::model::CompiledModel;
@@ -174,7 +175,9 @@ fn simulate_flat(
     };
     let start = options.start;
     let sim_started = Instant::now();
-    let result = run(&compiled, &options, sim_started);
+    // --cost times every plan step of the run.
+    let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
+    let result = run(&compiled, &options, sim_started, profile.clone());
     let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
     let written = match result_format(a) {
         ResultFormat::Csv => write_results(a.output.as_deref(), &result, &cols),
@@ -194,7 +197,7 @@ fn simulate_flat(
     if let Some(depth) = a.cost {
         eprint!(
             "{}",
-            cost_table(&compiled, depth.max(1), &result, simulate_ms)
+            cost_table(&compiled, depth.max(1), &result, simulate_ms, profile)
         );
     }
     if let Some(msg) = &result.terminated {
@@ -247,7 +250,12 @@ fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, String> {
 
 /// Runs the simulation; a progress bar on stderr for runs longer than a moment, when
 /// it is a terminal (never in pipes, files or CI logs).
-fn run(compiled: &CompiledModel, options: &SimOptions, sim_started: Instant) -> SimResult {
+fn run(
+    compiled: &CompiledModel,
+    options: &SimOptions,
+    sim_started: Instant,
+    profile: Option<Arc<Mutex<Vec<Duration>>>>,
+) -> SimResult {
     let (start, stop) = (options.start, options.stop);
     let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         let bar = indicatif::ProgressBar::new(1000);
@@ -272,8 +280,11 @@ fn run(compiled: &CompiledModel, options: &SimOptions, sim_started: Instant) -> 
             bar.set_message(format!("{t:.6e}"));
         }
     };
-    let result =
-        unimo_runtime::sim::Simulator::new(compiled).run_with_progress(options, &mut report);
+    let mut simulator = unimo_runtime::sim::Simulator::new(compiled);
+    if let Some(sink) = profile {
+        simulator = simulator.profile(sink);
+    }
+    let result = simulator.run_with_progress(options, &mut report);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -366,10 +377,24 @@ pub(crate) fn check_tunable(
 
 /// The `--cost` table: per component instance, plan operations per evaluation (and
 /// their share), zero crossings and states.
-fn cost_table(m: &CompiledModel, depth: usize, r: &SimResult, simulate_ms: f64) -> String {
+fn cost_table(
+    m: &CompiledModel,
+    depth: usize,
+    r: &SimResult,
+    simulate_ms: f64,
+    profile: Option<Arc<Mutex<Vec<Duration>>>>,
+) -> String {
     use std::fmt::Write as _;
-    let rows = m.cost_by_component(depth);
+    let step_seconds: Vec<f64> = profile
+        .and_then(|p| {
+            p.lock()
+                .ok()
+                .map(|v| v.iter().map(Duration::as_secs_f64).collect())
+        })
+        .unwrap_or_default();
+    let rows = m.cost_by_component_timed(depth, &step_seconds);
     let total: f64 = rows.iter().map(|c| c.ops).sum();
+    let seconds: f64 = rows.iter().map(|c| c.seconds).sum();
     let width = rows
         .iter()
         .map(|c| c.component.len())
@@ -377,34 +402,46 @@ fn cost_table(m: &CompiledModel, depth: usize, r: &SimResult, simulate_ms: f64) 
         .max()
         .unwrap_or(9);
     let mut out = format!(
-        "cost by component (instance depth {depth}):\n{:width$}  {:>8}  {:>6}  {:>14}  {:>6}\n",
-        "component", "ops", "share", "zero crossings", "states"
+        "cost by component (instance depth {depth}):\n{:width$}  {:>8}  {:>6}  {:>9}  {:>6}  {:>14}  {:>6}\n",
+        "component", "ops", "share", "time ms", "share", "zero crossings", "states"
     );
+    let pct = |x: f64, of: f64| if of > 0.0 { 100.0 * x / of } else { 0.0 };
     for c in &rows {
-        let share = if total > 0.0 {
-            100.0 * c.ops / total
-        } else {
-            0.0
-        };
         let _ = writeln!(
             out,
-            "{:width$}  {:>8.1}  {:>5.1}%  {:>14}  {:>6}",
-            c.component, c.ops, share, c.zero_crossings, c.states
+            "{:width$}  {:>8.1}  {:>5.1}%  {:>9.3}  {:>5.1}%  {:>14}  {:>6}",
+            c.component,
+            c.ops,
+            pct(c.ops, total),
+            c.seconds * 1e3,
+            pct(c.seconds, seconds),
+            c.zero_crossings,
+            c.states
         );
     }
     let crossings: usize = rows.iter().map(|c| c.zero_crossings).sum();
     let states: usize = rows.iter().map(|c| c.states).sum();
     let _ = writeln!(
         out,
-        "{:width$}  {:>8.1}  {:>5.1}%  {:>14}  {:>6}",
-        "total", total, 100.0, crossings, states
+        "{:width$}  {:>8.1}  {:>5.1}%  {:>9.3}  {:>5.1}%  {:>14}  {:>6}",
+        "total",
+        total,
+        100.0,
+        seconds * 1e3,
+        100.0,
+        crossings,
+        states
     );
     let _ = writeln!(
         out,
-        "ops: plan operations per evaluation of the model ({} evaluations in {:.1} ms of \
-         simulation); a component's share of them approximates its share of the time \
-         spent evaluating the model (operations differ in cost)",
-        r.stats.rhs_evaluations, simulate_ms
+        "ops: plan operations per evaluation of the model; time: measured in each plan \
+         step over this run ({} evaluations; {:.1} of the run's {:.1} ms went to \
+         evaluating the plan, the rest to the solver, zero crossings, events and output), \
+         an explicit step's time split by its operations, a block's equally among its \
+         iteration variables",
+        r.stats.rhs_evaluations,
+        seconds * 1e3,
+        simulate_ms
     );
     out
 }

@@ -6,6 +6,11 @@
 //! before an assignment count for it); a Newton block's residual and Jacobian
 //! operations are shared among its iteration variables' components. A zero crossing
 //! belongs to the component of the first variable its relation names.
+//!
+//! With the time of each plan step measured during a run ([`crate::sim::Simulator::
+//! profile`]), each component also gets its measured share of the time spent
+//! evaluating the plan: an explicit step's time split by its operations, a block's
+//! (residuals, Jacobians and Newton's work) equally among its iteration variables.
 
 use crate::model::{CompiledModel, CompiledStep};
 use crate::tape::{Op, Reg};
@@ -21,6 +26,8 @@ pub struct ComponentCost {
     pub ops: f64,
     pub zero_crossings: usize,
     pub states: usize,
+    /// Measured seconds of plan evaluation over the run (0 without a profile).
+    pub seconds: f64,
 }
 
 /// The register an operation writes.
@@ -97,10 +104,57 @@ fn first_name(text: &str) -> &str {
     }
 }
 
+/// The operations of one plan step per component: an explicit step's to the variables
+/// it assigns (the temporaries before an assignment count for it), a block's shared
+/// equally among its iteration variables' components.
+fn step_shares(
+    step: &CompiledStep,
+    names: &HashMap<Reg, &str>,
+    depth: usize,
+    out: &mut Vec<(String, f64)>,
+) {
+    match step {
+        CompiledStep::Explicit(tape) => {
+            let mut pending = 0usize;
+            let mut last = None;
+            for op in &tape.ops {
+                pending += 1;
+                if let Some(n) = names.get(&destination(op)) {
+                    let c = component_of(n, depth);
+                    out.push((c.clone(), pending as f64));
+                    last = Some(c);
+                    pending = 0;
+                }
+            }
+            if pending > 0 {
+                let c = last.unwrap_or_else(|| "(top level)".to_owned());
+                out.push((c, pending as f64));
+            }
+        }
+        CompiledStep::Block(b) => {
+            let total = (b.residual_tape.ops.len() + b.jacobian_tape.ops.len()) as f64;
+            let share = total / b.names.len().max(1) as f64;
+            for n in &b.names {
+                out.push((component_of(n, depth), share));
+            }
+        }
+    }
+}
+
 impl CompiledModel {
     /// Plan operations, zero crossings and states per component at `depth` levels of
     /// the instance tree, most expensive first.
     pub fn cost_by_component(&self, depth: usize) -> Vec<ComponentCost> {
+        self.cost_by_component_timed(depth, &[])
+    }
+
+    /// [`Self::cost_by_component`] with the measured seconds of each plan step (as
+    /// [`crate::sim::Simulator::profile`] gives them) shared out among the components.
+    pub fn cost_by_component_timed(
+        &self,
+        depth: usize,
+        step_seconds: &[f64],
+    ) -> Vec<ComponentCost> {
         let names: HashMap<Reg, &str> =
             self.outputs.iter().map(|(n, r)| (*r, n.as_str())).collect();
         let mut by: HashMap<String, ComponentCost> = HashMap::default();
@@ -110,31 +164,17 @@ impl CompiledModel {
                 ..ComponentCost::default()
             })
         }
-        for step in &self.steps {
-            match step {
-                CompiledStep::Explicit(tape) => {
-                    let mut pending = 0usize;
-                    let mut last = None;
-                    for op in &tape.ops {
-                        pending += 1;
-                        if let Some(n) = names.get(&destination(op)) {
-                            let c = component_of(n, depth);
-                            entry(&mut by, c.clone()).ops += pending as f64;
-                            last = Some(c);
-                            pending = 0;
-                        }
-                    }
-                    if pending > 0 {
-                        let c = last.unwrap_or_else(|| "(top level)".to_owned());
-                        entry(&mut by, c).ops += pending as f64;
-                    }
-                }
-                CompiledStep::Block(b) => {
-                    let total = (b.residual_tape.ops.len() + b.jacobian_tape.ops.len()) as f64;
-                    let share = total / b.names.len().max(1) as f64;
-                    for n in &b.names {
-                        entry(&mut by, component_of(n, depth)).ops += share;
-                    }
+        let mut shares: Vec<(String, f64)> = Vec::new();
+        for (k, step) in self.steps.iter().enumerate() {
+            shares.clear();
+            step_shares(step, &names, depth, &mut shares);
+            let ops: f64 = shares.iter().map(|(_, o)| o).sum();
+            let seconds = step_seconds.get(k).copied().unwrap_or(0.0);
+            for (c, o) in shares.drain(..) {
+                let e = entry(&mut by, c);
+                e.ops += o;
+                if ops > 0.0 {
+                    e.seconds += seconds * o / ops;
                 }
             }
         }

@@ -1,6 +1,8 @@
 //! Evaluating the compiled plan: explicit steps in order, Newton on each block (the
 //! solve crate's, on the block's residual and symbolic Jacobian tapes).
 
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
 
 use crate::model::{CompiledBlock, CompiledModel, CompiledStep};
@@ -30,6 +32,9 @@ pub fn eval_steps(
     work: &mut Workspace,
 ) -> Result<(), BlockFailure> {
     collide(m, r, ev)?;
+    if work.profile.is_some() {
+        return eval_steps_timed(m, r, ev, work);
+    }
     for s in &m.steps {
         match s {
             CompiledStep::Explicit(t) => t.run(r, ev),
@@ -37,6 +42,69 @@ pub fn eval_steps(
         }
     }
     Ok(())
+}
+
+/// [`eval_steps`] timing each step into the workspace's profile.
+fn eval_steps_timed(
+    m: &CompiledModel,
+    r: &mut [f64],
+    ev: &mut EventState,
+    work: &mut Workspace,
+) -> Result<(), BlockFailure> {
+    for (k, s) in m.steps.iter().enumerate() {
+        let started = Instant::now();
+        let outcome = match s {
+            CompiledStep::Explicit(t) => {
+                t.run(r, ev);
+                Ok(())
+            }
+            CompiledStep::Block(b) => newton(b, r, ev, work),
+        };
+        if let Some(p) = work.profile.as_mut() {
+            p.add(k, started.elapsed());
+        }
+        outcome?;
+    }
+    Ok(())
+}
+
+/// The time spent in each plan step, kept while profiling (`unimo simulate --cost`):
+/// summed locally without locks and added to the shared `sink` when the simulation's
+/// workspace is dropped.
+#[derive(Debug)]
+pub struct StepProfile {
+    local: Vec<Duration>,
+    sink: Arc<Mutex<Vec<Duration>>>,
+}
+
+impl StepProfile {
+    pub fn new(sink: Arc<Mutex<Vec<Duration>>>) -> StepProfile {
+        StepProfile {
+            local: Vec::new(),
+            sink,
+        }
+    }
+
+    fn add(&mut self, step: usize, d: Duration) {
+        if self.local.len() <= step {
+            self.local.resize(step + 1, Duration::ZERO);
+        }
+        self.local[step] += d;
+    }
+}
+
+impl Drop for StepProfile {
+    fn drop(&mut self) {
+        // A poisoned lock (a panicking reader) loses the profile, nothing else.
+        if let Ok(mut sink) = self.sink.lock() {
+            if sink.len() < self.local.len() {
+                sink.resize(self.local.len(), Duration::ZERO);
+            }
+            for (total, d) in sink.iter_mut().zip(&self.local) {
+                *total += *d;
+            }
+        }
+    }
 }
 
 /// Runs every step of the plan like [`eval_steps`] but goes on past a block that fails
@@ -87,6 +155,8 @@ pub struct Workspace {
     /// A block's iteration variables.
     x: Vec<f64>,
     newton: NewtonWork,
+    /// Time per plan step, when profiling.
+    pub profile: Option<StepProfile>,
     /// The simulation's tolerances (the solver's defaults until a run sets them).
     pub tolerance: NewtonTolerance,
 }

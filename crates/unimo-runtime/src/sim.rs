@@ -434,6 +434,16 @@ impl<'a> Simulator<'a> {
         }
     }
 
+    /// Times every plan step of the run into `sink` (seconds per step, summed over the
+    /// run; added when the simulation ends): `unimo simulate --cost`.
+    pub fn profile(
+        mut self,
+        sink: std::sync::Arc<std::sync::Mutex<Vec<std::time::Duration>>>,
+    ) -> Self {
+        self.ode.work.profile = Some(crate::eval::StepProfile::new(sink));
+        self
+    }
+
     /// Dynamic state selection: evaluates each set's Jacobian at the current registers
     /// and, where the current choice of states is ill-conditioned (or, with `best`,
     /// whenever another is better), switches to the choice with the best pivots: the
