@@ -223,7 +223,8 @@ impl Instantiator<'_, '_> {
     }
 
     /// Whether `d` is the first declaration of its name in the class being instantiated
-    /// (a second one is `E2005`, reported here).
+    /// (a second one is `E2005`, reported here; the same declaration met again through
+    /// a second inheritance path is no second one).
     fn first_declaration(&mut self, scope: &Scope, d: &ComponentDecl) -> bool {
         let name = d.name.text.as_str();
         let Some(level) = self.declared.last_mut() else {
@@ -231,6 +232,12 @@ impl Instantiator<'_, '_> {
         };
         if let Some(seen) = level {
             if let Some(first) = seen.get(name).copied() {
+                if first == d.name.span {
+                    // The same declaration inherited along two paths (a base extended
+                    // twice, as the MSL's `Visualizers.Advanced.Shape` does): one
+                    // element (spec 7.1.4: identical inherited elements are one).
+                    return false;
+                }
                 let owner = if scope.prefix.is_empty() {
                     self.model.name.clone()
                 } else {

@@ -452,11 +452,74 @@ impl<'t, 'p> Instantiator<'t, 'p> {
                         type_dims,
                     ));
                 }
+                ClassBody::Long { composition, .. } if self.is_type_like(c) => {
+                    // `type TypeReal extends Real; end TypeReal;` (the MSL's icons of
+                    // types): a class that only extends a type is that type with the
+                    // extends' modifier, as the short form would be.
+                    let x = sole_extends(composition).expect("type-like");
+                    let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
+                    let base = self.tree.lookup_dotted(Some(c), &parts, true)?;
+                    if let Some(cm) = &x.modification {
+                        let scope = Scope {
+                            class: c,
+                            prefix: std::sync::Arc::from([]),
+                        };
+                        m = m.over(&Mod::from_class_mod(cm, &scope));
+                    }
+                    found = base;
+                }
                 ClassBody::Long { .. } | ClassBody::Der { .. } => {
                     return Some((Kind::Class(c), m, type_dims))
                 }
             }
         }
         None
+    }
+}
+
+/// The one `extends` of a composition without components or sections (nested classes
+/// and imports allowed: `type Orientation extends Real[4]; function
+/// equalityConstraint ... end Orientation;`), or `None`.
+fn sole_extends(c: &unimo_syntax::ast::Composition) -> Option<&unimo_syntax::ast::Extends> {
+    if !c.sections.is_empty() || c.external.is_some() {
+        return None;
+    }
+    let mut found = None;
+    for e in &c.elements {
+        match &e.kind {
+            ElementKind::Extends(x) if found.is_none() => found = Some(x),
+            ElementKind::Extends(_) | ElementKind::Component(_) => return None,
+            ElementKind::Class(_) | ElementKind::Import(_) => {}
+        }
+    }
+    found
+}
+
+impl Instantiator<'_, '_> {
+    /// A long class that only extends a predefined type, a short type, or another such
+    /// class (so a component of it is a scalar or an array of scalars).
+    fn is_type_like(&mut self, class: ClassId) -> bool {
+        let mut c = class;
+        for _ in 0..MAX_DEPTH {
+            let parts: Vec<SmolStr> = match &self.tree.get(c).def.body {
+                ClassBody::Short { .. } => return true,
+                ClassBody::Long {
+                    composition,
+                    extends: None,
+                    ..
+                } => match sole_extends(composition) {
+                    Some(x) => x.base.parts.iter().map(|p| p.text.clone()).collect(),
+                    None => return false,
+                },
+                _ => return false,
+            };
+            let parts: Vec<&str> = parts.iter().map(|p| p.as_str()).collect();
+            match self.tree.lookup_dotted(Some(c), &parts, true) {
+                Some(Found::Builtin(b)) => return b != "ExternalObject",
+                Some(Found::Class(b)) => c = b,
+                _ => return false,
+            }
+        }
+        false
     }
 }
