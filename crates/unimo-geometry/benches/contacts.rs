@@ -31,13 +31,27 @@ fn pair(plane: bool) -> (Shape, Placement, Shape, Placement) {
     }
 }
 
-#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
-fn contact_closed_form(b: divan::Bencher, case: &str) {
+/// `contacts` or `contacts_general`.
+type ContactQuery = fn(
+    &Shape,
+    &Placement,
+    &Shape,
+    &Placement,
+    f64,
+    &mut Scratch,
+    &mut Vec<unimo_geometry::ContactPoint>,
+) -> Result<usize, unimo_geometry::Unsupported>;
+
+/// `time_of_impact` or `time_of_impact_general`.
+type SweepQuery =
+    fn(&Shape, &Placement, [f64; 3], &Shape, &Placement, [f64; 3], f64) -> Option<f64>;
+
+fn contact(b: divan::Bencher, case: &str, query: ContactQuery) {
     let (sa, pa, sb, pb) = pair(case == "sphere-plane");
     let (mut scratch, mut out) = (Scratch::default(), Vec::new());
     b.bench_local(|| {
         out.clear();
-        contacts(
+        query(
             &sa,
             divan::black_box(&pa),
             &sb,
@@ -47,38 +61,30 @@ fn contact_closed_form(b: divan::Bencher, case: &str) {
             &mut out,
         )
     });
+}
+
+fn sweep(b: divan::Bencher, case: &str, query: SweepQuery) {
+    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
+    let v = [0.0, 0.0, -1.0];
+    b.bench_local(|| query(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0));
+}
+
+#[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
+fn contact_closed_form(b: divan::Bencher, case: &str) {
+    contact(b, case, contacts);
 }
 
 #[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
 fn contact_general(b: divan::Bencher, case: &str) {
-    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
-    let (mut scratch, mut out) = (Scratch::default(), Vec::new());
-    b.bench_local(|| {
-        out.clear();
-        contacts_general(
-            &sa,
-            divan::black_box(&pa),
-            &sb,
-            &pb,
-            1e-3,
-            &mut scratch,
-            &mut out,
-        )
-    });
+    contact(b, case, contacts_general);
 }
 
 #[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
 fn sweep_closed_form(b: divan::Bencher, case: &str) {
-    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
-    let v = [0.0, 0.0, -1.0];
-    b.bench_local(|| time_of_impact(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0));
+    sweep(b, case, time_of_impact);
 }
 
 #[divan::bench(args = ["sphere-sphere", "sphere-plane"])]
 fn sweep_general(b: divan::Bencher, case: &str) {
-    let (sa, pa, sb, pb) = pair(case == "sphere-plane");
-    let v = [0.0, 0.0, -1.0];
-    b.bench_local(|| {
-        time_of_impact_general(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0)
-    });
+    sweep(b, case, time_of_impact_general);
 }

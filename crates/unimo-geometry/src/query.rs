@@ -84,18 +84,17 @@ pub fn contacts(
     scratch: &mut Scratch,
     out: &mut Vec<ContactPoint>,
 ) -> Result<usize, Unsupported> {
+    let Some(c) = sphere_contact(a, pa, b, pb) else {
+        return contacts_general(a, pa, b, pb, prediction, scratch, out);
+    };
+    // Spheres against spheres and planes in closed form: no general convex query.
     check_placement(pa)?;
     check_placement(pb)?;
-    let before = out.len();
-    if let Some(c) = sphere_contact(a, pa, b, pb) {
-        // Spheres against spheres and planes in closed form: no general convex query.
-        if c.dist <= prediction {
-            out.push(c);
-        }
-        return Ok(out.len() - before);
+    if c.dist > prediction {
+        return Ok(0);
     }
-    contacts_general(a, pa, b, pb, prediction, scratch, out)?;
-    Ok(out.len() - before)
+    out.push(c);
+    Ok(1)
 }
 
 /// The closed-form contact of a sphere with a sphere or a half-space (either order),
