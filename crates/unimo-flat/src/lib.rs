@@ -10,6 +10,7 @@
 //! printing; every problem is a coded `E2xxx` diagnostic.
 
 pub mod balance;
+mod check;
 pub mod connect;
 pub mod error;
 pub mod eval;
@@ -86,6 +87,7 @@ pub fn flatten_with(
         diags.extend(semantic::parameter_cycles(&model));
     }
     diags.extend(semantic::binding_variability(&model));
+    diags.extend(check::constant_bindings(&model));
     // Connection equations and the size/type check of the equations so far are
     // independent: they run side by side. (Connected variables are checked against
     // each other in `connect`, so the generated equations need no type check.)
