@@ -197,6 +197,9 @@ impl Ctx<'_, '_> {
                         None if base_of(self.tree, Found::Class(c))
                             .is_some_and(|b| b != Base::Other) =>
                         {
+                            if let Some(base) = base_of(self.tree, Found::Class(c)) {
+                                self.attribute(base, p);
+                            }
                             t = None
                         }
                         None => {
@@ -205,7 +208,12 @@ impl Ctx<'_, '_> {
                         }
                     },
                     // An attribute of a predefined type.
-                    Some(Found::Builtin(_)) => t = None,
+                    Some(Found::Builtin(b)) => {
+                        if let Some(base) = base_of(self.tree, Found::Builtin(b)) {
+                            self.attribute(base, p);
+                        }
+                        t = None
+                    }
                     _ => resolved = false,
                 }
             }
@@ -223,5 +231,30 @@ impl Ctx<'_, '_> {
                 self.class_mod(cm, t, any_array);
             }
         }
+    }
+
+    /// `E2004`: an attribute of the predefined types that `base` does not have
+    /// (`Integer(unit = "m")`; names no predefined type has are reported when
+    /// instantiating).
+    fn attribute(&mut self, base: Base, attr: &Ident) {
+        const ALL: &[&str] = &[
+            "quantity", "unit", "displayUnit", "min", "max", "start", "fixed", "nominal",
+            "unbounded", "stateSelect",
+        ];
+        let allowed: &[&str] = match base {
+            Base::Real | Base::Other => return,
+            Base::Integer | Base::Enumeration => &["quantity", "min", "max", "start", "fixed"],
+            Base::Boolean | Base::String => &["quantity", "start", "fixed"],
+        };
+        let a = attr.text.as_str();
+        if !ALL.contains(&a) || allowed.contains(&a) {
+            return;
+        }
+        self.out.push(
+            Diagnostic::error("E2004", format!("`{a}` is not an attribute of {}", base.name()))
+                .at(attr.span, "no such attribute")
+                .with_help(format!("attributes of {}: {}", base.name(), allowed.join(", ")))
+                .with_note("Modelica specification, section 4.9"),
+        );
     }
 }

@@ -67,6 +67,9 @@ impl Ctx<'_, '_> {
             return;
         };
         let kind = def.kind.keyword();
+        if def.kind == ClassKind::Function {
+            self.function_sections(composition);
+        }
         for d in declared(composition) {
             let name = &d.decl.name;
             let info = info_of(id, &d);
@@ -97,6 +100,20 @@ impl Ctx<'_, '_> {
                     ));
                 }
                 ClassKind::Function => self.function_component(&d, &info),
+                ClassKind::Model | ClassKind::Block | ClassKind::Class
+                    if d.clause.prefix.connection.is_some() =>
+                {
+                    let word = match d.clause.prefix.connection {
+                        Some(Connection::Stream) => "stream",
+                        _ => "flow",
+                    };
+                    self.out.push(prefix_error(
+                        format!("`{word}` outside a connector: `{}`", name.text),
+                        name.span,
+                        &format!("`{word}` in a {kind}"),
+                        "4.4.2.2",
+                    ));
+                }
                 ClassKind::Block => self.block_connector(&d, &info),
                 _ => {}
             }
@@ -162,6 +179,21 @@ impl Ctx<'_, '_> {
         let name = &d.decl.name;
         let p = d.clause.prefix;
         let protected = d.element.visibility == Visibility::Protected;
+        let bad_prefix = match p.connection {
+            Some(Connection::Flow) => Some("flow"),
+            Some(Connection::Stream) => Some("stream"),
+            None if d.element.inner => Some("inner"),
+            None if d.element.outer => Some("outer"),
+            None => None,
+        };
+        if let Some(prefix) = bad_prefix {
+            self.out.push(prefix_error(
+                format!("a function's element `{}` may not be declared `{prefix}`", name.text),
+                name.span,
+                &format!("`{prefix}` in a function"),
+                "12.2",
+            ));
+        }
         match (protected, p.causality) {
             (true, Some(c)) => {
                 let word = if c == Causality::Input { "input" } else { "output" };
@@ -262,6 +294,47 @@ impl Ctx<'_, '_> {
                 )
                 .at(d.clause.type_name.span, format!("not a Real type"))
                 .with_note("Modelica specification, section 9.3: flow and stream variables are subtypes of Real"),
+            );
+        }
+    }
+
+    /// `E2027`: a function has at most one algorithm section, or an external clause
+    /// instead (spec 12.2), and no initial algorithm.
+    fn function_sections(&mut self, composition: &Composition) {
+        let algorithms: Vec<&AlgorithmSection> = composition
+            .sections
+            .iter()
+            .filter_map(|s| match s {
+                Section::Algorithm(a) => Some(a),
+                Section::Equation(_) => None,
+            })
+            .collect();
+        if let Some(a) = algorithms.iter().find(|a| a.initial) {
+            self.out.push(restriction(
+                "a function may not have an initial algorithm".to_owned(),
+                a.span,
+                "initial algorithm in a function",
+                "12.2",
+            ));
+        } else if algorithms.len() > 1 {
+            self.out.push(
+                restriction(
+                    "a function has at most one algorithm section".to_owned(),
+                    algorithms[1].span,
+                    "second algorithm section",
+                    "12.2",
+                )
+                .with_label(algorithms[0].span, "first algorithm section"),
+            );
+        } else if let (Some(a), Some(x)) = (algorithms.first(), &composition.external) {
+            self.out.push(
+                restriction(
+                    "a function has an algorithm section or an external clause, not both".to_owned(),
+                    x.span,
+                    "external clause",
+                    "12.2",
+                )
+                .with_label(a.span, "algorithm section"),
             );
         }
     }
