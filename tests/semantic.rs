@@ -55,7 +55,10 @@ fn invalid_models_are_rejected_where_the_rule_is_broken() {
         let mut got = common::rendered_codes(&stderr);
         got.sort();
         if code != Some(1) || got != want {
-            failures.push(format!("{}: want {want:?}, got {got:?} (exit {code:?})\n{stderr}", f.display()));
+            failures.push(format!(
+                "{}: want {want:?}, got {got:?} (exit {code:?})\n{stderr}",
+                f.display()
+            ));
             continue;
         }
         let name = f.file_stem().unwrap().to_string_lossy().to_string();

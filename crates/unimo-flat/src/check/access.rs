@@ -3,7 +3,8 @@
 //! that is not an array (`E2024`, spec 7.2.5).
 
 use super::elements::{
-    base_of, component_type, declares_protected_class, Base, find_component, is_array, is_within, ComponentInfo,
+    base_of, component_type, declares_protected_class, find_component, is_array, is_within, Base,
+    ComponentInfo,
 };
 use super::walk::{composition_exprs, for_each_equation};
 use super::Ctx;
@@ -65,7 +66,9 @@ impl Ctx<'_, '_> {
                 ElementKind::Import(imp) => {
                     let name = match &imp.kind {
                         ImportKind::Qualified(n) | ImportKind::Unqualified(n) => n,
-                        ImportKind::Renamed { name, .. } | ImportKind::Multiple { name, .. } => name,
+                        ImportKind::Renamed { name, .. } | ImportKind::Multiple { name, .. } => {
+                            name
+                        }
                     };
                     self.class_path(None, id, &name.parts);
                 }
@@ -92,7 +95,8 @@ impl Ctx<'_, '_> {
                 return;
             };
             if next.protected {
-                self.out.push(protected_access(&p.name.text, p.name.span, next.name_span));
+                self.out
+                    .push(protected_access(&p.name.text, p.name.span, next.name_span));
                 return;
             }
             cur = next;
@@ -122,7 +126,8 @@ impl Ctx<'_, '_> {
             }
             if let Some(info) = find_component(self.tree, c, &p.text) {
                 if info.protected && !is_within(self.tree, from, info.owner) {
-                    self.out.push(protected_access(&p.text, p.span, info.name_span));
+                    self.out
+                        .push(protected_access(&p.text, p.span, info.name_span));
                 }
             }
             return;
@@ -177,10 +182,11 @@ impl Ctx<'_, '_> {
             let mut resolved = true;
             for p in &name.parts {
                 match t {
-                    Some(Found::Class(c)) => match find_component(self.tree, c, &p.text) {
-                        Some(info) => {
-                            if info.protected {
-                                self.out.push(
+                    Some(Found::Class(c)) => {
+                        match find_component(self.tree, c, &p.text) {
+                            Some(info) => {
+                                if info.protected {
+                                    self.out.push(
                                     Diagnostic::error(
                                         "E2023",
                                         format!("`{}` is protected: it cannot be modified from outside", p.text),
@@ -189,24 +195,25 @@ impl Ctx<'_, '_> {
                                     .with_label(info.name_span, "declared protected here")
                                     .with_note("Modelica specification, section 4.1"),
                                 );
+                                }
+                                any_array |= is_array(self.tree, &info);
+                                t = component_type(self.tree, &info);
                             }
-                            any_array |= is_array(self.tree, &info);
-                            t = component_type(self.tree, &info);
-                        }
-                        // An attribute of a type derived from a predefined one.
-                        None if base_of(self.tree, Found::Class(c))
-                            .is_some_and(|b| b != Base::Other) =>
-                        {
-                            if let Some(base) = base_of(self.tree, Found::Class(c)) {
-                                self.attribute(base, p);
+                            // An attribute of a type derived from a predefined one.
+                            None if base_of(self.tree, Found::Class(c))
+                                .is_some_and(|b| b != Base::Other) =>
+                            {
+                                if let Some(base) = base_of(self.tree, Found::Class(c)) {
+                                    self.attribute(base, p);
+                                }
+                                t = None
                             }
-                            t = None
+                            None => {
+                                resolved = false;
+                                t = None;
+                            }
                         }
-                        None => {
-                            resolved = false;
-                            t = None;
-                        }
-                    },
+                    }
                     // An attribute of a predefined type.
                     Some(Found::Builtin(b)) => {
                         if let Some(base) = base_of(self.tree, Found::Builtin(b)) {
@@ -238,8 +245,16 @@ impl Ctx<'_, '_> {
     /// instantiating).
     fn attribute(&mut self, base: Base, attr: &Ident) {
         const ALL: &[&str] = &[
-            "quantity", "unit", "displayUnit", "min", "max", "start", "fixed", "nominal",
-            "unbounded", "stateSelect",
+            "quantity",
+            "unit",
+            "displayUnit",
+            "min",
+            "max",
+            "start",
+            "fixed",
+            "nominal",
+            "unbounded",
+            "stateSelect",
         ];
         let allowed: &[&str] = match base {
             Base::Real | Base::Other => return,
@@ -251,10 +266,17 @@ impl Ctx<'_, '_> {
             return;
         }
         self.out.push(
-            Diagnostic::error("E2004", format!("`{a}` is not an attribute of {}", base.name()))
-                .at(attr.span, "no such attribute")
-                .with_help(format!("attributes of {}: {}", base.name(), allowed.join(", ")))
-                .with_note("Modelica specification, section 4.9"),
+            Diagnostic::error(
+                "E2004",
+                format!("`{a}` is not an attribute of {}", base.name()),
+            )
+            .at(attr.span, "no such attribute")
+            .with_help(format!(
+                "attributes of {}: {}",
+                base.name(),
+                allowed.join(", ")
+            ))
+            .with_note("Modelica specification, section 4.9"),
         );
     }
 }

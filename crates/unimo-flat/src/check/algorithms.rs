@@ -82,7 +82,8 @@ impl Ctx<'_, '_> {
                 continue;
             };
             let callee = self.tree.get(c).def.clone();
-            if callee.kind != ClassKind::Function || callee.prefixes.purity != Some(Purity::Impure) {
+            if callee.kind != ClassKind::Function || callee.prefixes.purity != Some(Purity::Impure)
+            {
                 continue;
             }
             self.out.push(

@@ -70,18 +70,27 @@ impl Ctx<'_, '_> {
             Some(Found::Builtin(b)) => format!("a variable of type {b}"),
             Some(Found::Class(c)) => match class_kind(self.tree, c) {
                 (ClassKind::Connector, _) => return,
-                (kind, _) => format!("an instance of the {} `{}`", kind.keyword(), self.tree.full_name(c)),
+                (kind, _) => format!(
+                    "an instance of the {} `{}`",
+                    kind.keyword(),
+                    self.tree.full_name(c)
+                ),
             },
             _ => return,
         };
         self.out.push(
             Diagnostic::error(
                 "E2030",
-                format!("`{}` is not a connector: it is {what}", unimo_syntax::print::cref(r)),
+                format!(
+                    "`{}` is not a connector: it is {what}",
+                    unimo_syntax::print::cref(r)
+                ),
             )
             .at(r.span, "not a connector")
             .with_label(cur.name_span, "declared here")
-            .with_note("Modelica specification, section 9.1: both arguments of `connect` are connectors"),
+            .with_note(
+                "Modelica specification, section 9.1: both arguments of `connect` are connectors",
+            ),
         );
     }
 }

@@ -278,7 +278,11 @@ pub(crate) fn is_within(tree: &ClassTree<'_>, inner: ClassId, outer: ClassId) ->
 }
 
 /// Whether `class` declares a nested class `name` under `protected`.
-pub(crate) fn declares_protected_class(tree: &ClassTree<'_>, class: ClassId, name: &str) -> Option<Span> {
+pub(crate) fn declares_protected_class(
+    tree: &ClassTree<'_>,
+    class: ClassId,
+    name: &str,
+) -> Option<Span> {
     let ClassBody::Long { composition, .. } = &tree.get(class).def.body else {
         return None;
     };

@@ -35,7 +35,10 @@ pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
             diags.push(
                 Diagnostic::error(
                     "E2019",
-                    format!("the binding of constant `{}` reads the parameter `{}`", v.name, p.name),
+                    format!(
+                        "the binding of constant `{}` reads the parameter `{}`",
+                        v.name, p.name
+                    ),
                 )
                 .at(b.span, "not a constant expression")
                 .with_label(p.origin, "declared a parameter here")

@@ -4,7 +4,8 @@
 //! types (`E2021`).
 
 use super::elements::{
-    all_components, base_of, class_kind, component_class, component_type, type_has_causality, Base, ComponentInfo,
+    all_components, base_of, class_kind, component_class, component_type, type_has_causality, Base,
+    ComponentInfo,
 };
 use super::Ctx;
 use crate::tree::ClassId;
@@ -78,7 +79,10 @@ impl Ctx<'_, '_> {
                     if d.clause.prefix.variability != Some(Variability::Constant) =>
                 {
                     self.out.push(restriction(
-                        format!("a {kind} may declare only classes and constants, not `{}`", name.text),
+                        format!(
+                            "a {kind} may declare only classes and constants, not `{}`",
+                            name.text
+                        ),
                         name.span,
                         "not a constant",
                         "4.7",
@@ -93,7 +97,10 @@ impl Ctx<'_, '_> {
                 ClassKind::Record => self.record_component(&d, &info),
                 ClassKind::Connector if d.element.visibility == Visibility::Protected => {
                     self.out.push(restriction(
-                        format!("a connector has only public elements: `{}` is protected", name.text),
+                        format!(
+                            "a connector has only public elements: `{}` is protected",
+                            name.text
+                        ),
                         name.span,
                         "protected element of a connector",
                         "4.7",
@@ -134,7 +141,10 @@ impl Ctx<'_, '_> {
         };
         if let Some(prefix) = bad_prefix {
             self.out.push(prefix_error(
-                format!("a record's element `{}` may not be declared `{prefix}`", name.text),
+                format!(
+                    "a record's element `{}` may not be declared `{prefix}`",
+                    name.text
+                ),
                 name.span,
                 &format!("`{prefix}` in a record"),
                 "4.7",
@@ -142,7 +152,10 @@ impl Ctx<'_, '_> {
         }
         if d.element.visibility == Visibility::Protected {
             self.out.push(restriction(
-                format!("a record has only public elements: `{}` is protected", name.text),
+                format!(
+                    "a record has only public elements: `{}` is protected",
+                    name.text
+                ),
                 name.span,
                 "protected element of a record",
                 "4.7",
@@ -157,7 +170,10 @@ impl Ctx<'_, '_> {
             return;
         };
         let (ck, _) = class_kind(self.tree, c);
-        if matches!(ck, ClassKind::Model | ClassKind::Block | ClassKind::Connector) {
+        if matches!(
+            ck,
+            ClassKind::Model | ClassKind::Block | ClassKind::Connector
+        ) {
             self.out.push(
                 restriction(
                     format!(
@@ -188,7 +204,10 @@ impl Ctx<'_, '_> {
         };
         if let Some(prefix) = bad_prefix {
             self.out.push(prefix_error(
-                format!("a function's element `{}` may not be declared `{prefix}`", name.text),
+                format!(
+                    "a function's element `{}` may not be declared `{prefix}`",
+                    name.text
+                ),
                 name.span,
                 &format!("`{prefix}` in a function"),
                 "12.2",
@@ -196,9 +215,16 @@ impl Ctx<'_, '_> {
         }
         match (protected, p.causality) {
             (true, Some(c)) => {
-                let word = if c == Causality::Input { "input" } else { "output" };
+                let word = if c == Causality::Input {
+                    "input"
+                } else {
+                    "output"
+                };
                 self.out.push(prefix_error(
-                    format!("a function's protected element `{}` may not be an {word}", name.text),
+                    format!(
+                        "a function's protected element `{}` may not be an {word}",
+                        name.text
+                    ),
                     name.span,
                     &format!("protected {word}"),
                     "12.2",
@@ -282,7 +308,11 @@ impl Ctx<'_, '_> {
             ) {
                 continue;
             }
-            let word = if conn == Connection::Flow { "flow" } else { "stream" };
+            let word = if conn == Connection::Flow {
+                "flow"
+            } else {
+                "stream"
+            };
             self.out.push(
                 Diagnostic::error(
                     "E2021",
@@ -329,7 +359,8 @@ impl Ctx<'_, '_> {
         } else if let (Some(a), Some(x)) = (algorithms.first(), &composition.external) {
             self.out.push(
                 restriction(
-                    "a function has an algorithm section or an external clause, not both".to_owned(),
+                    "a function has an algorithm section or an external clause, not both"
+                        .to_owned(),
                     x.span,
                     "external clause",
                     "12.2",
