@@ -88,6 +88,7 @@ pub fn flatten_with(
     }
     diags.extend(semantic::binding_variability(&model));
     diags.extend(check::constant_bindings(&model));
+    diags.extend(check::pre_of_continuous(&model));
     // Connection equations and the size/type check of the equations so far are
     // independent: they run side by side. (Connected variables are checked against
     // each other in `connect`, so the generated equations need no type check.)

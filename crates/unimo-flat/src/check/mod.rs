@@ -14,7 +14,7 @@ mod flat;
 mod restrictions;
 mod walk;
 
-pub(crate) use flat::constant_bindings;
+pub(crate) use flat::{constant_bindings, pre_of_continuous};
 
 use crate::tree::{ClassId, ClassTree};
 use unimo_source::Diagnostic;

@@ -322,7 +322,7 @@ impl Ctx<'_, '_> {
                         base.map_or("?", Base::name)
                     ),
                 )
-                .at(d.clause.type_name.span, format!("not a Real type"))
+                .at(d.clause.type_name.span, "not a Real type")
                 .with_note("Modelica specification, section 9.3: flow and stream variables are subtypes of Real"),
             );
         }
