@@ -81,3 +81,19 @@ fn legal_models_at_the_edge_of_each_rule_check_cleanly() {
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `flatten` (and so `simulate`) checks the other classes of the model's file too: a
+/// function beside the model that assigns its input is refused there as well.
+#[test]
+fn flattening_checks_the_other_classes_of_the_file() {
+    let f = Path::new("tests/semantic/err/assign_function_input_of_used_function.mo");
+    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["flatten", "--color", "never"])
+        .arg(f)
+        .current_dir(common::root())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(common::rendered_codes(&stderr), expected(f), "{stderr}");
+}

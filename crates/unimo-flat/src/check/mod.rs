@@ -14,8 +14,6 @@ mod flat;
 mod restrictions;
 mod walk;
 
-pub(crate) use flat::{constant_bindings, pre_of_continuous};
-
 use crate::tree::{ClassId, ClassTree};
 use unimo_source::Diagnostic;
 use unimo_syntax::ast::{ClassBody, ElementKind};
@@ -49,6 +47,28 @@ pub(crate) fn check_class(tree: &mut ClassTree<'_>, class: ClassId) -> Vec<Diagn
         }
     }
     ctx.out
+}
+
+/// The semantic diagnostics of the other top-level classes of the user file that
+/// declares `class` (the functions and classes a model's file holds beside it; the
+/// name check covers `class` and what encloses it).
+pub(crate) fn check_file_siblings(tree: &mut ClassTree<'_>, class: ClassId) -> Vec<Diagnostic> {
+    let file = tree.get(class).file;
+    let mut out = Vec::new();
+    for c in tree.user_top_classes_in(file) {
+        if !elements::is_within(tree, class, c) {
+            out.extend(check_class(tree, c));
+        }
+    }
+    out
+}
+
+/// The semantic diagnostics of a flat model: constants bound to parameters (`E2019`),
+/// `pre` of continuous-time variables outside `when` (`E2032`).
+pub(crate) fn flat_model(model: &crate::FlatModel) -> Vec<Diagnostic> {
+    let mut out = flat::constant_bindings(model);
+    out.extend(flat::pre_of_continuous(model));
+    out
 }
 
 /// The class tree and the diagnostics found so far.
