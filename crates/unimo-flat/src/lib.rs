@@ -10,6 +10,7 @@
 //! printing; every problem is a coded `E2xxx` diagnostic.
 
 pub mod balance;
+mod check;
 pub mod connect;
 pub mod error;
 pub mod eval;
@@ -67,6 +68,7 @@ pub fn flatten_with(
     modifiers: &[(String, unimo_syntax::ast::Expr)],
 ) -> (FlatModel, Vec<Diagnostic>) {
     let mut diags = resolve::check_names(tree, class);
+    diags.extend(check::check_file_siblings(tree, class));
     let mut inst = instantiate::Instantiator::new(tree);
     inst.top_modifiers = top_modifiers(class, modifiers);
     inst.run(class);
@@ -86,6 +88,7 @@ pub fn flatten_with(
         diags.extend(semantic::parameter_cycles(&model));
     }
     diags.extend(semantic::binding_variability(&model));
+    diags.extend(check::flat_model(&model));
     // Connection equations and the size/type check of the equations so far are
     // independent: they run side by side. (Connected variables are checked against
     // each other in `connect`, so the generated equations need no type check.)

@@ -7,7 +7,8 @@ use crate::tree::{ClassId, ClassTree};
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
-/// Checks the names used in `class` and in its nested classes; returns diagnostics.
+/// Checks the names used in `class` and in its nested classes, then the semantic rules
+/// of the specification on them (`crate::check`); returns diagnostics.
 pub fn check_names(tree: &mut ClassTree<'_>, class: ClassId) -> Vec<Diagnostic> {
     let mut c = Checker {
         tree,
@@ -16,7 +17,9 @@ pub fn check_names(tree: &mut ClassTree<'_>, class: ClassId) -> Vec<Diagnostic> 
         suppress_refs: false,
     };
     c.class(class);
-    c.out
+    let mut out = c.out;
+    out.extend(crate::check::check_class(tree, class));
+    out
 }
 
 /// The E2001 diagnostic for `name`, unknown in `scope`, with a suggestion of a close name

@@ -399,6 +399,20 @@ impl<'p> ClassTree<'p> {
         names
     }
 
+    /// The top-level classes of the user file `file` (files given on the command line
+    /// without a `within` clause), in no particular order.
+    pub fn user_top_classes_in(&self, file: FileId) -> Vec<ClassId> {
+        let mut out: Vec<ClassId> = self
+            .user_top
+            .values()
+            .flatten()
+            .copied()
+            .filter(|&c| self.get(c).file == file)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     /// Names at the top level: user classes and library root entries.
     pub fn top_names(&self) -> Vec<String> {
         let mut names: Vec<String> = self.user_top.keys().map(|k| k.to_string()).collect();

@@ -27,7 +27,7 @@ equation
   end when;
 end ThermalMass;
 
-block Heater "Heat source driven by a control signal"
+model Heater "Heat source driven by a control signal"
   parameter Real Q_nom = 1000 "Nominal heat flow";
   input Real onOff(min = 0, max = 1) "Control signal";
   output Real Q "Delivered heat flow";

@@ -1,0 +1,96 @@
+//! Connections as written (spec 9.1): both sides of a `connect` are connectors
+//! (`E2030`), and a connector is not connected to itself (`E2031`).
+
+use super::elements::{class_kind, component_type, find_component};
+use super::walk::for_each_equation;
+use super::Ctx;
+use crate::lookup::Found;
+use crate::tree::ClassId;
+use unimo_source::Diagnostic;
+use unimo_syntax::ast::*;
+
+/// Whether two references are the same text (names and subscripts, spans aside).
+fn same_reference(a: &ComponentRef, b: &ComponentRef) -> bool {
+    a.global == b.global && unimo_syntax::print::cref(a) == unimo_syntax::print::cref(b)
+}
+
+impl Ctx<'_, '_> {
+    /// `E2030`/`E2031` for the `connect` equations of class `id`.
+    pub(super) fn connections(&mut self, id: ClassId) {
+        let def = self.tree.get(id).def.clone();
+        let ClassBody::Long { composition, .. } = &def.body else {
+            return;
+        };
+        let mut connects: Vec<(ComponentRef, ComponentRef, unimo_source::Span)> = Vec::new();
+        for s in &composition.sections {
+            let Section::Equation(es) = s else { continue };
+            for_each_equation(&es.equations, &mut |eq| {
+                if let EquationKind::Connect { a, b } = &eq.kind {
+                    connects.push((a.clone(), b.clone(), eq.span));
+                }
+            });
+        }
+        for (a, b, span) in &connects {
+            if same_reference(a, b) {
+                self.out.push(
+                    Diagnostic::error(
+                        "E2031",
+                        format!("`{}` is connected to itself", unimo_syntax::print::cref(a)),
+                    )
+                    .at(*span, "both sides are the same connector")
+                    .with_note("Modelica specification, section 9.1: a connect equation relates two different connectors"),
+                );
+                continue;
+            }
+            for side in [a, b] {
+                self.connector_side(id, side);
+            }
+        }
+    }
+
+    /// `E2030` when `r` denotes a component that is not a connector.
+    fn connector_side(&mut self, id: ClassId, r: &ComponentRef) {
+        let Some(mut cur) = find_component(self.tree, id, &r.parts[0].name.text) else {
+            return;
+        };
+        for p in &r.parts[1..] {
+            let Some(Found::Class(c)) = component_type(self.tree, &cur) else {
+                return;
+            };
+            // Members of an expandable connector need not be declared.
+            if class_kind(self.tree, c) == (ClassKind::Connector, true) {
+                return;
+            }
+            let Some(next) = find_component(self.tree, c, &p.name.text) else {
+                return;
+            };
+            cur = next;
+        }
+        let what = match component_type(self.tree, &cur) {
+            Some(Found::Builtin(b)) => format!("a variable of type {b}"),
+            Some(Found::Class(c)) => match class_kind(self.tree, c) {
+                (ClassKind::Connector, _) => return,
+                (kind, _) => format!(
+                    "an instance of the {} `{}`",
+                    kind.keyword(),
+                    self.tree.full_name(c)
+                ),
+            },
+            _ => return,
+        };
+        self.out.push(
+            Diagnostic::error(
+                "E2030",
+                format!(
+                    "`{}` is not a connector: it is {what}",
+                    unimo_syntax::print::cref(r)
+                ),
+            )
+            .at(r.span, "not a connector")
+            .with_label(cur.name_span, "declared here")
+            .with_note(
+                "Modelica specification, section 9.1: both arguments of `connect` are connectors",
+            ),
+        );
+    }
+}

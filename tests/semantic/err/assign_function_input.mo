@@ -1,0 +1,8 @@
+// expect: E2026 @6:3
+function f
+  input Real u;
+  output Real y;
+algorithm
+  u := 2*u;
+  y := u;
+end f;

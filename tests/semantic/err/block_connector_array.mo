@@ -1,0 +1,8 @@
+// expect: E2027 @7:7
+connector Pin
+  Real v;
+  flow Real i;
+end Pin;
+block B
+  Pin p[2];
+end B;

@@ -1,0 +1,7 @@
+// expect: E2021 @6:8
+type Count = Integer;
+type Items = Count;
+connector Port
+  Real v;
+  flow Items n;
+end Port;

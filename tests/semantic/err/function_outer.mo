@@ -1,0 +1,9 @@
+// expect: E2028 @6:14
+function f
+  input Real u;
+  output Real y;
+protected
+  outer Real w;
+algorithm
+  y := u;
+end f;

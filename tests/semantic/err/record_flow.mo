@@ -1,0 +1,4 @@
+// expect: E2028 @3:13
+record R
+  flow Real i;
+end R;

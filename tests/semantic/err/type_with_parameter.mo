@@ -1,0 +1,4 @@
+// expect: E2027 @3:18
+type T
+  parameter Real k = 1;
+end T;
