@@ -266,6 +266,10 @@ pub struct SimulateArgs {
     /// recompiling, description) instead of simulating; overrides are applied first.
     #[arg(long)]
     pub list_params: bool,
+    /// How the compiled model is evaluated: `tape` (the register-tape interpreter) or
+    /// `native` (the hot tapes compiled to machine code with Cranelift; same results).
+    #[arg(long, value_enum, default_value_t = EngineArg::Tape)]
+    pub engine: EngineArg,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -349,6 +353,14 @@ pub enum ResultFormat {
     Csv,
     /// MAT v4, the result format of Dymola and OpenModelica.
     Mat,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum EngineArg {
+    /// The register-tape interpreter.
+    Tape,
+    /// Machine code compiled with Cranelift (`unimo-codegen`).
+    Native,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
