@@ -87,7 +87,10 @@ fn models_of(file: &Path) -> Result<Vec<(String, unimo_cli::LoadedModel)>, Strin
     let text = std::fs::read_to_string(file).map_err(|e| e.to_string())?;
     let word_after = |line: &str, kw: &str| {
         let rest = line.trim_start().strip_prefix(kw)?;
-        let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
         (!name.is_empty()).then_some(name)
     };
     let package = text.lines().find_map(|l| word_after(l, "package "));
@@ -122,7 +125,11 @@ fn compare_folder(dir: &Path, max_stop: f64) -> (usize, Vec<String>) {
     files.sort();
     let (mut compared, mut skipped) = (0, Vec::new());
     for file in files {
-        let file_name = file.file_name().unwrap_or_default().to_string_lossy().into_owned();
+        let file_name = file
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
         let Ok(models) = models_of(&file) else {
             eprintln!("{file_name}: does not compile (skipped)");
             skipped.push(file_name);

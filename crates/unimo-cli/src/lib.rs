@@ -266,9 +266,11 @@ pub struct SimulateArgs {
     /// recompiling, description) instead of simulating; overrides are applied first.
     #[arg(long)]
     pub list_params: bool,
-    /// How the compiled model is evaluated: `tape` (the register-tape interpreter) or
-    /// `native` (the hot tapes compiled to machine code with Cranelift; same results).
-    #[arg(long, value_enum, default_value_t = EngineArg::Tape)]
+    /// How the compiled model is evaluated: `native` (the hot tapes compiled to machine
+    /// code with Cranelift; the same results, bit for bit) or `tape` (the register-tape
+    /// interpreter). A model above the native size threshold (120,000 instructions)
+    /// runs on the tape either way; `--stats` says which engine ran.
+    #[arg(long, value_enum, default_value_t = EngineArg::Native)]
     pub engine: EngineArg,
 }
 

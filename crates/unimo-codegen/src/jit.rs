@@ -11,14 +11,14 @@ use std::sync::Arc;
 use unimo_runtime::native::NativeFn;
 use unimo_runtime::tape::Op;
 
-use crate::translate::{registers, Counts, Params, Signatures, Translator};
+use crate::translate::{registers, Counts, Params, PinnedOp, Signatures, Translator};
 use crate::{CodegenError, NativeOptions, NativeStats};
 
 /// The code of one model: the JIT module and the instructions its code hands to the
 /// interpreter (their addresses are in the code).
 struct NativeCode {
     module: Option<JITModule>,
-    _interpreted_ops: Vec<Box<Op>>,
+    _interpreted_ops: Vec<PinnedOp>,
 }
 
 // SAFETY: after `finalize_definitions` the module is never used again except by
@@ -64,7 +64,11 @@ fn new_module(options: &NativeOptions) -> Result<JITModule, CodegenError> {
     set(&mut flags, "use_colocated_libcalls", "false")?;
     set(&mut flags, "is_pic", "false")?;
     set(&mut flags, "opt_level", options.opt_level)?;
-    let verify = if cfg!(debug_assertions) { "true" } else { "false" };
+    let verify = if cfg!(debug_assertions) {
+        "true"
+    } else {
+        "false"
+    };
     set(&mut flags, "enable_verifier", verify)?;
     let isa = cranelift_native::builder()
         .map_err(|e| CodegenError::UnsupportedHost(e.to_string()))?
@@ -102,7 +106,13 @@ pub(crate) fn compile(
             ctx.func.signature = signature.clone();
             ctx.func.name = UserFuncName::user(0, id.as_u32());
             let target = module.target_config();
-            let counts = build(&mut ctx.func, &mut builder_ctx, part, &mut interpreted_ops, target);
+            let counts = build(
+                &mut ctx.func,
+                &mut builder_ctx,
+                part,
+                &mut interpreted_ops,
+                target,
+            );
             stats.native_ops += counts.native;
             stats.interpreted_ops += counts.interpreted;
             module
@@ -172,7 +182,7 @@ fn build(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     ops: &[Op],
-    interpreted_ops: &mut Vec<Box<Op>>,
+    interpreted_ops: &mut Vec<PinnedOp>,
     target: TargetFrontendConfig,
 ) -> Counts {
     let call_conv = func.signature.call_conv;

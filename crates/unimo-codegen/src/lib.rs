@@ -51,8 +51,8 @@ impl Default for NativeOptions {
     fn default() -> Self {
         NativeOptions {
             max_ops_per_function: 2_000,
-            max_model_ops: 1_000_000,
-            opt_level: "speed",
+            max_model_ops: 120_000,
+            opt_level: "none",
         }
     }
 }

@@ -76,7 +76,10 @@ mod tests {
         for &f in &Fn1::ALL {
             for &x in &points {
                 let (a, b) = (unary_of(f)(x), f.apply(x));
-                assert!(a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()), "{f:?}");
+                assert!(
+                    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                    "{f:?}"
+                );
             }
         }
         for &f in &Fn2::ALL {

@@ -36,7 +36,10 @@ pub(crate) struct Signatures {
 }
 
 impl Signatures {
-    pub fn import(b: &mut FunctionBuilder<'_>, call_conv: cranelift_codegen::isa::CallConv) -> Self {
+    pub fn import(
+        b: &mut FunctionBuilder<'_>,
+        call_conv: cranelift_codegen::isa::CallConv,
+    ) -> Self {
         let ptr = types::I64;
         let mut unary = Signature::new(call_conv);
         unary.params.push(AbiParam::new(types::F64));
@@ -44,7 +47,9 @@ impl Signatures {
         let mut binary = unary.clone();
         binary.params.push(AbiParam::new(types::F64));
         let mut execute = Signature::new(call_conv);
-        execute.params.extend([ptr, ptr, ptr, ptr].map(AbiParam::new));
+        execute
+            .params
+            .extend([ptr, ptr, ptr, ptr].map(AbiParam::new));
         Signatures {
             unary: b.import_signature(unary),
             binary: b.import_signature(binary),
@@ -52,6 +57,10 @@ impl Signatures {
         }
     }
 }
+
+/// An instruction whose address is baked into native code: boxed, so that it stays
+/// where it is while the vector holding it grows.
+pub(crate) struct PinnedOp(Box<Op>);
 
 /// Counts of what one function does.
 #[derive(Clone, Copy, Debug, Default)]
@@ -71,7 +80,7 @@ pub(crate) struct Translator<'a, 'b> {
     known: HashMap<Reg, Value>,
     /// Instructions handed to the interpreter: boxed so that their addresses, baked
     /// into the code, stay valid; kept alive with the code.
-    pub interpreted_ops: &'a mut Vec<Box<Op>>,
+    pub interpreted_ops: &'a mut Vec<PinnedOp>,
     pub counts: Counts,
 }
 
@@ -87,7 +96,7 @@ impl<'a, 'b> Translator<'a, 'b> {
         b: &'a mut FunctionBuilder<'b>,
         params: Params,
         sigs: Signatures,
-        interpreted_ops: &'a mut Vec<Box<Op>>,
+        interpreted_ops: &'a mut Vec<PinnedOp>,
     ) -> Self {
         Translator {
             b,
@@ -119,7 +128,7 @@ impl<'a, 'b> Translator<'a, 'b> {
     }
 
     /// 1.0 where `c` is true, else 0.0.
-    fn to_f64(&mut self, c: Value) -> Value {
+    fn number_of(&mut self, c: Value) -> Value {
         let one = self.b.ins().f64const(1.0);
         let zero = self.b.ins().f64const(0.0);
         self.b.ins().select(c, one, zero)
@@ -149,8 +158,8 @@ impl<'a, 'b> Translator<'a, 'b> {
 
     /// Calls the interpreter on `op`; the registers it writes are loaded again when read.
     fn interpret(&mut self, op: Op) {
-        let boxed = Box::new(op);
-        let address = &*boxed as *const Op as usize;
+        let boxed = PinnedOp(Box::new(op));
+        let address = &*boxed.0 as *const Op as usize;
         self.interpreted_ops.push(boxed);
         let p = &self.params;
         let args = [p.registers, p.n_registers, p.events];
@@ -223,7 +232,7 @@ impl<'a, 'b> Translator<'a, 'b> {
             Op::Rel(rel, d, a, b) => {
                 let (x, y) = (self.get(a), self.get(b));
                 let c = self.b.ins().fcmp(float_cc(rel), x, y);
-                let v = self.to_f64(c);
+                let v = self.number_of(c);
                 self.set(d, v);
             }
             Op::RelEvent(_, d, _, _, k) => self.relation_with_events(op, d, k),
@@ -234,14 +243,14 @@ impl<'a, 'b> Translator<'a, 'b> {
                     Op::And(..) => self.b.ins().band(cx, cy),
                     _ => self.b.ins().bor(cx, cy),
                 };
-                let v = self.to_f64(c);
+                let v = self.number_of(c);
                 self.set(d, v);
             }
             Op::Not(d, a) => {
                 let x = self.get(a);
                 let zero = self.b.ins().f64const(0.0);
                 let c = self.b.ins().fcmp(FloatCC::Equal, x, zero);
-                let v = self.to_f64(c);
+                let v = self.number_of(c);
                 self.set(d, v);
             }
             Op::Select(d, c, a, b) => {
@@ -281,12 +290,10 @@ impl<'a, 'b> Translator<'a, 'b> {
         self.b.ins().jump(merge, &[BlockArg::Value(decided)]);
         self.b.switch_to_block(between);
         self.b.seal_block(between);
-        let held = self.b.ins().load(
-            types::F64,
-            FLAGS,
-            self.params.relations,
-            (k as i32) * 8,
-        );
+        let held = self
+            .b
+            .ins()
+            .load(types::F64, FLAGS, self.params.relations, (k as i32) * 8);
         self.b.ins().jump(merge, &[BlockArg::Value(held)]);
         self.b.switch_to_block(merge);
         self.b.seal_block(merge);

@@ -22,7 +22,14 @@ const VALUES: [f64; 12] = [
     f64::NAN,
 ];
 
-const RELS: [RelOp; 6] = [RelOp::Lt, RelOp::Le, RelOp::Gt, RelOp::Ge, RelOp::Eq, RelOp::Ne];
+const RELS: [RelOp; 6] = [
+    RelOp::Lt,
+    RelOp::Le,
+    RelOp::Gt,
+    RelOp::Ge,
+    RelOp::Eq,
+    RelOp::Ne,
+];
 
 /// Registers 0 and 1 are inputs, 2 a condition; results from 3 on.
 fn program() -> Vec<Op> {
@@ -119,7 +126,12 @@ fn native_code_computes_the_interpreters_bits() {
                     tape.run(&mut ra, &mut ea);
                     tape.interpret(&mut rb, &mut eb);
                     for k in 0..n {
-                        assert!(same(ra[k], rb[k]), "register {k} at ({x}, {y}, {c}): {} vs {}", ra[k], rb[k]);
+                        assert!(
+                            same(ra[k], rb[k]),
+                            "register {k} at ({x}, {y}, {c}): {} vs {}",
+                            ra[k],
+                            rb[k]
+                        );
                     }
                     assert_eq!(format!("{:?}", ea.relations), format!("{:?}", eb.relations));
                     assert_eq!(format!("{:?}", ea.held), format!("{:?}", eb.held));

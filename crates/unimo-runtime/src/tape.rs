@@ -186,7 +186,9 @@ impl Tape {
 
     /// Whether native code is attached and still matches the instructions.
     pub fn is_native(&self) -> bool {
-        self.native.as_ref().is_some_and(|n| n.n_ops == self.ops.len())
+        self.native
+            .as_ref()
+            .is_some_and(|n| n.n_ops == self.ops.len())
     }
 }
 
@@ -205,9 +207,7 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
         Op::Neg(d, a) => r[d as usize] = -r[a as usize],
         Op::Fn1(f, d, a) => r[d as usize] = f.apply(r[a as usize]),
         Op::Fn2(f, d, a, b) => r[d as usize] = f.apply(r[a as usize], r[b as usize]),
-        Op::Rel(op, d, a, b) => {
-            r[d as usize] = f64::from(op.apply(r[a as usize], r[b as usize]))
-        }
+        Op::Rel(op, d, a, b) => r[d as usize] = f64::from(op.apply(r[a as usize], r[b as usize])),
         Op::RelEvent(op, d, a, b, k) => {
             let k = k as usize;
             if ev.event_mode {
@@ -215,8 +215,7 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
                 let v = match ev.forced[k] {
                     Some(v) => v,
                     None if ev.sticky
-                        && (x - y).abs()
-                            <= RELATION_NOISE * x.abs().max(y.abs()).max(1.0) =>
+                        && (x - y).abs() <= RELATION_NOISE * x.abs().max(y.abs()).max(1.0) =>
                     {
                         ev.relations[k]
                     }
@@ -226,12 +225,8 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
             }
             r[d as usize] = ev.relations[k];
         }
-        Op::And(d, a, b) => {
-            r[d as usize] = f64::from(r[a as usize] != 0.0 && r[b as usize] != 0.0)
-        }
-        Op::Or(d, a, b) => {
-            r[d as usize] = f64::from(r[a as usize] != 0.0 || r[b as usize] != 0.0)
-        }
+        Op::And(d, a, b) => r[d as usize] = f64::from(r[a as usize] != 0.0 && r[b as usize] != 0.0),
+        Op::Or(d, a, b) => r[d as usize] = f64::from(r[a as usize] != 0.0 || r[b as usize] != 0.0),
         Op::Not(d, a) => r[d as usize] = f64::from(r[a as usize] == 0.0),
         Op::Select(d, c, a, b) => {
             r[d as usize] = if r[c as usize] != 0.0 {
