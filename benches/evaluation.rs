@@ -1,5 +1,6 @@
 //! Compiled evaluation against hand-written Rust: right-hand-side evaluations of ROBER,
-//! HIRES and a 1,000-state chain, through the runtime's register tape and as plain Rust
+//! HIRES and a 1,000-state chain, through the runtime's register tape, through native
+//! code compiled from the tapes with Cranelift (`unimo-codegen`) and as plain Rust
 //! functions, measured in one run (`cargo bench --bench evaluation`).
 
 use std::path::PathBuf;
@@ -55,13 +56,44 @@ fn state(n: usize) -> Vec<f64> {
     (0..n).map(|k| 0.3 + 0.01 * k as f64).collect()
 }
 
-#[divan::bench(args = ["rober", "hires", "chain1000"])]
-fn compiled(bencher: divan::Bencher, which: &str) {
-    let m = match which {
+fn load(which: &str) -> unimo_cli::LoadedModel {
+    match which {
         "rober" => model("models/Robertson.mo"),
         "hires" => model("models/Hires.mo"),
         _ => unimo_cli::load_model(&[chain_file(1000)], None).expect("chain"),
-    };
+    }
+}
+
+#[divan::bench(args = ["rober", "hires", "chain1000"])]
+fn native(bencher: divan::Bencher, which: &str) {
+    let mut m = load(which);
+    let options = unimo_codegen::NativeOptions::default();
+    let stats = unimo_codegen::compile_model(&mut m.compiled, &options).expect("native code");
+    assert!(stats.functions > 0);
+    let mut ev = RhsEvaluator::new(&m.compiled);
+    let n = m.compiled.states.len();
+    let x = state(n);
+    let mut out = vec![0.0; n];
+    bencher.bench_local(|| {
+        ev.rhs(1.0, divan::black_box(&x), &mut out)
+            .expect("evaluates");
+        divan::black_box(&out);
+    });
+}
+
+/// Native compilation of the model's hot tapes (the cost `--engine native` adds).
+#[divan::bench(args = ["rober", "hires", "chain1000"], sample_count = 10)]
+fn native_compile(bencher: divan::Bencher, which: &str) {
+    let m = load(which);
+    let options = unimo_codegen::NativeOptions::default();
+    bencher
+        .with_inputs(|| m.compiled.clone())
+        .bench_local_values(|mut c| unimo_codegen::compile_model(&mut c, &options).map(|_| c));
+}
+
+#[divan::bench(args = ["rober", "hires", "chain1000"])]
+fn compiled(bencher: divan::Bencher, which: &str) {
+    let m = load(which);
     let mut ev = RhsEvaluator::new(&m.compiled);
     let n = m.compiled.states.len();
     let x = state(n);

@@ -14,6 +14,7 @@ const MAX_FN_LINES: usize = 100;
 const ENFORCED: &[&str] = &[
     "unimo-builtins",
     "unimo-cli",
+    "unimo-codegen",
     "unimo-dae",
     "unimo-flat",
     "unimo-geometry",

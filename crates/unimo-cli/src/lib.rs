@@ -270,6 +270,12 @@ pub struct SimulateArgs {
     /// recompiling, description) instead of simulating; overrides are applied first.
     #[arg(long)]
     pub list_params: bool,
+    /// How the compiled model is evaluated: `native` (the hot tapes compiled to machine
+    /// code with Cranelift; the same results, bit for bit) or `tape` (the register-tape
+    /// interpreter). A model above the native size threshold (120,000 instructions)
+    /// runs on the tape either way; `--stats` says which engine ran.
+    #[arg(long, value_enum, default_value_t = EngineArg::Native)]
+    pub engine: EngineArg,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -353,6 +359,14 @@ pub enum ResultFormat {
     Csv,
     /// MAT v4, the result format of Dymola and OpenModelica.
     Mat,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum EngineArg {
+    /// The register-tape interpreter.
+    Tape,
+    /// Machine code compiled with Cranelift (`unimo-codegen`).
+    Native,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]

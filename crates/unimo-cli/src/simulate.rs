@@ -2,8 +2,8 @@
 
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
 use crate::{
-    MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE,
-    EXIT_USAGE,
+    EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
+    EXIT_SIMULATION_FAILURE, EXIT_USAGE,
 };
 use std::io::Write;
 use std::path::Path;
@@ -164,7 +164,15 @@ fn simulate_flat(
         let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
         unimo_dae::prune::prune(&dae, &mut plan, &wanted);
     }
-    let compiled = unimo_runtime::model::compile(&dae, &plan);
+    let mut compiled = unimo_runtime::model::compile(&dae, &plan);
+    let native = match native_code(a.engine, &mut compiled) {
+        Ok(n) => n,
+        Err(msg) => {
+            // The tape computes the same results: run it.
+            eprintln!("note: {msg}; running on the tape");
+            None
+        }
+    };
     let compile_ms = started.elapsed().as_secs_f64() * 1e3;
     let options = match sim_options(a, &dae) {
         Ok(o) => o,
@@ -192,7 +200,7 @@ fn simulate_flat(
     }
     if a.stats {
         let ms = (compile_ms, simulate_ms);
-        print_stats(a.method, &compiled, &plan, &result, ms);
+        print_stats(a.method, &compiled, &plan, &result, ms, native.as_ref());
     }
     if let Some(depth) = a.cost {
         eprint!(
@@ -446,13 +454,50 @@ fn cost_table(
     out
 }
 
-/// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time.
+/// With `--engine native`, compiles the model's hot tapes to machine code (a model
+/// above the size threshold keeps the tape: the statistics say so). Err: why the
+/// native code generator failed (nothing is attached then).
+fn native_code(
+    engine: EngineArg,
+    compiled: &mut CompiledModel,
+) -> Result<Option<unimo_codegen::NativeStats>, String> {
+    match engine {
+        EngineArg::Tape => Ok(None),
+        EngineArg::Native => {
+            unimo_codegen::compile_model(compiled, &unimo_codegen::NativeOptions::default())
+                .map(Some)
+                .map_err(|e| e.to_string())
+        }
+    }
+}
+
+/// The engine's part of the `--stats` line.
+fn engine_stats(native: Option<&unimo_codegen::NativeStats>) -> String {
+    match native {
+        None => "\"engine\":\"tape\"".to_owned(),
+        Some(n) => format!(
+            "\"engine\":\"{}\",\"native\":{{\"tapes\":{},\"functions\":{},\"ops\":{},\"interpreted_ops\":{},\"code_bytes\":{},\"compile_ms\":{:.3},\"above_threshold\":{}}}",
+            if n.above_threshold { "tape" } else { "native" },
+            n.tapes,
+            n.functions,
+            n.native_ops,
+            n.interpreted_ops,
+            n.code_bytes,
+            n.compile_ms,
+            n.above_threshold
+        ),
+    }
+}
+
+/// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time;
+/// `compile_ms` includes the native compilation.
 fn print_stats(
     method: MethodArg,
     compiled: &CompiledModel,
     plan: &Plan,
     result: &SimResult,
     (compile_ms, simulate_ms): (f64, f64),
+    native: Option<&unimo_codegen::NativeStats>,
 ) {
     let s = &result.stats;
     let collision = match &s.collision {
@@ -468,7 +513,7 @@ fn print_stats(
         None => String::new(),
     };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},{}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -487,6 +532,7 @@ fn print_stats(
         compiled.roots.len(),
         compile_ms,
         simulate_ms,
+        engine_stats(native),
         collision
     );
 }

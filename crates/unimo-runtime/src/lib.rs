@@ -4,6 +4,7 @@ pub mod cost;
 pub mod dump;
 pub mod eval;
 pub mod model;
+pub mod native;
 pub mod sim;
 pub mod tables;
 pub mod tape;

@@ -156,87 +156,111 @@ pub const RELATION_NOISE: f64 = 1e-14;
 #[derive(Clone, Debug, Default)]
 pub struct Tape {
     pub ops: Vec<Op>,
+    /// Machine code compiled from `ops`, run instead of the interpreter.
+    pub native: Option<crate::native::NativeTape>,
 }
 
 impl Tape {
+    /// A tape of these instructions (no native code).
+    pub fn new(ops: Vec<Op>) -> Tape {
+        Tape { ops, native: None }
+    }
+
+    /// Runs the tape: its native code when it has code compiled from these
+    /// instructions (`unimo-codegen`), else the interpreter.
     #[inline]
     pub fn run(&self, r: &mut [f64], ev: &mut EventState) {
-        for op in &self.ops {
-            match *op {
-                Op::Const(d, x) => r[d as usize] = x,
-                Op::Copy(d, a) => r[d as usize] = r[a as usize],
-                Op::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
-                Op::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
-                Op::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
-                Op::Div(d, a, b) => r[d as usize] = r[a as usize] / r[b as usize],
-                Op::Pow(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
-                Op::Powi(d, a, n) => r[d as usize] = r[a as usize].powi(n),
-                Op::Neg(d, a) => r[d as usize] = -r[a as usize],
-                Op::Fn1(f, d, a) => r[d as usize] = f.apply(r[a as usize]),
-                Op::Fn2(f, d, a, b) => r[d as usize] = f.apply(r[a as usize], r[b as usize]),
-                Op::Rel(op, d, a, b) => {
-                    r[d as usize] = f64::from(op.apply(r[a as usize], r[b as usize]))
-                }
-                Op::RelEvent(op, d, a, b, k) => {
-                    let k = k as usize;
-                    if ev.event_mode {
-                        let (x, y) = (r[a as usize], r[b as usize]);
-                        let v = match ev.forced[k] {
-                            Some(v) => v,
-                            None if ev.sticky
-                                && (x - y).abs()
-                                    <= RELATION_NOISE * x.abs().max(y.abs()).max(1.0) =>
-                            {
-                                ev.relations[k]
-                            }
-                            None => f64::from(op.apply(x, y)),
-                        };
-                        ev.relations[k] = v;
+        match &self.native {
+            Some(native) if native.fits(self.ops.len(), r, ev) => native.call(r, ev),
+            _ => self.interpret(r, ev),
+        }
+    }
+
+    /// Runs the tape with the interpreter (the oracle of the native code).
+    #[inline]
+    pub fn interpret(&self, r: &mut [f64], ev: &mut EventState) {
+        for &op in &self.ops {
+            execute(op, r, ev);
+        }
+    }
+
+    /// Whether native code is attached and still matches the instructions.
+    pub fn is_native(&self) -> bool {
+        self.native
+            .as_ref()
+            .is_some_and(|n| n.n_ops == self.ops.len())
+    }
+}
+
+/// Executes one instruction on the register file.
+#[inline(always)]
+pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
+    match op {
+        Op::Const(d, x) => r[d as usize] = x,
+        Op::Copy(d, a) => r[d as usize] = r[a as usize],
+        Op::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
+        Op::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
+        Op::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
+        Op::Div(d, a, b) => r[d as usize] = r[a as usize] / r[b as usize],
+        Op::Pow(d, a, b) => r[d as usize] = r[a as usize].powf(r[b as usize]),
+        Op::Powi(d, a, n) => r[d as usize] = r[a as usize].powi(n),
+        Op::Neg(d, a) => r[d as usize] = -r[a as usize],
+        Op::Fn1(f, d, a) => r[d as usize] = f.apply(r[a as usize]),
+        Op::Fn2(f, d, a, b) => r[d as usize] = f.apply(r[a as usize], r[b as usize]),
+        Op::Rel(op, d, a, b) => r[d as usize] = f64::from(op.apply(r[a as usize], r[b as usize])),
+        Op::RelEvent(op, d, a, b, k) => {
+            let k = k as usize;
+            if ev.event_mode {
+                let (x, y) = (r[a as usize], r[b as usize]);
+                let v = match ev.forced[k] {
+                    Some(v) => v,
+                    None if ev.sticky
+                        && (x - y).abs() <= RELATION_NOISE * x.abs().max(y.abs()).max(1.0) =>
+                    {
+                        ev.relations[k]
                     }
-                    r[d as usize] = ev.relations[k];
-                }
-                Op::And(d, a, b) => {
-                    r[d as usize] = f64::from(r[a as usize] != 0.0 && r[b as usize] != 0.0)
-                }
-                Op::Or(d, a, b) => {
-                    r[d as usize] = f64::from(r[a as usize] != 0.0 || r[b as usize] != 0.0)
-                }
-                Op::Not(d, a) => r[d as usize] = f64::from(r[a as usize] == 0.0),
-                Op::Select(d, c, a, b) => {
-                    r[d as usize] = if r[c as usize] != 0.0 {
-                        r[a as usize]
-                    } else {
-                        r[b as usize]
-                    }
-                }
-                Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
-                Op::Ext(f, d, ops) if f.is_pure() => {
-                    r[d as usize] = f.apply_pure(ops.map(|k| r[k as usize]));
-                }
-                Op::Ext(f, d, [o, a, b, _]) => {
-                    let object = r[o as usize];
-                    r[d as usize] = match ev.objects.get(object as usize) {
-                        Some(t) if object >= 0.0 => t.eval(f, r[a as usize], r[b as usize]),
-                        _ => f64::NAN,
-                    };
-                }
-                Op::Held(kind, d, a, k) => {
-                    let k = k as usize;
-                    if ev.event_mode {
-                        let literal = kind.apply(r[a as usize]);
-                        ev.held[k] = match ev.held_forced[k] {
-                            Some((before, after)) if literal == before => after,
-                            _ => literal,
-                        };
-                    }
-                    r[d as usize] = ev.held[k];
-                }
-                Op::HeldBounds(kind, lo, hi, k) => {
-                    let (l, h) = kind.bounds(ev.held[k as usize]);
-                    r[lo as usize] = l;
-                    r[hi as usize] = h;
-                }
+                    None => f64::from(op.apply(x, y)),
+                };
+                ev.relations[k] = v;
             }
+            r[d as usize] = ev.relations[k];
+        }
+        Op::And(d, a, b) => r[d as usize] = f64::from(r[a as usize] != 0.0 && r[b as usize] != 0.0),
+        Op::Or(d, a, b) => r[d as usize] = f64::from(r[a as usize] != 0.0 || r[b as usize] != 0.0),
+        Op::Not(d, a) => r[d as usize] = f64::from(r[a as usize] == 0.0),
+        Op::Select(d, c, a, b) => {
+            r[d as usize] = if r[c as usize] != 0.0 {
+                r[a as usize]
+            } else {
+                r[b as usize]
+            }
+        }
+        Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
+        Op::Ext(f, d, ops) if f.is_pure() => {
+            r[d as usize] = f.apply_pure(ops.map(|k| r[k as usize]));
+        }
+        Op::Ext(f, d, [o, a, b, _]) => {
+            let object = r[o as usize];
+            r[d as usize] = match ev.objects.get(object as usize) {
+                Some(t) if object >= 0.0 => t.eval(f, r[a as usize], r[b as usize]),
+                _ => f64::NAN,
+            };
+        }
+        Op::Held(kind, d, a, k) => {
+            let k = k as usize;
+            if ev.event_mode {
+                let literal = kind.apply(r[a as usize]);
+                ev.held[k] = match ev.held_forced[k] {
+                    Some((before, after)) if literal == before => after,
+                    _ => literal,
+                };
+            }
+            r[d as usize] = ev.held[k];
+        }
+        Op::HeldBounds(kind, lo, hi, k) => {
+            let (l, h) = kind.bounds(ev.held[k as usize]);
+            r[lo as usize] = l;
+            r[hi as usize] = h;
         }
     }
 }

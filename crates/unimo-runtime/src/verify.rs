@@ -258,7 +258,7 @@ mod tests {
             n_registers: 10,
             ..CompiledModel::default()
         };
-        m.steps.push(CompiledStep::Explicit(Tape { ops }));
+        m.steps.push(CompiledStep::Explicit(Tape::new(ops)));
         m
     }
 
@@ -301,9 +301,8 @@ mod tests {
         let l = Layout::new(2);
         let t = l.temp_base;
         let mut m = model(vec![Op::Const(t, 1.0)]);
-        m.steps.push(CompiledStep::Explicit(Tape {
-            ops: vec![Op::Copy(0, t)],
-        }));
+        m.steps
+            .push(CompiledStep::Explicit(Tape::new(vec![Op::Copy(0, t)])));
         assert_eq!(verify_compiled(&m), Ok(()));
         // A temporary only the zero-crossing tape writes is not there for the whens.
         m.roots_tape.ops.push(Op::Const(t + 1, 0.0));

@@ -1,0 +1,211 @@
+//! The Cranelift side: one JIT module per model, one function per part of a tape,
+//! linked once; the module's memory lives as long as a tape refers to it.
+
+use cranelift_codegen::ir::{types, AbiParam, InstBuilder, UserFuncName};
+use cranelift_codegen::isa::TargetFrontendConfig;
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::{default_libcall_names, FuncId, Module};
+use std::sync::Arc;
+use unimo_runtime::native::NativeFn;
+use unimo_runtime::tape::Op;
+
+use crate::translate::{registers, Counts, Params, PinnedOp, Signatures, Translator};
+use crate::{CodegenError, NativeOptions, NativeStats};
+
+/// The code of one model: the JIT module and the instructions its code hands to the
+/// interpreter (their addresses are in the code).
+struct NativeCode {
+    module: Option<JITModule>,
+    _interpreted_ops: Vec<PinnedOp>,
+}
+
+// SAFETY: after `finalize_definitions` the module is never used again except by
+// `Drop`, which has exclusive access; the machine code it owns is immutable and reads
+// no state but its arguments and the boxed instructions (immutable too), so sharing
+// and sending it between threads is sound.
+unsafe impl Send for NativeCode {}
+// SAFETY: see `Send`: nothing reachable through a shared reference is mutated.
+unsafe impl Sync for NativeCode {}
+
+impl Drop for NativeCode {
+    fn drop(&mut self) {
+        if let Some(module) = self.module.take() {
+            // SAFETY: the last `Arc` is gone, so no `NativeTape` refers to the code and
+            // none of its functions can run any more.
+            unsafe { module.free_memory() };
+        }
+    }
+}
+
+/// One tape's code.
+pub(crate) struct TapeCode {
+    pub functions: Vec<NativeFn>,
+    /// One past the highest register the tape uses.
+    pub min_registers: usize,
+    /// One past the highest relation index it reads.
+    pub min_relations: usize,
+}
+
+/// The compiled tapes of a model.
+pub(crate) struct Compiled {
+    pub tapes: Vec<TapeCode>,
+    pub owner: Arc<dyn std::any::Any + Send + Sync>,
+    pub stats: NativeStats,
+}
+
+fn new_module(options: &NativeOptions) -> Result<JITModule, CodegenError> {
+    let mut flags = settings::builder();
+    let set = |f: &mut settings::Builder, k: &str, v: &str| {
+        f.set(k, v)
+            .map_err(|e| CodegenError::Settings(format!("{k}={v}: {e}")))
+    };
+    set(&mut flags, "use_colocated_libcalls", "false")?;
+    set(&mut flags, "is_pic", "false")?;
+    set(&mut flags, "opt_level", options.opt_level)?;
+    let verify = if cfg!(debug_assertions) {
+        "true"
+    } else {
+        "false"
+    };
+    set(&mut flags, "enable_verifier", verify)?;
+    let isa = cranelift_native::builder()
+        .map_err(|e| CodegenError::UnsupportedHost(e.to_string()))?
+        .finish(settings::Flags::new(flags))
+        .map_err(|e| CodegenError::Settings(e.to_string()))?;
+    Ok(JITModule::new(JITBuilder::with_isa(
+        isa,
+        default_libcall_names(),
+    )))
+}
+
+/// Compiles every tape (`(name, instructions)`), splitting long ones.
+pub(crate) fn compile(
+    tapes: &[(&str, &[Op])],
+    options: &NativeOptions,
+) -> Result<Compiled, CodegenError> {
+    let mut module = new_module(options)?;
+    let mut ctx = module.make_context();
+    let mut builder_ctx = FunctionBuilderContext::new();
+    let mut signature = module.make_signature();
+    let ptr = types::I64;
+    signature
+        .params
+        .extend([ptr, ptr, ptr, ptr, types::I32].map(AbiParam::new));
+    let mut interpreted_ops = Vec::new();
+    let mut ids: Vec<Vec<FuncId>> = Vec::with_capacity(tapes.len());
+    let mut stats = NativeStats::default();
+    let chunk = options.max_ops_per_function.max(1);
+    for &(name, ops) in tapes {
+        let mut tape_ids = Vec::new();
+        for part in ops.chunks(chunk) {
+            let id = module
+                .declare_anonymous_function(&signature)
+                .map_err(|e| compile_error(name, e))?;
+            ctx.func.signature = signature.clone();
+            ctx.func.name = UserFuncName::user(0, id.as_u32());
+            let target = module.target_config();
+            let counts = build(
+                &mut ctx.func,
+                &mut builder_ctx,
+                part,
+                &mut interpreted_ops,
+                target,
+            );
+            stats.native_ops += counts.native;
+            stats.interpreted_ops += counts.interpreted;
+            module
+                .define_function(id, &mut ctx)
+                .map_err(|e| compile_error(name, e))?;
+            if let Some(code) = ctx.compiled_code() {
+                stats.code_bytes += code.code_buffer().len();
+            }
+            module.clear_context(&mut ctx);
+            tape_ids.push(id);
+        }
+        stats.functions += tape_ids.len();
+        ids.push(tape_ids);
+    }
+    module
+        .finalize_definitions()
+        .map_err(|e| CodegenError::Link(e.to_string()))?;
+    let codes = tapes
+        .iter()
+        .zip(&ids)
+        .map(|(&(_, ops), tape_ids)| TapeCode {
+            functions: tape_ids
+                .iter()
+                .map(|&id| {
+                    let address = module.get_finalized_function(id);
+                    // SAFETY: the function was built with the signature `NativeFn`
+                    // describes (four pointers and an `i32`, the platform's C calling
+                    // convention) and is finalized.
+                    unsafe { std::mem::transmute::<*const u8, NativeFn>(address) }
+                })
+                .collect(),
+            min_registers: ops
+                .iter()
+                .flat_map(|&op| registers(op))
+                .max()
+                .map_or(0, |r| r as usize + 1),
+            min_relations: ops
+                .iter()
+                .filter_map(|op| match *op {
+                    Op::RelEvent(_, _, _, _, k) => Some(k as usize + 1),
+                    _ => None,
+                })
+                .max()
+                .unwrap_or(0),
+        })
+        .collect();
+    let owner = Arc::new(NativeCode {
+        module: Some(module),
+        _interpreted_ops: interpreted_ops,
+    });
+    Ok(Compiled {
+        tapes: codes,
+        owner,
+        stats,
+    })
+}
+
+fn compile_error(tape: &str, e: impl std::fmt::Display) -> CodegenError {
+    CodegenError::Compile {
+        tape: tape.to_owned(),
+        message: e.to_string(),
+    }
+}
+
+/// Builds one function from `ops`.
+fn build(
+    func: &mut cranelift_codegen::ir::Function,
+    builder_ctx: &mut FunctionBuilderContext,
+    ops: &[Op],
+    interpreted_ops: &mut Vec<PinnedOp>,
+    target: TargetFrontendConfig,
+) -> Counts {
+    let call_conv = func.signature.call_conv;
+    let mut b = FunctionBuilder::new(func, builder_ctx);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    b.seal_block(entry);
+    let p = b.block_params(entry).to_vec();
+    let params = Params {
+        registers: p[0],
+        n_registers: p[1],
+        events: p[2],
+        relations: p[3],
+        event_mode: p[4],
+    };
+    let sigs = Signatures::import(&mut b, call_conv);
+    let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
+    for &op in ops {
+        t.op(op);
+    }
+    let counts = t.counts;
+    b.ins().return_(&[]);
+    b.finalize(target);
+    counts
+}

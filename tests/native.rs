@@ -1,0 +1,209 @@
+//! Differential tests of the native engine (`unimo-codegen`, `--engine native`)
+//! against the tape interpreter, its oracle: every model in `models/` and every
+//! simulate test model, run with both engines, gives the same event log, the same
+//! counters and the same values (to 1e-14 relative; in practice the same bits). Each
+//! run checks that native code was compiled for every hot tape, and one test checks
+//! that the simulator really runs it (a tape changed behind the native code's back
+//! still computes the original results).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use unimo_codegen::{compile_model, NativeOptions, NativeStats};
+use unimo_runtime::model::{CompiledModel, CompiledStep};
+use unimo_runtime::sim::{Overrides, SimOptions, SimResult};
+use unimo_solve::Method;
+
+/// A copy of the compiled model with native code for its hot tapes.
+fn native(m: &CompiledModel) -> (CompiledModel, NativeStats) {
+    let mut n = m.clone();
+    let stats = compile_model(&mut n, &NativeOptions::default()).expect("native code");
+    assert!(!stats.above_threshold);
+    for step in &n.steps {
+        match step {
+            CompiledStep::Explicit(t) => assert!(t.is_native()),
+            CompiledStep::Block(b) => {
+                assert!(b.residual_tape.is_native());
+                assert!(b.jacobian_tape.ops.is_empty() || b.jacobian_tape.is_native());
+            }
+        }
+    }
+    assert!(n.roots_tape.ops.is_empty() || n.roots_tape.is_native());
+    assert!(n.when_tape.ops.is_empty() || n.when_tape.is_native());
+    (n, stats)
+}
+
+/// The experiment's settings, the stop time capped at `max_stop`.
+fn options(l: &unimo_cli::LoadedModel, max_stop: f64) -> SimOptions {
+    let mut o = SimOptions::resolve(
+        &l.dae.experiment,
+        &Overrides::default(),
+        Method::Auto,
+        false,
+    )
+    .expect("options");
+    if o.stop - o.start > max_stop {
+        o.stop = o.start + max_stop;
+        o.interval = o.interval.min(max_stop / 50.0);
+    }
+    o
+}
+
+/// The largest relative difference between the two runs' values; panics when their
+/// times, events, counters or outcome differ.
+fn compare(name: &str, tape: &SimResult, native: &SimResult) -> f64 {
+    assert_eq!(
+        tape.error.as_ref().map(|e| e.message()),
+        native.error.as_ref().map(|e| e.message()),
+        "{name}: outcome"
+    );
+    assert_eq!(tape.events, native.events, "{name}: event log");
+    assert_eq!(tape.stats, native.stats, "{name}: counters");
+    assert_eq!(tape.times.len(), native.times.len(), "{name}: rows");
+    let mut worst = 0.0f64;
+    for (k, (a, b)) in tape.times.iter().zip(&native.times).enumerate() {
+        assert_eq!(a.to_bits(), b.to_bits(), "{name}: time of row {k}");
+    }
+    for (ra, rb) in tape.rows.iter().zip(&native.rows) {
+        for (c, (&a, &b)) in ra.iter().zip(rb).enumerate() {
+            if a.is_nan() && b.is_nan() || a == b {
+                continue;
+            }
+            let rel = (a - b).abs() / a.abs().max(b.abs());
+            assert!(rel <= 1e-14, "{name}: {} = {a} vs {b}", tape.names[c]);
+            worst = worst.max(rel);
+        }
+    }
+    worst
+}
+
+/// The models of a file: the one model it holds, else every `Package.Model` of a
+/// package file (the simulate tests keep several models in one file). Err: the
+/// diagnostics of a file none of whose models compiles.
+fn models_of(file: &Path) -> Result<Vec<(String, unimo_cli::LoadedModel)>, String> {
+    if let Ok(l) = unimo_cli::load_model(&[file.to_path_buf()], None) {
+        return Ok(vec![(String::new(), l)]);
+    }
+    let text = std::fs::read_to_string(file).map_err(|e| e.to_string())?;
+    let word_after = |line: &str, kw: &str| {
+        let rest = line.trim_start().strip_prefix(kw)?;
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        (!name.is_empty()).then_some(name)
+    };
+    let package = text.lines().find_map(|l| word_after(l, "package "));
+    let mut out = Vec::new();
+    let mut last = String::from("no model");
+    for name in text.lines().filter_map(|l| word_after(l, "model ")) {
+        let full = match &package {
+            Some(p) => format!("{p}.{name}"),
+            None => name,
+        };
+        match unimo_cli::load_model(&[file.to_path_buf()], Some(&full)) {
+            Ok(l) => out.push((format!(" ({full})"), l)),
+            Err(e) => last = e,
+        }
+    }
+    if out.is_empty() {
+        Err(last)
+    } else {
+        Ok(out)
+    }
+}
+
+/// Runs every model of every file of `dir` with both engines. Returns the number of
+/// models compared and the files none of whose models compiles (the tests of refused
+/// constructs).
+fn compare_folder(dir: &Path, max_stop: f64) -> (usize, Vec<String>) {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("folder")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "mo"))
+        .collect();
+    files.sort();
+    let (mut compared, mut skipped) = (0, Vec::new());
+    for file in files {
+        let file_name = file
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
+        let Ok(models) = models_of(&file) else {
+            eprintln!("{file_name}: does not compile (skipped)");
+            skipped.push(file_name);
+            continue;
+        };
+        for (model, l) in models {
+            let name = format!("{file_name}{model}");
+            let o = options(&l, max_stop);
+            let (n, stats) = native(&l.compiled);
+            let tape = unimo_runtime::sim::simulate(&l.compiled, &o);
+            let native = unimo_runtime::sim::simulate(&n, &o);
+            let worst = compare(&name, &tape, &native);
+            eprintln!(
+                "{name}: {} rows, {} events, {} native functions ({} instructions, {} \
+                 interpreted), largest difference {worst:e}",
+                tape.times.len(),
+                tape.events.len(),
+                stats.functions,
+                stats.native_ops,
+                stats.interpreted_ops
+            );
+            assert!(stats.functions > 0, "{name}: no native code");
+            compared += 1;
+        }
+    }
+    (compared, skipped)
+}
+
+#[test]
+fn every_bundled_model_runs_the_same_natively() {
+    let (compared, skipped) = compare_folder(&common::root().join("models"), 5.0);
+    assert!(skipped.is_empty(), "{skipped:?}");
+    assert!(compared >= 28, "{compared}");
+}
+
+#[test]
+fn every_simulate_test_model_runs_the_same_natively() {
+    let (compared, skipped) = compare_folder(&common::root().join("tests/simulate"), 5.0);
+    // Clocked partitions are refused with a coded error (`tests/simulate.rs`).
+    assert_eq!(skipped, ["ClockedNotSupported.mo"]);
+    assert!(compared >= 24, "{compared}");
+}
+
+#[test]
+fn the_simulator_runs_the_native_code() {
+    let l = common::load("models/BouncingBall.mo", None);
+    let o = options(&l, 3.0);
+    let (mut n, _) = native(&l.compiled);
+    let reference = unimo_runtime::sim::simulate(&n, &o);
+    // Change the interpreted instructions of every explicit step without changing
+    // their number: the native code, compiled before, still computes the model.
+    let mut changed = 0;
+    for step in &mut n.steps {
+        if let CompiledStep::Explicit(t) = step {
+            for op in &mut t.ops {
+                if let unimo_runtime::tape::Op::Copy(d, _) = *op {
+                    *op = unimo_runtime::tape::Op::Const(d, 0.0);
+                    changed += 1;
+                }
+            }
+        }
+    }
+    assert!(changed > 0);
+    let again = unimo_runtime::sim::simulate(&n, &o);
+    compare("BouncingBall (native)", &reference, &again);
+    // The interpreter on the same changed instructions computes something else.
+    for step in &mut n.steps {
+        if let CompiledStep::Explicit(t) = step {
+            t.native = None;
+        }
+    }
+    let interpreted = unimo_runtime::sim::simulate(&n, &o);
+    assert!(
+        interpreted.rows != reference.rows || interpreted.error.is_some(),
+        "the change must be visible to the interpreter"
+    );
+}
