@@ -830,3 +830,34 @@ fn parameters_bound_to_later_ones_and_parameter_slices() {
         value(&r, "x[2]")
     );
 }
+
+/// The one parameter evaluator (`unimo_dae::params`): a parameter with `fixed = false`
+/// has no value at translation, so no structural decision is taken on its start value.
+/// Before, the hidden-constraint search read a = 1 (its start), found the derivative
+/// rows singular and failed the initialization. Closed form with a = 2:
+/// x = (e^{l1 t} + e^{l2 t})/2, y = (e^{l2 t} - e^{l1 t})/sqrt(2), l = 1 +- sqrt(2).
+#[test]
+fn a_parameter_computed_at_initialization_is_not_its_start_value() {
+    let m = load("tests/simulate/FixedFalseParameter.mo");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
+    let (l1, l2) = (1.0 + 2f64.sqrt(), 1.0 - 2f64.sqrt());
+    let (kx, ky) = (
+        r.names.iter().position(|n| n == "x").unwrap(),
+        r.names.iter().position(|n| n == "y").unwrap(),
+    );
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        let x = ((l1 * t).exp() + (l2 * t).exp()) / 2.0;
+        let y = ((l2 * t).exp() - (l1 * t).exp()) / 2f64.sqrt();
+        assert!(
+            (row[kx] - x).abs() < 1e-7 * x.abs().max(1.0),
+            "x({t}) = {}, exact {x}",
+            row[kx]
+        );
+        assert!(
+            (row[ky] - y).abs() < 1e-7 * y.abs().max(1.0),
+            "y({t}) = {}, exact {y}",
+            row[ky]
+        );
+    }
+    assert_eq!(r.times.len(), 5);
+}

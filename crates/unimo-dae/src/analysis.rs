@@ -366,7 +366,7 @@ fn solvable_edges(
     blocks: &[st::Block],
     selectors: &HashSet<ScalarId>,
 ) -> (HashSet<(u32, u32)>, HashMap<(u32, u32), ExprId>) {
-    let mut parameter_values: HashMap<ScalarId, f64> = HashMap::default();
+    let mut parameter_values = crate::params::ParameterValues::default();
     let mut solvable: HashSet<(u32, u32)> = HashSet::default();
     let mut solutions: HashMap<(u32, u32), ExprId> = HashMap::default();
     for b in blocks {
@@ -393,7 +393,7 @@ fn solvable_edges(
                     if known_coef
                         && !has_if(sys.dae, coef)
                         && !mentions(sys.dae, coef, selectors)
-                        && !zero_at_parameters(sys.dae, &mut parameter_values, coef)
+                        && !parameter_values.is_zero(sys.dae, coef)
                     {
                         solvable.insert((e.0, v.0));
                         solutions.insert((e.0, v.0), sol);
@@ -594,86 +594,6 @@ fn add_selector(
 /// Whether `e` mentions one of `scalars`.
 fn mentions(dae: &Dae, e: ExprId, scalars: &HashSet<ScalarId>) -> bool {
     !scalars.is_empty() && dae.arena.vars(e).iter().any(|s| scalars.contains(s))
-}
-
-fn is_parameter(dae: &Dae, s: ScalarId) -> bool {
-    matches!(
-        dae.scalar(s).kind,
-        ScalarKind::Parameter | ScalarKind::Constant
-    )
-}
-
-/// Parameter values for [`ExprArena::eval`](crate::expr::ExprArena::eval) (NaN when unknown).
-struct ParameterValues<'a>(&'a HashMap<ScalarId, f64>);
-
-impl crate::expr::EvalEnv for ParameterValues<'_> {
-    fn value(&self, s: ScalarId) -> f64 {
-        self.0.get(&s).copied().unwrap_or(f64::NAN)
-    }
-}
-
-/// Whether a tearing pivot `coef` is zero: a zero constant, or an expression in
-/// parameters and constants only that is zero at their values (e.g. an off-diagonal
-/// entry `I[1,3]` of a diagonal inertia matrix, which the incidence still counts).
-/// Coefficients with discrete variables cannot be evaluated here and count as nonzero.
-fn zero_at_parameters(dae: &Dae, values: &mut HashMap<ScalarId, f64>, coef: ExprId) -> bool {
-    if let Some(c) = dae.arena.as_const(coef) {
-        return c == 0.0;
-    }
-    let vars = dae.arena.vars(coef);
-    if !vars.iter().all(|&s| is_parameter(dae, s)) {
-        return false;
-    }
-    for s in vars {
-        parameter_value(dae, values, s, 0);
-    }
-    dae.arena.eval(coef, &ParameterValues(values)) == 0.0
-}
-
-/// The value of an expression of parameters and constants only (None otherwise, or
-/// when a parameter has no value).
-pub(crate) fn constant_value(
-    dae: &Dae,
-    values: &mut HashMap<ScalarId, f64>,
-    e: ExprId,
-) -> Option<f64> {
-    if let Some(c) = dae.arena.as_const(e) {
-        return Some(c);
-    }
-    let vars = dae.arena.vars(e);
-    if !vars.iter().all(|&s| is_parameter(dae, s)) {
-        return None;
-    }
-    for s in vars {
-        parameter_value(dae, values, s, 0);
-    }
-    let v = dae.arena.eval(e, &ParameterValues(values));
-    v.is_finite().then_some(v)
-}
-
-/// The value of a parameter or constant from its binding (else its start value); NaN
-/// when it has neither, depends on non-parameters or on itself.
-fn parameter_value(dae: &Dae, values: &mut HashMap<ScalarId, f64>, s: ScalarId, depth: u32) -> f64 {
-    if let Some(&v) = values.get(&s) {
-        return v;
-    }
-    let sc = dae.scalar(s);
-    let value = match sc.binding.or(sc.start) {
-        Some(b) if depth < 64 && is_parameter(dae, s) => {
-            let deps = dae.arena.vars(b);
-            if deps.iter().all(|&d| is_parameter(dae, d)) {
-                for d in deps {
-                    parameter_value(dae, values, d, depth + 1);
-                }
-                dae.arena.eval(b, &ParameterValues(values))
-            } else {
-                f64::NAN
-            }
-        }
-        _ => f64::NAN,
-    };
-    values.insert(s, value);
-    value
 }
 
 /// A block: inner assignments substituted into the residuals for the symbolic Jacobian.

@@ -80,7 +80,7 @@ impl Lowerer<'_> {
         }
         for s in evaluate {
             tunable.remove(&s);
-            if let Some(x) = self.parameter_value(s, 0) {
+            if let Some(x) = self.parameter_value(s) {
                 let c = self.dae.arena.constant(x);
                 self.evaluated.insert(s, c);
             }
@@ -137,7 +137,7 @@ impl Lowerer<'_> {
             {
                 continue;
             }
-            if let Some(x) = self.parameter_value(s, 0) {
+            if let Some(x) = self.parameter_value(s) {
                 let c = self.dae.arena.constant(x);
                 self.evaluated.insert(s, c);
             }
@@ -170,7 +170,7 @@ impl Lowerer<'_> {
                         || self.dae.scalars[v.index()].kind == ScalarKind::Constant
                 });
                 if reads_evaluated && only_fixed {
-                    if let Some(x) = self.parameter_value(s, 0) {
+                    if let Some(x) = self.parameter_value(s) {
                         let c = self.dae.arena.constant(x);
                         self.evaluated.insert(s, c);
                         grew = true;

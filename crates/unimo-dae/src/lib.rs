@@ -19,6 +19,7 @@ pub mod expr;
 pub mod external;
 pub mod fold;
 pub mod lower;
+pub mod params;
 pub mod plan;
 pub mod prune;
 pub mod random;

@@ -10,7 +10,6 @@
 //! Coefficients are evaluated at the parameter values (a model compiled for other
 //! parameter values is analysed again).
 
-use crate::analysis::constant_value;
 use crate::dae::{Dae, EqId, ScalarKind};
 use crate::diff::partial;
 use crate::expr::{ExprId, ScalarId};
@@ -29,7 +28,7 @@ struct Row {
 /// Replaces numerically dependent equations (see the module docs) by the combination
 /// that eliminates their derivatives. Returns the equations replaced.
 pub fn expose_hidden_constraints(dae: &mut Dae) -> Vec<EqId> {
-    let mut values = HashMap::default();
+    let mut values = crate::params::ParameterValues::default();
     let mut rows: Vec<Row> = Vec::new();
     'equations: for k in 0..dae.equations.len() {
         let eq = EqId(k as u32);
@@ -46,7 +45,7 @@ pub fn expose_hidden_constraints(dae: &mut Dae) -> Vec<EqId> {
         let mut coefficients = Vec::with_capacity(derivatives.len());
         for d in derivatives {
             let c = partial(&mut dae.arena, r, d);
-            match constant_value(dae, &mut values, c) {
+            match values.of_expr(dae, c) {
                 Some(v) if v.is_finite() => coefficients.push((d, v)),
                 _ => continue 'equations,
             }

@@ -5,9 +5,9 @@
 
 use crate::dae::*;
 use crate::error::{DaeError, DaeResult};
-use crate::expr::{ExprArena, ExprId, Node, ScalarId};
+use crate::expr::{ExprArena, ExprId, ScalarId};
 use crate::tensor::{self, Tensor};
-use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use rustc_hash::FxHashMap as HashMap;
 use unimo_flat::functions::FlatFunction;
 use unimo_flat::FlatModel;
 use unimo_source::Span;
@@ -50,22 +50,13 @@ pub struct Lowerer<'m> {
     /// Actions collected while lowering the body of a `when`.
     pub(crate) when_actions: Option<Vec<(WhenAction, Span)>>,
     /// Values of parameters evaluated at compile time (NaN: not evaluable).
-    pub(crate) parameter_values: HashMap<ScalarId, f64>,
+    pub(crate) params: crate::params::ParameterValues,
     /// Parameters fixed at translation (see `fold.rs`): equations read their values
     /// as constants.
     pub(crate) evaluated: HashMap<ScalarId, ExprId>,
     pub(crate) errors: Vec<DaeError>,
     /// Conditional `return`/`break` exits of the algorithm being executed.
     pub(crate) exits: Vec<crate::algo::Exit>,
-}
-
-/// Parameter values for [`ExprArena::eval`].
-struct ParameterEnv<'a>(&'a HashMap<ScalarId, f64>);
-
-impl crate::expr::EvalEnv for ParameterEnv<'_> {
-    fn value(&self, s: ScalarId) -> f64 {
-        self.0.get(&s).copied().unwrap_or(f64::NAN)
-    }
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
@@ -92,7 +83,7 @@ impl<'m> Lowerer<'m> {
             inline_depth: 0,
             end_stack: Vec::new(),
             when_actions: None,
-            parameter_values: HashMap::default(),
+            params: crate::params::ParameterValues::default(),
             evaluated: HashMap::default(),
             errors: Vec::new(),
             exits: Vec::new(),
@@ -126,19 +117,7 @@ impl<'m> Lowerer<'m> {
     }
 
     pub(crate) fn const_value(&mut self, e: ExprId) -> Option<f64> {
-        if let Some(c) = self.dae.arena.as_const(e) {
-            return Some(c);
-        }
-        if !self.parameters_only(e) {
-            return None;
-        }
-        for s in self.dae.arena.vars(e) {
-            self.parameter_value(s, 0)?;
-        }
-        let values = &self.parameter_values;
-        let env = ParameterEnv(values);
-        let v = self.dae.arena.eval(e, &env);
-        v.is_finite().then_some(v)
+        self.params.of_expr(&self.dae, e)
     }
 
     /// A model variable in an expression: its value where it is fixed at translation.
@@ -149,64 +128,9 @@ impl<'m> Lowerer<'m> {
         }
     }
 
-    /// Whether every leaf of `e` is a constant or a parameter (no time, `pre`, ...).
-    fn parameters_only(&self, e: ExprId) -> bool {
-        let mut stack = vec![e];
-        let mut seen = HashSet::default();
-        while let Some(x) = stack.pop() {
-            if !seen.insert(x) {
-                continue;
-            }
-            match self.dae.arena.node(x) {
-                Node::Const(_) => {}
-                Node::Var(s) => {
-                    if !matches!(
-                        self.dae.scalar(s).kind,
-                        ScalarKind::Parameter | ScalarKind::Constant
-                    ) {
-                        return false;
-                    }
-                }
-                Node::Time
-                | Node::Pre(_)
-                | Node::Initial
-                | Node::Terminal
-                | Node::Sample(..)
-                | Node::External(..) => return false,
-                _ => stack.extend(self.dae.arena.children(x)),
-            }
-        }
-        true
-    }
-
-    pub(crate) fn parameter_value(&mut self, s: ScalarId, depth: u32) -> Option<f64> {
-        if let Some(v) = self.parameter_values.get(&s) {
-            return v.is_finite().then_some(*v);
-        }
-        let sc = self.dae.scalar(s);
-        let binding = if sc.fixed == Some(false) {
-            None
-        } else {
-            sc.binding.or(sc.start)
-        };
-        let value = match binding {
-            Some(b) if depth < 64 && self.parameters_only(b) => {
-                let mut ok = true;
-                for d in self.dae.arena.vars(b) {
-                    ok &= self.parameter_value(d, depth + 1).is_some();
-                }
-                if ok {
-                    self.dae
-                        .arena
-                        .eval(b, &ParameterEnv(&self.parameter_values))
-                } else {
-                    f64::NAN
-                }
-            }
-            _ => f64::NAN,
-        };
-        self.parameter_values.insert(s, value);
-        value.is_finite().then_some(value)
+    /// The value of a parameter at translation (the one evaluator: `params.rs`).
+    pub(crate) fn parameter_value(&mut self, s: ScalarId) -> Option<f64> {
+        self.params.value(&self.dae, s)
     }
 
     pub(crate) fn a(&mut self) -> &mut ExprArena {

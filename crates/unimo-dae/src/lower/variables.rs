@@ -94,7 +94,7 @@ impl Lowerer<'_> {
             self.attributes_of(v, first, &dims, n);
         }
         while !deferred.is_empty() {
-            self.parameter_values.retain(|_, x| x.is_finite());
+            self.params.forget_unknown();
             let before = deferred.len();
             let mut still = Vec::new();
             for (v, first, dims, _) in deferred {

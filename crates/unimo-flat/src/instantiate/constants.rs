@@ -159,6 +159,15 @@ impl Env for Instantiator<'_, '_> {
                 what: format!("the variable `{key}`"),
             });
         }
+        // The specification's rule, as in lowering (`unimo_dae::params`): a parameter
+        // with `fixed = false` is computed by initial equations; its start value is a
+        // guess, not a value the model can be translated with.
+        if var.variability == Variability::Parameter && self.fixed_false(&var) {
+            return Err(EvalError::NotConstant {
+                span,
+                what: format!("`{key}`, a parameter computed at initialization (fixed = false)"),
+            });
+        }
         let expr = var
             .binding
             .as_deref()
@@ -184,5 +193,15 @@ impl Env for Instantiator<'_, '_> {
         let v = r?;
         self.values.insert(key.to_owned(), v.clone());
         Ok(v)
+    }
+}
+
+impl Instantiator<'_, '_> {
+    /// Whether a variable's `fixed` attribute is the literal or evaluated `false`.
+    fn fixed_false(&mut self, var: &crate::flat::FlatVar) -> bool {
+        let Some((_, e)) = var.attributes.iter().find(|(n, _)| n == "fixed") else {
+            return false;
+        };
+        matches!(eval::eval(e, self, &mut Vec::new()), Ok(Value::Bool(false)))
     }
 }
