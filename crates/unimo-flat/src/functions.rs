@@ -10,6 +10,7 @@ use crate::modif::Scope;
 use crate::tree::ClassId;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
+use unimo_syntax::visit::{equation_exprs, statement_exprs, walk_expr, Walk};
 
 /// A formal parameter or local variable of a function.
 #[derive(Clone, Debug)]
@@ -70,116 +71,29 @@ pub struct ExternalCall {
     pub output: Option<String>,
 }
 
-/// Global names of user functions called in `e`.
+/// Global names of user functions called in `e`, or passed as functional arguments
+/// (`function f(a = 1)`), in subscripts and ranges too.
 pub(crate) fn called_functions(e: &Expr, out: &mut Vec<String>) {
-    match &e.kind {
-        ExprKind::Call { func, args } => {
-            if func.global {
-                out.push(func.to_dotted().trim_start_matches('.').to_owned());
+    walk_expr(e, &mut |x| {
+        match &x.kind {
+            ExprKind::Call { func, .. } if func.global => {
+                out.push(func.to_dotted().trim_start_matches('.').to_owned())
             }
-            for a in &args.positional {
-                called_functions(a, out);
+            ExprKind::PartialApplication { func, .. } if func.global => {
+                out.push(func.to_dotted().trim_start_matches('.').to_owned())
             }
-            for a in &args.named {
-                called_functions(&a.value, out);
-            }
+            _ => {}
         }
-        ExprKind::Unary { operand, .. } => called_functions(operand, out),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            called_functions(lhs, out);
-            called_functions(rhs, out);
-        }
-        ExprKind::If {
-            branches,
-            otherwise,
-        } => {
-            for (c, v) in branches {
-                called_functions(c, out);
-                called_functions(v, out);
-            }
-            called_functions(otherwise, out);
-        }
-        ExprKind::Range { start, step, stop } => {
-            called_functions(start, out);
-            if let Some(s) = step {
-                called_functions(s, out);
-            }
-            called_functions(stop, out);
-        }
-        ExprKind::Array(items) => items.iter().for_each(|x| called_functions(x, out)),
-        ExprKind::Matrix(rows) => rows.iter().flatten().for_each(|x| called_functions(x, out)),
-        ExprKind::Comprehension { body, .. } => called_functions(body, out),
-        ExprKind::Tuple(items) => items
-            .iter()
-            .flatten()
-            .for_each(|x| called_functions(x, out)),
-        _ => {}
-    }
+        Walk::Descend
+    });
 }
 
 pub(crate) fn statement_calls(s: &Statement, out: &mut Vec<String>) {
-    match &s.kind {
-        StatementKind::Assign { value, .. } => called_functions(value, out),
-        StatementKind::MultiAssign { value, .. } => called_functions(value, out),
-        StatementKind::Call(e) => called_functions(e, out),
-        StatementKind::If {
-            branches,
-            otherwise,
-        } => {
-            for (c, body) in branches {
-                called_functions(c, out);
-                body.iter().for_each(|s| statement_calls(s, out));
-            }
-            otherwise.iter().for_each(|s| statement_calls(s, out));
-        }
-        StatementKind::When { branches } => {
-            for (c, body) in branches {
-                called_functions(c, out);
-                body.iter().for_each(|s| statement_calls(s, out));
-            }
-        }
-        StatementKind::For { indices, body } => {
-            for i in indices {
-                if let Some(r) = &i.range {
-                    called_functions(r, out);
-                }
-            }
-            body.iter().for_each(|s| statement_calls(s, out));
-        }
-        StatementKind::While { condition, body } => {
-            called_functions(condition, out);
-            body.iter().for_each(|s| statement_calls(s, out));
-        }
-        StatementKind::Return | StatementKind::Break => {}
-    }
+    statement_exprs(std::slice::from_ref(s), &mut |e| called_functions(e, out));
 }
 
 pub(crate) fn equation_calls(eq: &Equation, out: &mut Vec<String>) {
-    match &eq.kind {
-        EquationKind::Simple { lhs, rhs } => {
-            called_functions(lhs, out);
-            called_functions(rhs, out);
-        }
-        EquationKind::Call(e) => called_functions(e, out),
-        EquationKind::Connect { .. } => {}
-        EquationKind::If {
-            branches,
-            otherwise,
-        } => {
-            for (c, body) in branches {
-                called_functions(c, out);
-                body.iter().for_each(|e| equation_calls(e, out));
-            }
-            otherwise.iter().for_each(|e| equation_calls(e, out));
-        }
-        EquationKind::When { branches } => {
-            for (c, body) in branches {
-                called_functions(c, out);
-                body.iter().for_each(|e| equation_calls(e, out));
-            }
-        }
-        EquationKind::For { body, .. } => body.iter().for_each(|e| equation_calls(e, out)),
-    }
+    equation_exprs(std::slice::from_ref(eq), &mut |e| called_functions(e, out));
 }
 
 impl Instantiator<'_, '_> {

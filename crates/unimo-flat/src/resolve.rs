@@ -448,11 +448,6 @@ impl Checker<'_, '_> {
 
     fn expr(&mut self, id: ClassId, e: &Expr) {
         match &e.kind {
-            ExprKind::Integer(_)
-            | ExprKind::Real(_)
-            | ExprKind::Bool(_)
-            | ExprKind::String(_)
-            | ExprKind::End => {}
             ExprKind::Ref(r) => self.cref(id, r),
             ExprKind::Call { func, args } => {
                 // `.asin(u)` names the built-in from the global scope.
@@ -475,43 +470,6 @@ impl Checker<'_, '_> {
                 }
                 self.iterators.truncate(self.iterators.len() - n);
             }
-            ExprKind::Unary { operand, .. } => self.expr(id, operand),
-            ExprKind::Binary { lhs, rhs, .. } => {
-                self.expr(id, lhs);
-                self.expr(id, rhs);
-            }
-            ExprKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (c, v) in branches {
-                    self.expr(id, c);
-                    self.expr(id, v);
-                }
-                self.expr(id, otherwise);
-            }
-            ExprKind::Range { start, step, stop } => {
-                self.expr(id, start);
-                if let Some(s) = step {
-                    self.expr(id, s);
-                }
-                self.expr(id, stop);
-            }
-            ExprKind::Array(items) => {
-                for i in items {
-                    self.expr(id, i);
-                }
-            }
-            ExprKind::Matrix(rows) => {
-                for i in rows.iter().flatten() {
-                    self.expr(id, i);
-                }
-            }
-            ExprKind::Tuple(items) => {
-                for i in items.iter().flatten() {
-                    self.expr(id, i);
-                }
-            }
             ExprKind::Comprehension { body, indices } => {
                 let n = self.push_indices(id, indices);
                 self.expr(id, body);
@@ -526,6 +484,7 @@ impl Checker<'_, '_> {
                     self.expr(id, &a.value);
                 }
             }
+            _ => e.for_each_child(&mut |c| self.expr(id, c)),
         }
     }
 }

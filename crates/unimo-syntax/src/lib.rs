@@ -14,6 +14,7 @@ mod parse;
 pub mod print;
 mod shared;
 mod validate;
+pub mod visit;
 
 pub use parse::{parse_expression, Parsed};
 use unimo_source::FileId;

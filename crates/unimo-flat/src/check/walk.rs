@@ -67,16 +67,7 @@ pub(crate) fn composition_exprs(c: &Composition, note: &mut dyn FnMut(&Expr)) {
     }
     for s in &c.sections {
         match s {
-            Section::Equation(es) => {
-                for_each_equation_expr(&es.equations, note);
-                for_each_equation(&es.equations, &mut |eq| {
-                    if let EquationKind::For { indices, .. } = &eq.kind {
-                        for r in indices.iter().filter_map(|i| i.range.as_ref()) {
-                            note(r);
-                        }
-                    }
-                });
-            }
+            Section::Equation(es) => for_each_equation_expr(&es.equations, note),
             Section::Algorithm(al) => {
                 for_each_statement(&al.statements, &mut |st| statement_exprs(st, note))
             }
@@ -94,85 +85,19 @@ fn subscript_exprs(s: &Subscript, note: &mut dyn FnMut(&Expr)) {
 pub(crate) fn for_each_statement(sts: &[Statement], f: &mut dyn FnMut(&Statement)) {
     for st in sts {
         f(st);
-        match &st.kind {
-            StatementKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (_, b) in branches {
-                    for_each_statement(b, f);
-                }
-                for_each_statement(otherwise, f);
-            }
-            StatementKind::When { branches } => {
-                for (_, b) in branches {
-                    for_each_statement(b, f);
-                }
-            }
-            StatementKind::For { body, .. } | StatementKind::While { body, .. } => {
-                for_each_statement(body, f)
-            }
-            _ => {}
-        }
+        st.for_each_nested(&mut |n| for_each_statement(std::slice::from_ref(n), f));
     }
 }
 
 /// The expressions a statement itself holds (not those of nested statements).
 fn statement_exprs(st: &Statement, note: &mut dyn FnMut(&Expr)) {
-    match &st.kind {
-        StatementKind::Assign { target, value } => {
-            for p in &target.parts {
-                for s in &p.subscripts {
-                    subscript_exprs(s, note);
-                }
-            }
-            note(value);
-        }
-        StatementKind::MultiAssign { targets, value } => {
-            for t in targets.iter().flatten() {
-                note(t);
-            }
-            note(value);
-        }
-        StatementKind::Call(c) => note(c),
-        StatementKind::If { branches, .. } | StatementKind::When { branches } => {
-            for (c, _) in branches {
-                note(c);
-            }
-        }
-        StatementKind::For { indices, .. } => {
-            for i in indices {
-                if let Some(r) = &i.range {
-                    note(r);
-                }
-            }
-        }
-        StatementKind::While { condition, .. } => note(condition),
-        StatementKind::Return | StatementKind::Break => {}
-    }
+    st.for_each_expr(note);
 }
 
 /// Calls `f` with every equation of `eqs`, nested ones included (outer first).
 pub(crate) fn for_each_equation(eqs: &[Equation], f: &mut dyn FnMut(&Equation)) {
     for eq in eqs {
         f(eq);
-        match &eq.kind {
-            EquationKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (_, b) in branches {
-                    for_each_equation(b, f);
-                }
-                for_each_equation(otherwise, f);
-            }
-            EquationKind::When { branches } => {
-                for (_, b) in branches {
-                    for_each_equation(b, f);
-                }
-            }
-            EquationKind::For { body, .. } => for_each_equation(body, f),
-            _ => {}
-        }
+        eq.for_each_nested(&mut |n| for_each_equation(std::slice::from_ref(n), f));
     }
 }

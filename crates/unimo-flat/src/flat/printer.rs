@@ -2,7 +2,7 @@
 //! records and functions it uses printed before the model) and parses back to the same
 //! model; references printed as one quoted identifier.
 
-use super::walk::{for_each_child, rewrite_refs};
+use super::walk::rewrite_refs;
 use super::{quote, FlatModel, FlatType, FlatVar, Variability};
 use smol_str::SmolStr;
 use std::fmt::Write;
@@ -232,7 +232,7 @@ impl<'a> Printer<'a> {
     /// Calls and enumeration literals renamed to the printed definitions; with
     /// `model`, whole records written as constructor calls.
     fn standalone(&self, e: &mut Expr, model: bool) {
-        for_each_child(e, &mut |c| self.standalone(c, model));
+        e.for_each_child_mut(&mut |c| self.standalone(c, model));
         match &mut e.kind {
             ExprKind::Call { func, .. } if func.global => {
                 let name = func
