@@ -4,6 +4,7 @@
 //! merges with `if`-expressions; `for` is unrolled; `while` must fold to a constant.
 
 use crate::dae::{Assertion, WhenAction, WhenBranch, WhenClause};
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, ScalarId};
 use crate::lower::{broadcast, unsupported, Local, Lowerer, MAX_INLINE_DEPTH_PUB};
@@ -173,7 +174,7 @@ impl Lowerer<'_> {
                     }
                 }
                 Err(DaeError::new(
-                    "E3015",
+                    DaeCode::EndlessLoop,
                     "a `while` loop ran a million times",
                     span,
                 ))
@@ -384,7 +385,7 @@ impl Lowerer<'_> {
             } else {
                 let Some(mut cur) = current else {
                     return Err(DaeError::new(
-                        "E3012",
+                        DaeCode::UnassignedLocal,
                         format!(
                             "elements of `{}` are assigned before its size is known",
                             target.parts[0].name.text
@@ -415,14 +416,14 @@ impl Lowerer<'_> {
         let key = unimo_flat::eval::var_key(target);
         let Some((first, dims)) = self.vars.get(&key).cloned() else {
             return Err(DaeError::new(
-                "E3010",
+                DaeCode::NoSuchScalar,
                 format!("`{key}` is not a variable that can be assigned"),
                 span,
             ));
         };
         if self.assigned.is_none() {
             return Err(DaeError::new(
-                "E3016",
+                DaeCode::FunctionAssignsModel,
                 format!("a function assigns `{key}`, which is not one of its variables"),
                 span,
             ));
@@ -459,14 +460,14 @@ impl Lowerer<'_> {
                     for &x in &t.data {
                         let k = self.const_value(x).ok_or_else(|| {
                             DaeError::new(
-                                "E3002",
+                                DaeCode::NotKnownAtCompileTime,
                                 "an assigned element's index must be known at compile time",
                                 e.span,
                             )
                         })? as i64;
                         if k < 1 || k as usize > n {
                             return Err(DaeError::new(
-                                "E3013",
+                                DaeCode::IndexOutOfBounds,
                                 format!("index {k} is out of bounds 1..{n}"),
                                 e.span,
                             ));
@@ -518,7 +519,7 @@ impl Lowerer<'_> {
                     }
                     WhenAction::Reinit { .. } => {
                         return Err(DaeError::new(
-                            "E3017",
+                            DaeCode::ReinitOutsideWhen,
                             "`reinit` is only allowed inside `when`",
                             e.span,
                         ))
@@ -543,7 +544,11 @@ impl Lowerer<'_> {
             "reinit" => {
                 let (Some(target), Some(value)) = (args.positional.first(), args.positional.get(1))
                 else {
-                    return Err(DaeError::new("E3005", "`reinit` needs two arguments", span));
+                    return Err(DaeError::new(
+                        DaeCode::WrongArguments,
+                        "`reinit` needs two arguments",
+                        span,
+                    ));
                 };
                 let t = self.expr(target)?;
                 let v = self.expr(value)?;
@@ -557,7 +562,7 @@ impl Lowerer<'_> {
                 }
                 let crate::expr::Node::Var(s) = self.dae.arena.node(t.data[0]) else {
                     return Err(DaeError::new(
-                        "E3006",
+                        DaeCode::ReinitOfNonState,
                         "`reinit` needs a state variable",
                         target.span,
                     ));
@@ -569,7 +574,11 @@ impl Lowerer<'_> {
             }
             "assert" => {
                 let Some(c) = args.positional.first() else {
-                    return Err(DaeError::new("E3005", "`assert` needs a condition", span));
+                    return Err(DaeError::new(
+                        DaeCode::WrongArguments,
+                        "`assert` needs a condition",
+                        span,
+                    ));
                 };
                 let condition = self.scalar(c)?;
                 let message = match args.positional.get(1).map(|m| &m.kind) {
@@ -631,7 +640,7 @@ impl Lowerer<'_> {
     ) -> DaeResult<Vec<Tensor>> {
         if self.inline_depth >= MAX_INLINE_DEPTH_PUB {
             return Err(DaeError::new(
-                "E3018",
+                DaeCode::InliningTooDeep,
                 format!("`{}` calls itself too deeply to be inlined", f.name),
                 span,
             ));
@@ -648,7 +657,7 @@ impl Lowerer<'_> {
         for (k, a) in args.positional.iter().enumerate() {
             if k >= given.len() {
                 return Err(DaeError::new(
-                    "E3005",
+                    DaeCode::WrongArguments,
                     format!("too many arguments for `{}`", f.name),
                     a.span,
                 ));
@@ -663,7 +672,7 @@ impl Lowerer<'_> {
         for a in &args.named {
             let Some(k) = f.inputs.iter().position(|i| i.name == a.name.text.as_str()) else {
                 return Err(DaeError::new(
-                    "E3005",
+                    DaeCode::WrongArguments,
                     format!("`{}` has no input `{}`", f.name, a.name.text),
                     a.name.span,
                 ));
@@ -761,7 +770,7 @@ impl Lowerer<'_> {
                     Some(d) => self.expr(d)?,
                     None => {
                         return Err(DaeError::new(
-                            "E3005",
+                            DaeCode::WrongArguments,
                             format!("input `{}` of `{}` is not given", input.name, f.name),
                             span,
                         ))
@@ -822,7 +831,7 @@ impl Lowerer<'_> {
                 .and_then(|l| l.value.clone())
                 .ok_or_else(|| {
                     DaeError::new(
-                        "E3012",
+                        DaeCode::UnassignedLocal,
                         format!("output `{}` of `{}` is never assigned", o.name, f.name),
                         span,
                     )
@@ -831,7 +840,7 @@ impl Lowerer<'_> {
         }
         if outs.is_empty() {
             return Err(DaeError::new(
-                "E3012",
+                DaeCode::UnassignedLocal,
                 format!("`{}` has no output to use in an expression", f.name),
                 span,
             ));

@@ -5,6 +5,7 @@
 
 use crate::dae::{Dae, EqId, Equation, ScalarKind, StateSelect, WhenAction};
 use crate::diff::{partial, solve_linear};
+use crate::error::DaeCode;
 use crate::error::DaeError;
 use crate::expr::{ExprId, Node, ScalarId};
 use crate::plan::{Block, Plan, PlanStats, PlanStep, StateSet};
@@ -679,7 +680,7 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
                 })
                 .unwrap_or_default();
             let mut err = DaeError::new(
-                "E3201",
+                DaeCode::StructurallySingular,
                 format!(
                     "the model is structurally singular: {} equation(s) too many for their variables, {} variable(s) not determined",
                     over.eqs.len().saturating_sub(over.vars.len()).max(usize::from(!over.eqs.is_empty())),
@@ -714,7 +715,7 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
             err.help("remove a redundant equation or add one for an undetermined variable")
         }
         st::StructError::IndexReductionFailed { eq, reason } => DaeError::new(
-            "E3202",
+            DaeCode::CannotDifferentiate,
             format!(
                 "index reduction must differentiate `{}` but cannot: {reason}",
                 name_eq(eq)
@@ -723,7 +724,7 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
         )
         .label("this constraint"),
         st::StructError::DifferentiationLimit { eq, limit } => DaeError::new(
-            "E3203",
+            DaeCode::DifferentiationLimit,
             format!(
                 "index reduction would differentiate `{}` more than {limit} times",
                 name_eq(eq)
@@ -732,7 +733,7 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
         )
         .help("the model is probably structurally singular or of very high index"),
         st::StructError::DummySelectionFailed { level, eqs } => DaeError::new(
-            "E3204",
+            DaeCode::NoDummyDerivatives,
             format!(
                 "no dummy derivatives can be chosen at level {level} for: {}",
                 eqs.iter()
@@ -744,7 +745,7 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
             eqs.first().map(|&e| span_of(e)).unwrap_or_default(),
         ),
         other => DaeError::new(
-            "E3290",
+            DaeCode::InternalStructure,
             format!("internal structural error: {other}"),
             Default::default(),
         ),

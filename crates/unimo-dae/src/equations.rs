@@ -4,6 +4,7 @@
 //! point [`lower`].
 
 use crate::dae::*;
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, Node, ScalarId};
 use crate::fold::FoldOptions;
@@ -84,7 +85,7 @@ impl Lowerer<'_> {
                         Ok(Vec::new())
                     }
                     Some(WhenAction::Reinit { .. }) => Err(DaeError::new(
-                        "E3017",
+                        DaeCode::ReinitOutsideWhen,
                         "`reinit` is only allowed inside `when`",
                         span,
                     )),
@@ -93,7 +94,7 @@ impl Lowerer<'_> {
                 }
             }
             EquationKind::Connect { .. } => Err(DaeError::new(
-                "E3001",
+                DaeCode::Unsupported,
                 "a `connect` survived flattening",
                 span,
             )),
@@ -203,7 +204,7 @@ impl Lowerer<'_> {
         for (k, b) in bodies.iter().enumerate() {
             if b.len() != n {
                 return Err(DaeError::new(
-                    "E3011",
+                    DaeCode::UnequalIfBranches,
                     format!(
                         "the branches of this if-equation have different numbers of equations ({} in branch {}, {} in the else branch)",
                         b.len(),
@@ -327,7 +328,7 @@ impl Lowerer<'_> {
                 Ok(())
             }
             EquationKind::When { .. } => Err(DaeError::new(
-                "E3007",
+                DaeCode::InvalidInWhen,
                 "`when` cannot be nested inside `when`",
                 span,
             )),
@@ -356,7 +357,7 @@ impl Lowerer<'_> {
                     for (&x, &e) in t.data.iter().zip(&v.data) {
                         let Node::Var(s) = self.dae.arena.node(x) else {
                             return Err(DaeError::new(
-                                "E3006",
+                                DaeCode::ReinitOfNonState,
                                 "`reinit` needs a state variable",
                                 target.span,
                             ));
@@ -396,7 +397,7 @@ impl Lowerer<'_> {
             for (&x, &e) in tt.data.iter().zip(&v.data) {
                 let Node::Var(s) = self.dae.arena.node(x) else {
                     return Err(DaeError::new(
-                        "E3007",
+                        DaeCode::InvalidInWhen,
                         "the left side of an equation in `when` must be a variable",
                         t.span,
                     ));
@@ -539,7 +540,7 @@ impl Lowerer<'_> {
             if sc.derivative.is_none() || sc.kind != ScalarKind::Continuous {
                 self.errors.push(
                     DaeError::new(
-                        "E3006",
+                        DaeCode::ReinitOfNonState,
                         format!("`reinit` of `{}`, which is not a state", sc.name),
                         span,
                     )

@@ -10,18 +10,138 @@ pub struct ErrorDetail {
     pub notes: Vec<String>,
 }
 
+/// The codes of the lowering and structural stages, one variant each; `docs/errors.md`
+/// has a row per code (a test checks it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DaeCode {
+    /// E3001: a construct the back end does not support yet.
+    Unsupported,
+    /// E3002: an index, size or range that must be known at compile time is not.
+    NotKnownAtCompileTime,
+    /// E3003: array sizes do not match, or a scalar was needed.
+    SizeMismatch,
+    /// E3004: a call of something that is not a known function.
+    UnknownFunction,
+    /// E3005: missing, surplus or unknown arguments of a call.
+    WrongArguments,
+    /// E3006: `reinit` of a variable that is not a state.
+    ReinitOfNonState,
+    /// E3007: inside `when`: a left side that is not a variable, or a nested `when`.
+    InvalidInWhen,
+    /// E3010: a reference to something the flat model has no scalar for.
+    NoSuchScalar,
+    /// E3011: branches of a non-parameter `if`-equation with different numbers of equations.
+    UnequalIfBranches,
+    /// E3012: a function output or local used before it is assigned.
+    UnassignedLocal,
+    /// E3013: an index out of bounds.
+    IndexOutOfBounds,
+    /// E3014: `pre`, `edge` or `change` of something that is not a variable.
+    PreOfNonVariable,
+    /// E3015: a `while` loop known at compile time that does not end.
+    EndlessLoop,
+    /// E3016: a function assigns a model variable.
+    FunctionAssignsModel,
+    /// E3017: `reinit` outside `when`.
+    ReinitOutsideWhen,
+    /// E3018: functions calling each other too deep while inlined.
+    InliningTooDeep,
+    /// E3019: wrong arguments of the collision built-ins.
+    CollisionArguments,
+    /// E3020: an external function unimo does not provide, or bad arguments of one it does.
+    MissingExternal,
+    /// E3021: a table given as an empty matrix.
+    EmptyTable,
+    /// E3201: the model is structurally singular.
+    StructurallySingular,
+    /// E3202: index reduction must differentiate an equation that cannot be.
+    CannotDifferentiate,
+    /// E3203: index reduction would differentiate an equation too often.
+    DifferentiationLimit,
+    /// E3204: no dummy derivatives can be chosen at some level.
+    NoDummyDerivatives,
+    /// E3290: an internal consistency error of the structural algorithms (a bug).
+    InternalStructure,
+}
+
+impl DaeCode {
+    /// Every code of the stage.
+    pub const ALL: &'static [DaeCode] = &[
+        DaeCode::Unsupported,
+        DaeCode::NotKnownAtCompileTime,
+        DaeCode::SizeMismatch,
+        DaeCode::UnknownFunction,
+        DaeCode::WrongArguments,
+        DaeCode::ReinitOfNonState,
+        DaeCode::InvalidInWhen,
+        DaeCode::NoSuchScalar,
+        DaeCode::UnequalIfBranches,
+        DaeCode::UnassignedLocal,
+        DaeCode::IndexOutOfBounds,
+        DaeCode::PreOfNonVariable,
+        DaeCode::EndlessLoop,
+        DaeCode::FunctionAssignsModel,
+        DaeCode::ReinitOutsideWhen,
+        DaeCode::InliningTooDeep,
+        DaeCode::CollisionArguments,
+        DaeCode::MissingExternal,
+        DaeCode::EmptyTable,
+        DaeCode::StructurallySingular,
+        DaeCode::CannotDifferentiate,
+        DaeCode::DifferentiationLimit,
+        DaeCode::NoDummyDerivatives,
+        DaeCode::InternalStructure,
+    ];
+
+    /// The code as printed (`E3001`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            DaeCode::Unsupported => "E3001",
+            DaeCode::NotKnownAtCompileTime => "E3002",
+            DaeCode::SizeMismatch => "E3003",
+            DaeCode::UnknownFunction => "E3004",
+            DaeCode::WrongArguments => "E3005",
+            DaeCode::ReinitOfNonState => "E3006",
+            DaeCode::InvalidInWhen => "E3007",
+            DaeCode::NoSuchScalar => "E3010",
+            DaeCode::UnequalIfBranches => "E3011",
+            DaeCode::UnassignedLocal => "E3012",
+            DaeCode::IndexOutOfBounds => "E3013",
+            DaeCode::PreOfNonVariable => "E3014",
+            DaeCode::EndlessLoop => "E3015",
+            DaeCode::FunctionAssignsModel => "E3016",
+            DaeCode::ReinitOutsideWhen => "E3017",
+            DaeCode::InliningTooDeep => "E3018",
+            DaeCode::CollisionArguments => "E3019",
+            DaeCode::MissingExternal => "E3020",
+            DaeCode::EmptyTable => "E3021",
+            DaeCode::StructurallySingular => "E3201",
+            DaeCode::CannotDifferentiate => "E3202",
+            DaeCode::DifferentiationLimit => "E3203",
+            DaeCode::NoDummyDerivatives => "E3204",
+            DaeCode::InternalStructure => "E3290",
+        }
+    }
+}
+
+impl std::fmt::Display for DaeCode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// A lowering or analysis error with its code.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{code}: {message}")]
 pub struct DaeError {
-    pub code: &'static str,
+    pub code: DaeCode,
     pub message: Box<str>,
     pub span: Span,
     pub detail: Box<ErrorDetail>,
 }
 
 impl DaeError {
-    pub fn new(code: &'static str, message: impl Into<String>, span: Span) -> DaeError {
+    pub fn new(code: DaeCode, message: impl Into<String>, span: Span) -> DaeError {
         DaeError {
             code,
             message: message.into().into_boxed_str(),
@@ -55,7 +175,8 @@ impl DaeError {
         } else {
             &self.detail.label
         };
-        let mut d = Diagnostic::error(self.code, self.message.to_string()).at(self.span, label);
+        let mut d =
+            Diagnostic::error(self.code.as_str(), self.message.to_string()).at(self.span, label);
         for n in &self.detail.notes {
             d = d.with_note(n.clone());
         }
@@ -67,3 +188,34 @@ impl DaeError {
 }
 
 pub type DaeResult<T> = Result<T, DaeError>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_code_is_unique_and_documented() {
+        let docs = include_str!("../../../docs/errors.md");
+        let mut seen = std::collections::HashSet::new();
+        for c in DaeCode::ALL {
+            assert!(seen.insert(c.as_str()), "{c} twice");
+            assert!(
+                docs.contains(&format!("`{c}`")),
+                "{c} ({c:?}) has no row in docs/errors.md"
+            );
+        }
+    }
+
+    #[test]
+    fn the_diagnostic_carries_the_code_label_and_notes() {
+        let e = DaeError::new(DaeCode::SizeMismatch, "sizes differ", Span::default())
+            .label("this side")
+            .note("a note")
+            .help("a help");
+        let d = e.to_diagnostic();
+        assert_eq!(d.code.0, "E3003");
+        assert_eq!(d.notes, ["a note"]);
+        assert_eq!(d.help.as_deref(), Some("a help"));
+        assert_eq!(e.to_string(), "E3003: sizes differ");
+    }
+}

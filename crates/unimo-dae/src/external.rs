@@ -5,6 +5,7 @@
 //! after the parameters and evaluates the nodes (`unimo_runtime::tables`). An external
 //! function unimo does not provide is a coded error naming it.
 
+use crate::error::DaeCode;
 use crate::error::DaeError;
 use crate::expr::{ExprId, Node};
 use crate::lower::Local;
@@ -227,7 +228,7 @@ impl Lowerer<'_> {
     ) -> Result<(), DaeError> {
         let Some(kind) = foreign(&ext.function) else {
             return Err(DaeError::new(
-                "E3020",
+                DaeCode::MissingExternal,
                 format!(
                     "external function `{}` (`{}`) is not provided by unimo",
                     f.name, ext.function
@@ -256,7 +257,7 @@ impl Lowerer<'_> {
                 let text = ext.args.first().and_then(|a| self.text_value(a));
                 let Some(text) = text else {
                     return Err(DaeError::new(
-                        "E3020",
+                        DaeCode::MissingExternal,
                         format!(
                             "`{}` needs a String known at compile time (a literal or getInstanceName())",
                             f.name
@@ -300,7 +301,7 @@ impl Lowerer<'_> {
         let state = self.foreign_arg(ext, 0, span)?;
         if state.data.len() < n {
             return Err(DaeError::new(
-                "E3020",
+                DaeCode::MissingExternal,
                 format!(
                     "`{}` needs a state vector of {n} Integers, not {}",
                     f.name,
@@ -322,7 +323,7 @@ impl Lowerer<'_> {
         };
         let (Some(state_out), Some(result)) = (name(1), name(2)) else {
             return Err(DaeError::new(
-                "E3020",
+                DaeCode::MissingExternal,
                 format!("`{}` must pass its outputs to `{}`", f.name, ext.function),
                 span,
             ));
@@ -360,7 +361,7 @@ impl Lowerer<'_> {
                 let t = self.foreign_arg(ext, k, span)?;
                 t.data.first().copied().ok_or_else(|| {
                     DaeError::new(
-                        "E3020",
+                        DaeCode::MissingExternal,
                         format!("an empty argument of `{}`", ext.function),
                         span,
                     )
@@ -378,7 +379,7 @@ impl Lowerer<'_> {
     ) -> Result<Tensor, DaeError> {
         let a = ext.args.get(k).ok_or_else(|| {
             DaeError::new(
-                "E3020",
+                DaeCode::MissingExternal,
                 format!("`{}` is called with too few arguments", ext.function),
                 span,
             )
@@ -403,7 +404,7 @@ impl Lowerer<'_> {
         };
         if rows == 0 || cols == 0 {
             return Err(DaeError::new(
-                "E3021",
+                DaeCode::EmptyTable,
                 "the table is empty: tables read from files (`tableOnFile = true`) are not supported yet; give the table as a matrix".to_owned(),
                 span,
             ));

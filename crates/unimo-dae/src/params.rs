@@ -74,7 +74,7 @@ impl EvalEnv for ParameterValues {
 
 impl ParameterValues {
     /// The value of parameter or constant `s` at translation (None: it has none).
-    pub fn value(&mut self, dae: &Dae, s: ScalarId) -> Option<f64> {
+    pub fn of_scalar(&mut self, dae: &Dae, s: ScalarId) -> Option<f64> {
         if let Some(&v) = self.values.get(&s) {
             return v.is_finite().then_some(v);
         }
@@ -84,7 +84,7 @@ impl ParameterValues {
             Some(b) if parameters_only(dae, b) => {
                 let mut known = true;
                 for d in dae.arena.vars(b) {
-                    known &= self.value(dae, d).is_some();
+                    known &= self.of_scalar(dae, d).is_some();
                 }
                 if known {
                     dae.arena.eval(b, self)
@@ -108,7 +108,7 @@ impl ParameterValues {
             return None;
         }
         for s in dae.arena.vars(e) {
-            self.value(dae, s)?;
+            self.of_scalar(dae, s)?;
         }
         let v = dae.arena.eval(e, self);
         v.is_finite().then_some(v)
@@ -155,15 +155,15 @@ mod tests {
         let e = dae.arena.mul(two, va);
         dae.scalars[b.index()].binding = Some(e);
         let mut p = ParameterValues::default();
-        assert_eq!(p.value(&dae, a), None);
+        assert_eq!(p.of_scalar(&dae, a), None);
         assert_eq!(
-            p.value(&dae, b),
+            p.of_scalar(&dae, b),
             None,
             "b reads a parameter without a value"
         );
         dae.scalars[a.index()].fixed = None;
         let mut p = ParameterValues::default();
-        assert_eq!(p.value(&dae, b), Some(2.0));
+        assert_eq!(p.of_scalar(&dae, b), Some(2.0));
     }
 
     #[test]
@@ -178,14 +178,14 @@ mod tests {
         let four = dae.arena.constant(4.0);
         dae.scalars[y.index()].binding = Some(four);
         let mut p = ParameterValues::default();
-        assert_eq!(p.value(&dae, x), Some(7.0));
+        assert_eq!(p.of_scalar(&dae, x), Some(7.0));
         // A cycle: y = x + 3, x = y + 3.
         let vx = dae.arena.var(x);
         let by = dae.arena.add(vx, three);
         dae.scalars[y.index()].binding = Some(by);
         let mut p = ParameterValues::default();
-        assert_eq!(p.value(&dae, x), None);
-        assert_eq!(p.value(&dae, y), None);
+        assert_eq!(p.of_scalar(&dae, x), None);
+        assert_eq!(p.of_scalar(&dae, y), None);
         let t = dae.arena.time();
         assert!(!parameters_only(&dae, t));
         assert!(!p.is_zero(&dae, vx), "unknown counts as nonzero");

@@ -4,6 +4,7 @@
 //! functions' record inputs, outputs and locals (with field access and field
 //! assignment) lower through this layout.
 
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::lower::{unsupported, Lowerer};
 use crate::tensor::Tensor;
@@ -27,7 +28,13 @@ impl<'m> Lowerer<'m> {
             .records
             .iter()
             .find(|r| r.name == name)
-            .ok_or_else(|| DaeError::new("E3010", format!("`{name}` is not a known record"), span))
+            .ok_or_else(|| {
+                DaeError::new(
+                    DaeCode::NoSuchScalar,
+                    format!("`{name}` is not a known record"),
+                    span,
+                )
+            })
     }
 
     /// Fixed dimensions of a record field.
@@ -87,7 +94,7 @@ impl<'m> Lowerer<'m> {
             offset += len;
         }
         Err(DaeError::new(
-            "E3010",
+            DaeCode::NoSuchScalar,
             format!("record `{}` has no field `{field}`", r.name),
             span,
         ))
@@ -136,7 +143,7 @@ impl<'m> Lowerer<'m> {
             };
             let Some(part) = part else {
                 return Err(DaeError::new(
-                    "E3010",
+                    DaeCode::NoSuchScalar,
                     format!("`{path}` is not a variable of the flat model"),
                     span,
                 ));
@@ -160,7 +167,7 @@ impl<'m> Lowerer<'m> {
         let mut given: Vec<Option<&Expr>> = vec![None; r.fields.len()];
         if args.positional.len() > r.fields.len() {
             return Err(DaeError::new(
-                "E3005",
+                DaeCode::WrongArguments,
                 format!("too many arguments for record `{name}`"),
                 span,
             ));
@@ -171,7 +178,7 @@ impl<'m> Lowerer<'m> {
         for a in &args.named {
             let Some(k) = r.fields.iter().position(|f| f.name == a.name.text.as_str()) else {
                 return Err(DaeError::new(
-                    "E3005",
+                    DaeCode::WrongArguments,
                     format!("record `{name}` has no field `{}`", a.name.text),
                     a.name.span,
                 ));
@@ -182,7 +189,7 @@ impl<'m> Lowerer<'m> {
         for (f, g) in r.fields.iter().zip(given) {
             let Some(e) = g.or(f.default.as_ref()) else {
                 return Err(DaeError::new(
-                    "E3005",
+                    DaeCode::WrongArguments,
                     format!("field `{}` of record `{name}` is not given", f.name),
                     span,
                 ));
@@ -268,7 +275,7 @@ impl<'m> Lowerer<'m> {
             let v = as_vector(value, positions.len(), span)?;
             let Some(cur) = self.locals[k].value.as_mut() else {
                 return Err(DaeError::new(
-                    "E3012",
+                    DaeCode::UnassignedLocal,
                     format!("`{}` is used before it is assigned", self.locals[k].name),
                     span,
                 ));
@@ -281,7 +288,7 @@ impl<'m> Lowerer<'m> {
         let v = as_vector(value, slot.len, span)?;
         let Some(cur) = self.locals[k].value.as_mut() else {
             return Err(DaeError::new(
-                "E3012",
+                DaeCode::UnassignedLocal,
                 format!("`{}` is used before it is assigned", self.locals[k].name),
                 span,
             ));
@@ -305,5 +312,9 @@ fn as_vector(v: Tensor, len: usize, span: Span) -> DaeResult<Tensor> {
 
 /// A field access through something that is not a record (`a.re.x`).
 fn not_a_record(p: &RefPart, span: Span) -> DaeError {
-    DaeError::new("E3010", format!("`{}` is not a record", p.name.text), span)
+    DaeError::new(
+        DaeCode::NoSuchScalar,
+        format!("`{}` is not a record", p.name.text),
+        span,
+    )
 }

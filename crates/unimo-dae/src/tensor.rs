@@ -1,6 +1,7 @@
 //! Arrays of scalar expressions during lowering (row-major), and the array operators
 //! of Modelica (spec 10.6) on them: elementwise arithmetic, products, slicing.
 
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId};
 use unimo_source::Span;
@@ -37,7 +38,7 @@ impl Tensor {
             Ok(self.data[0])
         } else {
             Err(DaeError::new(
-                "E3003",
+                DaeCode::SizeMismatch,
                 format!(
                     "a scalar is needed here, found an array of size {}",
                     fmt_dims(&self.dims)
@@ -88,7 +89,7 @@ pub use unimo_flat::flat::fmt_dims;
 
 pub fn size_error(a: &[usize], b: &[usize], span: Span) -> DaeError {
     DaeError::new(
-        "E3003",
+        DaeCode::SizeMismatch,
         format!(
             "array sizes do not match: {} and {}",
             fmt_dims(a),
@@ -191,7 +192,7 @@ pub fn multiply(arena: &mut ExprArena, a: &Tensor, b: &Tensor, span: Span) -> Da
 pub fn transpose(a: &Tensor, span: Span) -> DaeResult<Tensor> {
     let [r, c] = a.dims[..] else {
         return Err(DaeError::new(
-            "E3003",
+            DaeCode::SizeMismatch,
             format!("transpose needs a matrix, found {}", fmt_dims(&a.dims)),
             span,
         ));
@@ -216,7 +217,7 @@ pub fn concatenate(items: &[Tensor], k: usize, span: Span) -> DaeResult<Tensor> 
     let nd = first.dims.len();
     if k >= nd {
         return Err(DaeError::new(
-            "E3003",
+            DaeCode::SizeMismatch,
             format!(
                 "cannot concatenate along dimension {} of {}",
                 k + 1,

@@ -3,6 +3,7 @@
 //! equations are counted by the size of their left side, `if`-equations by one branch,
 //! `when`-equations by their body, algorithms by the variables they assign.
 
+use crate::error::FlatCode;
 use crate::eval::var_key;
 use crate::flat::{FlatModel, Variability};
 use rustc_hash::FxHashMap as HashMap;
@@ -464,7 +465,7 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
         (b.equations - b.unknowns, "too many equations")
     };
     let mut d = Diagnostic::error(
-        "E2010",
+        FlatCode::Unbalanced,
         format!(
             "model `{}` is not balanced: {} equations for {} unknowns ({what}, {more} off)",
             model.name, b.equations, b.unknowns

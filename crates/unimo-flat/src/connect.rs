@@ -2,6 +2,7 @@
 //! variables sum to zero with inside connectors counted `+` and outside ones `-`, and an
 //! unconnected flow variable is zero.
 
+use crate::error::FlatCode;
 use crate::eval::var_key;
 use crate::flat::FlatModel;
 use crate::instantiate::Connect;
@@ -252,8 +253,11 @@ pub fn equations(
         if ma.is_empty() || mb.is_empty() {
             let which = if ma.is_empty() { ka } else { kb };
             diags.push(
-                Diagnostic::error("E2006", format!("`{which}` is not a connector instance"))
-                    .at(c.span, "in this connect"),
+                Diagnostic::error(
+                    FlatCode::ConnectorMismatch,
+                    format!("`{which}` is not a connector instance"),
+                )
+                .at(c.span, "in this connect"),
             );
             continue;
         }
@@ -379,7 +383,7 @@ fn members_mismatch(
         .collect();
     Some(
         Diagnostic::error(
-            "E2006",
+            FlatCode::ConnectorMismatch,
             format!("connectors `{ka}` and `{kb}` do not match"),
         )
         .at(c.span, "in this connect")
@@ -474,7 +478,7 @@ fn pair_mismatch(
     if xa.flow != xb.flow || !same_shape || !same_kind(&xa.ty, &xb.ty) {
         return Some(
             Diagnostic::error(
-                "E2006",
+                FlatCode::ConnectorMismatch,
                 format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
             )
             .at(c.span, "in this connect")
@@ -488,7 +492,7 @@ fn pair_mismatch(
     if both_outputs {
         return Some(
             Diagnostic::error(
-                "E2007",
+                FlatCode::OutputsConnected,
                 format!("two outputs connected: `{}` and `{}`", xa.name, xb.name),
             )
             .at(c.span, "in this connect")

@@ -9,6 +9,7 @@
 //! Invariants: no file system access of its own (files come through the provider), no
 //! printing; every problem is a coded `E2xxx` diagnostic.
 
+use crate::error::FlatCode;
 pub mod balance;
 mod check;
 pub mod connect;
@@ -79,12 +80,15 @@ pub fn flatten_with(
     let mut model = std::mem::take(&mut inst.model);
     let named = diags.len();
     for d in inst.diags.drain(..) {
-        if !(d.code.0 == "E2001" && overlaps_any(&d, &diags[..named])) {
+        if !(d.code == FlatCode::UnknownName.into() && overlaps_any(&d, &diags[..named])) {
             diags.push(d);
         }
     }
     // A cycle that compile-time evaluation met is reported there already.
-    if !diags.iter().any(|d| d.code.0 == "E2008") {
+    if !diags
+        .iter()
+        .any(|d| d.code == FlatCode::CyclicBinding.into())
+    {
         diags.extend(semantic::parameter_cycles(&model));
     }
     diags.extend(semantic::binding_variability(&model));

@@ -2,6 +2,7 @@
 //! and for the back end's layout), and record bindings split into field bindings
 //! (`parameter Complex p = Complex(1, 2)` gives `p.re = 1`, `p.im = 2`).
 
+use crate::error::FlatCode;
 use crate::instantiate::Instantiator;
 use crate::lookup::Found;
 use crate::modif::{Bound, Mod};
@@ -89,7 +90,7 @@ impl Instantiator<'_, '_> {
                 if args.positional.len() > inputs.len() {
                     self.diags.push(
                         Diagnostic::error(
-                            "E2004",
+                            FlatCode::UnknownModifier,
                             format!(
                                 "record constructor `{}` takes {} arguments, {} given",
                                 func.to_dotted(),
@@ -108,7 +109,7 @@ impl Instantiator<'_, '_> {
                     if !inputs.iter().any(|f| f.name == a.name.text) {
                         self.diags.push(
                             Diagnostic::error(
-                                "E2004",
+                                FlatCode::UnknownModifier,
                                 format!(
                                     "record `{}` has no field `{}` to construct",
                                     func.to_dotted(),
@@ -177,7 +178,7 @@ impl Instantiator<'_, '_> {
     pub(crate) fn unsplit_record_parameter(&mut self, name: &str, span: Span) {
         self.diags.push(
             Diagnostic::error(
-                "E2003",
+                FlatCode::NotKnownAtCompileTime,
                 format!(
                     "the binding of record parameter `{name}` must be a record constructor or another record"
                 ),

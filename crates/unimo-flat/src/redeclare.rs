@@ -4,6 +4,7 @@
 //! instantiator keeps, per instance, the class each redeclared name stands for, and
 //! resolves component types, function calls and package constants through it.
 
+use crate::error::FlatCode;
 use crate::eval;
 use crate::instantiate::{instance_key, Instantiator};
 use crate::lookup::Found;
@@ -60,7 +61,7 @@ impl Instantiator<'_, '_> {
                 Some(false) => self.not_replaceable(&cd.name.text, cd.name.span),
                 None => self.diags.push(
                     Diagnostic::error(
-                        "E2015",
+                        FlatCode::InvalidRedeclare,
                         format!(
                             "`redeclare` of `{}`, which no base class declares",
                             cd.name.text
@@ -216,7 +217,7 @@ impl Instantiator<'_, '_> {
     fn not_replaceable(&mut self, name: &str, span: Span) {
         self.diags.push(
             Diagnostic::error(
-                "E2015",
+                FlatCode::InvalidRedeclare,
                 format!("`{name}` is redeclared but not `replaceable`"),
             )
             .at(span, "redeclared here")
@@ -238,7 +239,7 @@ impl Instantiator<'_, '_> {
             let span = m.binding.as_ref().map_or(d.name.span, |b| b.expr.span);
             self.diags.push(
                 Diagnostic::error(
-                    "E2016",
+                    FlatCode::FinalModified,
                     format!(
                         "`{}` is declared `final` and cannot be modified",
                         d.name.text
@@ -354,7 +355,7 @@ impl Instantiator<'_, '_> {
             let cname = self.tree.full_name(constraint);
             self.diags.push(
                 Diagnostic::error(
-                    "E2015",
+                    FlatCode::InvalidRedeclare,
                     format!(
                         "`{what}` is redeclared as a class without {}, which `{cname}` has",
                         missing.join(", ")

@@ -4,6 +4,7 @@
 //! variability than their variable (spec 3.8: a parameter's binding reads parameters
 //! and constants only, never `time` or a time-varying variable).
 
+use crate::error::FlatCode;
 use crate::eval::var_key;
 use crate::flat::{for_each_ref, for_each_value_ref, FlatModel, Variability};
 use rustc_hash::FxHashMap as HashMap;
@@ -50,7 +51,7 @@ pub(crate) fn parameter_cycles(model: &FlatModel) -> Vec<Diagnostic> {
         let span = first.binding.as_ref().map_or(first.origin, |b| b.span);
         diags.push(
             Diagnostic::error(
-                "E2008",
+                FlatCode::CyclicBinding,
                 if cycle.len() == 1 {
                     format!("parameter `{}` depends on itself", first.name)
                 } else {
@@ -114,7 +115,7 @@ pub(crate) fn binding_variability(model: &FlatModel) -> Vec<Diagnostic> {
             };
             diags.push(
                 Diagnostic::error(
-                    "E2019",
+                    FlatCode::BindingVariability,
                     format!("the binding of {kind} `{}` reads {c}", v.name),
                 )
                 .at(b.span, "varies in time")

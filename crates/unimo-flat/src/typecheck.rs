@@ -6,6 +6,7 @@
 //! compared: a function call or an expression this check cannot size is left to the
 //! back end.
 
+use crate::error::FlatCode;
 use crate::eval::var_key_into;
 use crate::flat::{FlatModel, FlatType};
 use rustc_hash::FxHashMap as HashMap;
@@ -233,7 +234,7 @@ impl Checker<'_> {
         for (op, ty, needs, span) in found {
             self.diags.push(
                 Diagnostic::error(
-                    "E2020",
+                    FlatCode::OperatorType,
                     format!("`{op}` needs {needs}; this one is of type {ty}"),
                 )
                 .at(span, "wrong type"),
@@ -258,7 +259,7 @@ impl Checker<'_> {
         for (name, n, d, span) in found {
             self.diags.push(
                 Diagnostic::error(
-                    "E2017",
+                    FlatCode::TooManySubscripts,
                     format!(
                         "`{name}` has {d} dimension{}, {n} subscripts given",
                         if d == 1 { "" } else { "s" }
@@ -286,8 +287,11 @@ impl Checker<'_> {
         };
         if let Some(what) = differ {
             self.diags.push(
-                Diagnostic::error("E2018", format!("the two sides have different {what}"))
-                    .at(span, "in this equation"),
+                Diagnostic::error(
+                    FlatCode::SideMismatch,
+                    format!("the two sides have different {what}"),
+                )
+                .at(span, "in this equation"),
             );
         }
     }

@@ -15,6 +15,12 @@ pub enum Severity {
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub struct Code(pub &'static str);
 
+impl From<&'static str> for Code {
+    fn from(code: &'static str) -> Code {
+        Code(code)
+    }
+}
+
 impl fmt::Display for Code {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.0)
@@ -41,18 +47,23 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
-    pub fn error(code: &'static str, message: impl Into<String>) -> Diagnostic {
+    /// An error with its code: a literal (`"E1001"`) or a stage's code enum.
+    pub fn error(code: impl Into<Code>, message: impl Into<String>) -> Diagnostic {
         Diagnostic::new(Severity::Error, code, message)
     }
 
-    pub fn warning(code: &'static str, message: impl Into<String>) -> Diagnostic {
+    pub fn warning(code: impl Into<Code>, message: impl Into<String>) -> Diagnostic {
         Diagnostic::new(Severity::Warning, code, message)
     }
 
-    pub fn new(severity: Severity, code: &'static str, message: impl Into<String>) -> Diagnostic {
+    pub fn new(
+        severity: Severity,
+        code: impl Into<Code>,
+        message: impl Into<String>,
+    ) -> Diagnostic {
         Diagnostic {
             severity,
-            code: Code(code),
+            code: code.into(),
             message: message.into(),
             labels: Vec::new(),
             notes: Vec::new(),

@@ -3,6 +3,7 @@
 //! `array`, `vector`, `matrix`, `cat`; the built-ins unimo does not support refused.
 
 use super::{unsupported, Lowerer};
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::ExprArena;
 use crate::tensor::{self, Tensor};
@@ -30,7 +31,11 @@ impl Lowerer<'_> {
                         .get((k - 1).max(0) as usize)
                         .copied()
                         .ok_or_else(|| {
-                            DaeError::new("E3003", format!("dimension {k} does not exist"), span)
+                            DaeError::new(
+                                DaeCode::SizeMismatch,
+                                format!("dimension {k} does not exist"),
+                                span,
+                            )
                         })?;
                     Tensor::scalar(self.a().constant(n as f64))
                 } else {

@@ -2,6 +2,7 @@
 //! `pre`, `edge`, `smooth`, ...), reductions.
 
 use super::{unsupported, Lowerer};
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{Fn1, Fn2, Node, RelOp};
 use crate::tensor::{self, Tensor};
@@ -28,7 +29,11 @@ impl Lowerer<'_> {
                 .unwrap_or_default();
             return self.builtin(&last, args, span).and_then(|r| {
                 r.ok_or_else(|| {
-                    DaeError::new("E3004", format!("`{name}` is not a known function"), span)
+                    DaeError::new(
+                        DaeCode::UnknownFunction,
+                        format!("`{name}` is not a known function"),
+                        span,
+                    )
                 })
             });
         }
@@ -44,7 +49,7 @@ impl Lowerer<'_> {
         match self.builtin(&name, args, span)? {
             Some(t) => Ok(t),
             None => Err(DaeError::new(
-                "E3004",
+                DaeCode::UnknownFunction,
                 format!("`{name}` is not a known function"),
                 span,
             )),
@@ -60,7 +65,7 @@ impl Lowerer<'_> {
         match args.positional.get(k) {
             Some(e) => self.expr(e),
             None => Err(DaeError::new(
-                "E3005",
+                DaeCode::WrongArguments,
                 format!("argument {} is missing", k + 1),
                 span,
             )),
@@ -100,7 +105,13 @@ impl Lowerer<'_> {
                     match self.dae.arena.node(v) {
                         Node::Var(s) => data.push(self.dae.arena.pre(s)),
                         Node::Const(_) => data.push(v),
-                        _ => return Err(DaeError::new("E3014", "`pre` needs a variable", span)),
+                        _ => {
+                            return Err(DaeError::new(
+                                DaeCode::PreOfNonVariable,
+                                "`pre` needs a variable",
+                                span,
+                            ))
+                        }
                     }
                 }
                 Tensor { dims: x.dims, data }
@@ -111,7 +122,7 @@ impl Lowerer<'_> {
                 for &v in &x.data {
                     let Node::Var(s) = self.dae.arena.node(v) else {
                         return Err(DaeError::new(
-                            "E3014",
+                            DaeCode::PreOfNonVariable,
                             format!("`{name}` needs a variable"),
                             span,
                         ));
@@ -174,7 +185,7 @@ impl Lowerer<'_> {
         let named = crate::dae::CollisionWorldArgs::from_flat(&flat);
         let Some(named) = named.filter(|_| self.dae.collision_world.is_none()) else {
             return Err(DaeError::new(
-                "E3019",
+                DaeCode::CollisionArguments,
                 format!(
                     "`collisionGaps` takes {} scalar arguments and appears once per model; \
                      use one `Unimo.Collision.CollisionWorld`",
@@ -203,7 +214,7 @@ impl Lowerer<'_> {
         }
         let Some(named) = crate::dae::CollisionBodyArgs::from_flat(&flat) else {
             return Err(DaeError::new(
-                "E3019",
+                DaeCode::CollisionArguments,
                 format!(
                     "`collisionBody` takes {} scalar arguments, got {}; use \
                      `Unimo.Collision.CollisionBody` instead of calling it directly",
@@ -231,7 +242,7 @@ impl Lowerer<'_> {
             if let Some(code) = self.const_value(arg) {
                 if !valid(code) {
                     return Err(DaeError::new(
-                        "E3019",
+                        DaeCode::CollisionArguments,
                         format!(
                             "`collisionBody`: {code} is not a {what} code (1..{count}); \
                              use `Unimo.Collision.CollisionBody`, whose enumerations \
@@ -255,10 +266,13 @@ impl Lowerer<'_> {
 
     /// `sum(e for i in r)` and friends.
     fn reduction(&mut self, name: &str, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
-        let body = args
-            .positional
-            .first()
-            .ok_or_else(|| DaeError::new("E3005", "a reduction needs an expression", span))?;
+        let body = args.positional.first().ok_or_else(|| {
+            DaeError::new(
+                DaeCode::WrongArguments,
+                "a reduction needs an expression",
+                span,
+            )
+        })?;
         let items = self.comprehension(body, &args.iterators)?;
         let stacked = Tensor::stack(items, span)?;
         match name {
@@ -277,7 +291,7 @@ impl Lowerer<'_> {
                 let f = Fn2::from_name(name).expect("min and max have a compiled form");
                 let Some((&first, rest)) = t.data.split_first() else {
                     return Err(DaeError::new(
-                        "E3003",
+                        DaeCode::SizeMismatch,
                         format!("`{name}` of an empty array"),
                         span,
                     ));

@@ -3,6 +3,7 @@
 
 use super::array_builtins::as_matrix;
 use super::{unsupported, Local, Lowerer};
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, RelOp};
 use crate::tensor::{self, Tensor};
@@ -19,10 +20,12 @@ impl Lowerer<'_> {
         let x = self.scalar(e)?;
         match self.const_value(x) {
             Some(v) if v == v.trunc() => Ok(v as i64),
-            _ => Err(
-                DaeError::new("E3002", "a constant integer is needed here", e.span)
-                    .help("sizes, indices and ranges must be known at compile time"),
-            ),
+            _ => Err(DaeError::new(
+                DaeCode::NotKnownAtCompileTime,
+                "a constant integer is needed here",
+                e.span,
+            )
+            .help("sizes, indices and ranges must be known at compile time")),
         }
     }
 
@@ -36,7 +39,11 @@ impl Lowerer<'_> {
             ExprKind::Ref(r) => self.reference(r),
             ExprKind::End => match self.end_stack.last() {
                 Some(&n) => Ok(Tensor::scalar(self.a().constant(n as f64))),
-                None => Err(DaeError::new("E3003", "`end` outside a subscript", span)),
+                None => Err(DaeError::new(
+                    DaeCode::SizeMismatch,
+                    "`end` outside a subscript",
+                    span,
+                )),
             },
             ExprKind::Call { func, args } => self.call(func, args, span),
             ExprKind::Unary { op, operand } => {
@@ -125,7 +132,7 @@ impl Lowerer<'_> {
             let x = me.scalar(e)?;
             me.const_value(x).ok_or_else(|| {
                 DaeError::new(
-                    "E3002",
+                    DaeCode::NotKnownAtCompileTime,
                     "a range bound must be known at compile time",
                     e.span,
                 )
@@ -138,7 +145,11 @@ impl Lowerer<'_> {
         };
         let b = c(self, stop)?;
         if h == 0.0 {
-            return Err(DaeError::new("E3003", "a range step of zero", start.span));
+            return Err(DaeError::new(
+                DaeCode::SizeMismatch,
+                "a range step of zero",
+                start.span,
+            ));
         }
         let n = ((b - a) / h + 1e-10).floor();
         if n < 0.0 {
@@ -146,7 +157,7 @@ impl Lowerer<'_> {
         }
         if n > 1e7 {
             return Err(DaeError::new(
-                "E3003",
+                DaeCode::SizeMismatch,
                 "a range with more than 1e7 elements",
                 start.span,
             ));
@@ -214,7 +225,11 @@ impl Lowerer<'_> {
             ElemMul => tensor::elementwise(ar, a, b, true, span, ExprArena::mul),
             Div | ElemDiv => {
                 if op == Div && !b.is_scalar() {
-                    return Err(DaeError::new("E3003", "division by an array", span));
+                    return Err(DaeError::new(
+                        DaeCode::SizeMismatch,
+                        "division by an array",
+                        span,
+                    ));
                 }
                 tensor::elementwise(ar, a, b, true, span, ExprArena::div)
             }

@@ -4,6 +4,7 @@
 //! meaning.
 
 use crate::dae::*;
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, ScalarId};
 use crate::tensor::{self, Tensor};
@@ -60,7 +61,11 @@ pub struct Lowerer<'m> {
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
-    DaeError::new("E3001", format!("not supported yet: {}", what.into()), span)
+    DaeError::new(
+        DaeCode::Unsupported,
+        format!("not supported yet: {}", what.into()),
+        span,
+    )
 }
 
 impl<'m> Lowerer<'m> {
@@ -130,7 +135,7 @@ impl<'m> Lowerer<'m> {
 
     /// The value of a parameter at translation (the one evaluator: `params.rs`).
     pub(crate) fn parameter_value(&mut self, s: ScalarId) -> Option<f64> {
-        self.params.value(&self.dae, s)
+        self.params.of_scalar(&self.dae, s)
     }
 
     pub(crate) fn a(&mut self) -> &mut ExprArena {

@@ -2,6 +2,7 @@
 //! package constants, subscripts (constant or computed) picking elements.
 
 use super::{unsupported, Local, Lowerer};
+use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, RelOp, ScalarId};
 use crate::tensor::{self, Tensor};
@@ -30,7 +31,7 @@ impl Lowerer<'_> {
                 }
                 let Some(v) = l.value.clone() else {
                     return Err(DaeError::new(
-                        "E3012",
+                        DaeCode::UnassignedLocal,
                         format!("`{name}` is used before it is assigned"),
                         r.span,
                     ));
@@ -69,7 +70,7 @@ impl Lowerer<'_> {
                 return Ok(t);
             }
             return Err(DaeError::new(
-                "E3010",
+                DaeCode::NoSuchScalar,
                 format!("`{key}` is not a variable of the flat model"),
                 r.span,
             )
@@ -162,7 +163,7 @@ impl Lowerer<'_> {
             let k = k as i64;
             if k < 1 || k as usize > *d {
                 return Err(DaeError::new(
-                    "E3013",
+                    DaeCode::IndexOutOfBounds,
                     format!("index {k} is out of bounds 1..{d}"),
                     e.span,
                 ));
@@ -196,7 +197,7 @@ impl Lowerer<'_> {
             }
         }
         Err(DaeError::new(
-            "E3010",
+            DaeCode::NoSuchScalar,
             format!(
                 "`{}` is not a variable or enumeration literal",
                 names.join(".")
@@ -217,7 +218,7 @@ impl Lowerer<'_> {
         }
         if subs.len() > t.dims.len() {
             return Err(DaeError::new(
-                "E3003",
+                DaeCode::SizeMismatch,
                 format!(
                     "{} subscripts on an array of size {}",
                     subs.len(),
@@ -263,7 +264,7 @@ impl Lowerer<'_> {
             let k = k as i64;
             if k < 1 || k as usize > n {
                 return Err(DaeError::new(
-                    "E3013",
+                    DaeCode::IndexOutOfBounds,
                     format!("index {k} is out of bounds 1..{n}"),
                     span,
                 ));

@@ -3,6 +3,7 @@
 
 use super::{broadcast, index_tuples, Lowerer};
 use crate::dae::*;
+use crate::error::DaeCode;
 use crate::error::DaeResult;
 use crate::expr::ScalarId;
 use unimo_flat::flat::{FlatType, FlatVar, Variability};
@@ -85,7 +86,7 @@ impl Lowerer<'_> {
                     v.variability,
                     Variability::Parameter | Variability::Constant
                 );
-                if parameter && e.code == "E3002" {
+                if parameter && e.code == DaeCode::NotKnownAtCompileTime {
                     deferred.push((v, first, dims.clone(), e));
                 } else {
                     self.errors.push(e);

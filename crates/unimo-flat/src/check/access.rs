@@ -8,6 +8,7 @@ use super::elements::{
 };
 use super::walk::{composition_exprs, for_each_equation};
 use super::Ctx;
+use crate::error::FlatCode;
 use crate::flat::for_each_call;
 use crate::lookup::Found;
 use crate::tree::ClassId;
@@ -15,7 +16,7 @@ use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
 fn protected_access(name: &str, span: Span, declared: Span) -> Diagnostic {
-    Diagnostic::error("E2022", format!("`{name}` is protected: it cannot be accessed from outside"))
+    Diagnostic::error(FlatCode::ProtectedAccess, format!("`{name}` is protected: it cannot be accessed from outside"))
         .at(span, "protected element")
         .with_label(declared, "declared protected here")
         .with_note("Modelica specification, section 4.1: protected elements are not accessible through dot notation")
@@ -188,7 +189,7 @@ impl Ctx<'_, '_> {
                                 if info.protected {
                                     self.out.push(
                                     Diagnostic::error(
-                                        "E2023",
+                                        FlatCode::ProtectedModified,
                                         format!("`{}` is protected: it cannot be modified from outside", p.text),
                                     )
                                     .at(p.span, "modifier of a protected element")
@@ -227,7 +228,7 @@ impl Ctx<'_, '_> {
             if *each && resolved && !any_array {
                 self.out.push(
                     Diagnostic::error(
-                        "E2024",
+                        FlatCode::EachOnScalar,
                         format!("`each` on `{}`, which is not an element of an array", name.to_dotted()),
                     )
                     .at(*span, "no array here")
@@ -267,7 +268,7 @@ impl Ctx<'_, '_> {
         }
         self.out.push(
             Diagnostic::error(
-                "E2004",
+                FlatCode::UnknownModifier,
                 format!("`{a}` is not an attribute of {}", base.name()),
             )
             .at(attr.span, "no such attribute")

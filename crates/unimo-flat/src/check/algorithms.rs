@@ -6,6 +6,7 @@
 use super::elements::find_component;
 use super::walk::{composition_exprs, for_each_statement};
 use super::Ctx;
+use crate::error::FlatCode;
 use crate::flat::for_each_call;
 use crate::lookup::Found;
 use crate::tree::ClassId;
@@ -48,9 +49,13 @@ impl Ctx<'_, '_> {
         };
         let p = info.prefix;
         let (code, what, section) = match (p.variability, p.causality) {
-            (Some(Variability::Constant), _) => ("E2025", "the constant", "3.8"),
-            (Some(Variability::Parameter), _) if !initial => ("E2025", "the parameter", "3.8"),
-            (_, Some(Causality::Input)) if function => ("E2026", "the function's input", "12.2"),
+            (Some(Variability::Constant), _) => (FlatCode::AssignsConstant, "the constant", "3.8"),
+            (Some(Variability::Parameter), _) if !initial => {
+                (FlatCode::AssignsConstant, "the parameter", "3.8")
+            }
+            (_, Some(Causality::Input)) if function => {
+                (FlatCode::AssignsInput, "the function's input", "12.2")
+            }
             _ => return,
         };
         self.out.push(
@@ -88,7 +93,7 @@ impl Ctx<'_, '_> {
             }
             self.out.push(
                 Diagnostic::error(
-                    "E2029",
+                    FlatCode::PureCallsImpure,
                     format!(
                         "the function `{}`, declared `pure`, calls the impure function `{}`",
                         def.name.text,

@@ -4,6 +4,7 @@
 use super::elements::{class_kind, component_type, find_component};
 use super::walk::for_each_equation;
 use super::Ctx;
+use crate::error::FlatCode;
 use crate::lookup::Found;
 use crate::tree::ClassId;
 use unimo_source::Diagnostic;
@@ -34,7 +35,7 @@ impl Ctx<'_, '_> {
             if same_reference(a, b) {
                 self.out.push(
                     Diagnostic::error(
-                        "E2031",
+                        FlatCode::ConnectToItself,
                         format!("`{}` is connected to itself", unimo_syntax::print::cref(a)),
                     )
                     .at(*span, "both sides are the same connector")
@@ -80,7 +81,7 @@ impl Ctx<'_, '_> {
         };
         self.out.push(
             Diagnostic::error(
-                "E2030",
+                FlatCode::ConnectNonConnector,
                 format!(
                     "`{}` is not a connector: it is {what}",
                     unimo_syntax::print::cref(r)

@@ -3,6 +3,7 @@
 //! continuous-time Real only inside `when` (`E2032`, spec 3.7.5).
 
 use super::walk::{for_each_equation, for_each_statement};
+use crate::error::FlatCode;
 use crate::eval::var_key;
 use crate::flat::{
     for_each_call, for_each_equation_expr, for_each_value_ref, FlatModel, FlatType, Variability,
@@ -39,7 +40,7 @@ pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
             let p = &model.vars[j];
             diags.push(
                 Diagnostic::error(
-                    "E2019",
+                    FlatCode::BindingVariability,
                     format!(
                         "the binding of constant `{}` reads the parameter `{}`",
                         v.name, p.name
@@ -169,7 +170,7 @@ pub(crate) fn pre_of_continuous(model: &FlatModel) -> Vec<Diagnostic> {
             }
             diags.push(
                 Diagnostic::error(
-                    "E2032",
+                    FlatCode::PreOfContinuous,
                     format!("`pre({})` of a continuous-time variable outside a when clause", v.name),
                 )
                 .at(r.span, "varies continuously")

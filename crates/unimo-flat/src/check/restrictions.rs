@@ -8,6 +8,7 @@ use super::elements::{
     ComponentInfo,
 };
 use super::Ctx;
+use crate::error::FlatCode;
 use crate::tree::ClassId;
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
@@ -49,13 +50,13 @@ fn info_of(owner: ClassId, d: &Declared<'_>) -> ComponentInfo {
 }
 
 fn restriction(message: String, span: Span, label: &str, section: &str) -> Diagnostic {
-    Diagnostic::error("E2027", message)
+    Diagnostic::error(FlatCode::ClassRestriction, message)
         .at(span, label.to_owned())
         .with_note(format!("Modelica specification, section {section}"))
 }
 
 fn prefix_error(message: String, span: Span, label: &str, section: &str) -> Diagnostic {
-    Diagnostic::error("E2028", message)
+    Diagnostic::error(FlatCode::MisplacedPrefix, message)
         .at(span, label.to_owned())
         .with_note(format!("Modelica specification, section {section}"))
 }
@@ -315,7 +316,7 @@ impl Ctx<'_, '_> {
             };
             self.out.push(
                 Diagnostic::error(
-                    "E2021",
+                    FlatCode::FlowNotReal,
                     format!(
                         "`{word}` on `{}`, of type {}: {word} variables are Real",
                         d.decl.name.text,

@@ -3,6 +3,7 @@
 //! name is an element of the class.
 
 use super::{instance_key, part, Instantiator, Kind, MAX_DEPTH, MAX_SELF_NESTING};
+use crate::error::FlatCode;
 use crate::flat::Variability;
 use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
@@ -30,7 +31,7 @@ impl Instantiator<'_, '_> {
                 let def = &self.tree.get(class).def;
                 let (name, span) = (def.name.text.clone(), def.name.span);
                 self.error(
-                    "E2011",
+                    FlatCode::TooDeep,
                     format!("instances of `{name}` nested {MAX_SELF_NESTING} deep in each other (a recursive model?)"),
                     span,
                     "this class contains itself",
@@ -71,7 +72,7 @@ impl Instantiator<'_, '_> {
         if self.depth >= MAX_DEPTH {
             let span = self.tree.get(class).def.name.span;
             self.error(
-                "E2011",
+                FlatCode::TooDeep,
                 format!("instances nested more than {MAX_DEPTH} deep (a recursive model?)"),
                 span,
                 "in this class",
@@ -192,7 +193,7 @@ impl Instantiator<'_, '_> {
                     }
                     Some(Found::Builtin("ExternalObject")) => {} // an external object class
                     Some(Found::Builtin(_)) => {
-                        self.error("E2012", "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
+                        self.error(FlatCode::ExtendsPredefined, "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
                     }
                     _ => {} // reported by the name check
                 }
@@ -311,7 +312,7 @@ impl Instantiator<'_, '_> {
             }
             None => self.diags.push(
                 Diagnostic::error(
-                    "E2013",
+                    FlatCode::MissingInner,
                     format!("`outer {name}` has no matching `inner` declaration"),
                 )
                 .at(d.name.span, "declared `outer` here")
@@ -333,7 +334,7 @@ impl Instantiator<'_, '_> {
                 let cname = self.tree.full_name(class);
                 self.diags.push(
                     Diagnostic::error(
-                        "E2004",
+                        FlatCode::UnknownModifier,
                         format!("modifier of `{name}`, which `{cname}` does not have"),
                     )
                     .at(span, "value given here")

@@ -5,6 +5,7 @@ use super::{
     annotation_is_true, duplicate, index_tuples, instance_key, int_expr, part, Instantiator, Kind,
     ATTRIBUTES,
 };
+use crate::error::FlatCode;
 use crate::eval::{self, EvalError, Value};
 use crate::flat::{FlatType, FlatVar, Variability};
 use crate::lookup::Found;
@@ -163,7 +164,7 @@ impl Instantiator<'_, '_> {
         let class_name = self.tree.full_name(c);
         self.diags.push(
             Diagnostic::error(
-                "E2009",
+                FlatCode::PartialInstantiated,
                 format!(
                     "component `{key}` is an instance of the partial class \
                      `{class_name}`"
@@ -264,7 +265,7 @@ impl Instantiator<'_, '_> {
             Ok(Value::Bool(false)) => return false,
             Ok(Value::Bool(true)) => {}
             Ok(_) => self.error(
-                "E2003",
+                FlatCode::NotKnownAtCompileTime,
                 "the condition of a conditional component must be Boolean".into(),
                 cond.span,
                 "not Boolean",
@@ -364,7 +365,7 @@ impl Instantiator<'_, '_> {
                         Some(vd) if vd.len() > dims.len() => dims.push(vd[dims.len()]),
                         _ => {
                             let mut d = Diagnostic::error(
-                                "E2003",
+                                FlatCode::NotKnownAtCompileTime,
                                 "the size of `[:]` must follow from a constant binding",
                             )
                             .at(*span, "unknown size");
@@ -405,12 +406,15 @@ impl Instantiator<'_, '_> {
             if !ATTRIBUTES.contains(&attr.as_str()) {
                 let span = am.binding.as_ref().map_or(d.span, |b| b.expr.span);
                 self.diags.push(
-                    Diagnostic::error("E2004", format!("`{attr}` is not an attribute of `{name}`"))
-                        .at(span, "value given here")
-                        .with_help(format!(
-                            "attributes of predefined types: {}",
-                            ATTRIBUTES.join(", ")
-                        )),
+                    Diagnostic::error(
+                        FlatCode::UnknownModifier,
+                        format!("`{attr}` is not an attribute of `{name}`"),
+                    )
+                    .at(span, "value given here")
+                    .with_help(format!(
+                        "attributes of predefined types: {}",
+                        ATTRIBUTES.join(", ")
+                    )),
                 );
                 continue;
             }

@@ -2,6 +2,7 @@
 //! of one element of a component array picked out.
 
 use super::{int_expr, Instantiator};
+use crate::error::FlatCode;
 use crate::eval::{self, Value};
 use crate::modif::{Mod, Scope};
 use unimo_source::Span;
@@ -16,7 +17,7 @@ impl Instantiator<'_, '_> {
             Ok(Some(n)) if n >= 0 => Some(n as usize),
             Ok(_) => {
                 self.error(
-                    "E2003",
+                    FlatCode::NotKnownAtCompileTime,
                     "an array dimension must be a non-negative Integer".into(),
                     e.span,
                     "here",

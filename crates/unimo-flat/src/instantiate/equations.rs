@@ -2,6 +2,7 @@
 //! unrolled, structural `if`s decided, model algorithms' parameter loops unrolled.
 
 use super::{Connect, Instantiator};
+use crate::error::FlatCode;
 use crate::eval::{self, Value};
 use crate::modif::Scope;
 use unimo_syntax::ast::*;
@@ -130,7 +131,7 @@ impl Instantiator<'_, '_> {
         };
         let Some(range) = &first.range else {
             self.error(
-                "E2003",
+                FlatCode::NotKnownAtCompileTime,
                 "a `for` equation needs an explicit range here".into(),
                 first.name.span,
                 "no range",
@@ -142,7 +143,7 @@ impl Instantiator<'_, '_> {
             Ok(Value::Array(v)) => v,
             Ok(_) => {
                 self.error(
-                    "E2003",
+                    FlatCode::NotKnownAtCompileTime,
                     "a `for` range must be an array".into(),
                     range.span,
                     "not an array",

@@ -2,6 +2,7 @@
 //! variables with full names and merged attributes, equations with full references,
 //! `for` equations unrolled, structural `if`s decided, connections recorded.
 
+use crate::error::FlatCode;
 use crate::eval::{self, EvalError, Value};
 use crate::flat::{FlatModel, FlatType, VarId};
 use crate::lookup::Found;
@@ -204,10 +205,13 @@ fn instance_key_no_subs(path: &[RefPart]) -> String {
 
 /// `E2005`: `name` declared twice in the instance `owner`.
 fn duplicate(name: &str, owner: &str, second: Span, first: Span) -> Diagnostic {
-    Diagnostic::error("E2005", format!("`{name}` is declared twice in `{owner}`"))
-        .at(second, "second declaration")
-        .with_label(first, "first declared here (possibly in a base class)")
-        .with_help("rename one of them; an inherited element and a local one share one name space")
+    Diagnostic::error(
+        FlatCode::DuplicateElement,
+        format!("`{name}` is declared twice in `{owner}`"),
+    )
+    .at(second, "second declaration")
+    .with_label(first, "first declared here (possibly in a base class)")
+    .with_help("rename one of them; an inherited element and a local one share one name space")
 }
 
 /// All index tuples of an array of the given dimensions, in row-major order.
@@ -291,7 +295,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             self.stopped = true;
             self.diags.push(
                 Diagnostic::error(
-                    "E2014",
+                    FlatCode::TooLarge,
                     format!(
                         "the model is too large (more than {MAX_SCALARS} scalars and instances)"
                     ),
@@ -304,7 +308,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         true
     }
 
-    fn error(&mut self, code: &'static str, message: String, span: Span, label: &str) {
+    fn error(&mut self, code: FlatCode, message: String, span: Span, label: &str) {
         self.diags
             .push(Diagnostic::error(code, message).at(span, label));
     }
@@ -314,15 +318,17 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             EvalError::NotConstant { span, what } => (
                 span,
                 format!("depends on {what}, which is not a known parameter or constant"),
-                "E2003",
+                FlatCode::NotKnownAtCompileTime,
             ),
-            EvalError::Unsupported { span, what } => {
-                (span, format!("cannot evaluate {what}"), "E2003")
-            }
+            EvalError::Unsupported { span, what } => (
+                span,
+                format!("cannot evaluate {what}"),
+                FlatCode::NotKnownAtCompileTime,
+            ),
             EvalError::Cycle { span, name } => (
                 span,
                 format!("parameter `{name}` depends on itself"),
-                "E2008",
+                FlatCode::CyclicBinding,
             ),
         };
         self.diags.push(
@@ -350,7 +356,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         if self.tree.get(class).def.partial {
             let span = self.tree.get(class).def.name.span;
             self.error(
-                "E2009",
+                FlatCode::PartialInstantiated,
                 format!(
                     "class `{}` is partial and cannot be simulated",
                     self.model.name
