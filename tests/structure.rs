@@ -203,3 +203,15 @@ fn verifiers_accept_built_plans_and_reject_broken_ones() {
     let e = verify_dae(&dae).unwrap_err();
     assert!(e.message.contains("does not name it back"), "{e}");
 }
+
+/// `E3022`: the derivative of a top-level input is needed but not given. Before, the
+/// plan read `der(u)` without any step computing it (the simulator read zero).
+#[test]
+fn a_differentiated_input_is_a_coded_error() {
+    let (code, _, err) = emit(
+        "structure",
+        Path::new("tests/structure/DifferentiatedInput.mo"),
+    );
+    assert_eq!(code, Some(1), "{err}");
+    insta::assert_snapshot!("structure_differentiated_input", err);
+}

@@ -242,3 +242,30 @@ fn expressions_round_trip_through_the_printer() {
     });
     assert!(count > 300, "only {count} expressions checked");
 }
+
+/// The typed codes of flattening (`FlatCode`) and lowering (`DaeCode`): each unique
+/// within its stage, in its stage's range, and with a row in `docs/errors.md`.
+#[test]
+fn every_typed_code_is_unique_and_documented() {
+    let doc =
+        std::fs::read_to_string(manifest_dir().join("docs/errors.md")).expect("docs/errors.md");
+    let flat = unimo_flat::error::FlatCode::ALL.iter().map(|c| c.as_str());
+    let dae = unimo_dae::error::DaeCode::ALL.iter().map(|c| c.as_str());
+    for (stage, prefix, codes) in [
+        ("flat", "E2", flat.collect::<Vec<_>>()),
+        ("dae", "E3", dae.collect()),
+    ] {
+        let mut seen = std::collections::HashSet::new();
+        for code in codes {
+            assert!(seen.insert(code), "{stage}: {code} twice");
+            assert!(
+                code.starts_with(prefix),
+                "{stage}: {code} outside {prefix}xxx"
+            );
+            assert!(
+                doc.contains(&format!("`{code}`")),
+                "{code} is not in docs/errors.md"
+            );
+        }
+    }
+}

@@ -139,6 +139,10 @@ fn simulate_flat(
     color: bool,
     started: Instant,
 ) -> i32 {
+    let mut phases = Phases {
+        load: ms_since(started),
+        ..Phases::default()
+    };
     let fold = fold_options(a);
     if let Err(msg) = check_tunable(flat, &fold) {
         eprintln!("{msg}");
@@ -164,16 +168,12 @@ fn simulate_flat(
         let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
         unimo_dae::prune::prune(&dae, &mut plan, &wanted);
     }
+    phases.analyze = ms_since(started) - phases.load;
     let mut compiled = unimo_runtime::model::compile(&dae, &plan);
-    let native = match native_code(a.engine, &mut compiled) {
-        Ok(n) => n,
-        Err(msg) => {
-            // The tape computes the same results: run it.
-            eprintln!("note: {msg}; running on the tape");
-            None
-        }
-    };
-    let compile_ms = started.elapsed().as_secs_f64() * 1e3;
+    phases.compile = ms_since(started) - phases.load - phases.analyze;
+    let native = native_or_tape(a.engine, &mut compiled);
+    let compile_ms = ms_since(started);
+    phases.native = compile_ms - phases.load - phases.analyze - phases.compile;
     let options = match sim_options(a, &dae) {
         Ok(o) => o,
         Err(msg) => {
@@ -186,7 +186,9 @@ fn simulate_flat(
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
     let result = run(&compiled, &options, sim_started, profile.clone());
-    let simulate_ms = sim_started.elapsed().as_secs_f64() * 1e3;
+    let simulate_ms = ms_since(sim_started);
+    phases.simulate = simulate_ms;
+    let write_started = Instant::now();
     let written = match result_format(a) {
         ResultFormat::Csv => write_results(a.output.as_deref(), &result, &cols),
         ResultFormat::Mat => {
@@ -198,9 +200,16 @@ fn simulate_flat(
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
+    phases.write = ms_since(write_started);
     if a.stats {
-        let ms = (compile_ms, simulate_ms);
-        print_stats(a.method, &compiled, &plan, &result, ms, native.as_ref());
+        print_stats(
+            a.method,
+            &compiled,
+            &plan,
+            &result,
+            &phases,
+            native.as_ref(),
+        );
     }
     if let Some(depth) = a.cost {
         eprint!(
@@ -208,6 +217,23 @@ fn simulate_flat(
             cost_table(&compiled, depth.max(1), &result, simulate_ms, profile)
         );
     }
+    how_it_ended(&dae, map, &result, start)
+}
+
+/// Native code for the compiled model, or `None` with a note when it cannot be had
+/// (the tape computes the same results).
+fn native_or_tape(
+    engine: EngineArg,
+    compiled: &mut CompiledModel,
+) -> Option<unimo_codegen::NativeStats> {
+    native_code(engine, compiled).unwrap_or_else(|msg| {
+        eprintln!("note: {msg}; running on the tape");
+        None
+    })
+}
+
+/// Reports a `terminate()` and a failure; the exit code of the run.
+fn how_it_ended(dae: &Dae, map: &SourceMap, result: &SimResult, start: f64) -> i32 {
     if let Some(msg) = &result.terminated {
         eprintln!(
             "note: terminate() at t = {}: {msg}",
@@ -216,7 +242,7 @@ fn simulate_flat(
     }
     match &result.error {
         Some(e) => {
-            report_failure(&dae, map, e, &result, start);
+            report_failure(dae, map, e, result, start);
             EXIT_SIMULATION_FAILURE
         }
         None => EXIT_OK,
@@ -489,16 +515,46 @@ fn engine_stats(native: Option<&unimo_codegen::NativeStats>) -> String {
     }
 }
 
-/// The `--stats` line: one JSON object on stderr. `ms` is (compile, simulate) time;
-/// `compile_ms` includes the native compilation.
+/// Wall time of each phase of one run, in milliseconds: loading (parse, name lookup
+/// and flattening, with the libraries the model reads), lowering with alias
+/// elimination and the structural analysis, compiling the tapes, compiling them to
+/// machine code, simulating (initialization, integration, events and the rows kept),
+/// writing the result file.
+#[derive(Clone, Copy, Debug, Default)]
+struct Phases {
+    load: f64,
+    analyze: f64,
+    compile: f64,
+    native: f64,
+    simulate: f64,
+    write: f64,
+}
+
+impl Phases {
+    fn json(&self) -> String {
+        format!(
+            "{{\"load\":{:.3},\"lower_structure\":{:.3},\"compile\":{:.3},\"native\":{:.3},\"simulate\":{:.3},\"write\":{:.3}}}",
+            self.load, self.analyze, self.compile, self.native, self.simulate, self.write
+        )
+    }
+}
+
+fn ms_since(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// The `--stats` line: one JSON object on stderr. `compile_ms` is everything before
+/// the simulation (load, analysis, tapes and native code), `phases_ms` each phase.
 fn print_stats(
     method: MethodArg,
     compiled: &CompiledModel,
     plan: &Plan,
     result: &SimResult,
-    (compile_ms, simulate_ms): (f64, f64),
+    phases: &Phases,
     native: Option<&unimo_codegen::NativeStats>,
 ) {
+    let compile_ms = phases.load + phases.analyze + phases.compile + phases.native;
+    let simulate_ms = phases.simulate;
     let s = &result.stats;
     let collision = match &s.collision {
         Some(c) => format!(
@@ -513,7 +569,7 @@ fn print_stats(
         None => String::new(),
     };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},{}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -532,6 +588,7 @@ fn print_stats(
         compiled.roots.len(),
         compile_ms,
         simulate_ms,
+        phases.json(),
         engine_stats(native),
         collision
     );

@@ -343,52 +343,14 @@ fn float_cc(rel: RelOp) -> FloatCC {
     }
 }
 
-/// The registers an instruction writes.
+/// The registers an instruction writes (`Op::written`, the tape's own list).
 pub(crate) fn written(op: Op) -> Vec<Reg> {
-    match op {
-        Op::HeldBounds(_, lo, hi, _) => vec![lo, hi],
-        Op::Const(d, _)
-        | Op::Copy(d, _)
-        | Op::Add(d, ..)
-        | Op::Sub(d, ..)
-        | Op::Mul(d, ..)
-        | Op::Div(d, ..)
-        | Op::Pow(d, ..)
-        | Op::Powi(d, ..)
-        | Op::Neg(d, _)
-        | Op::Fn1(_, d, _)
-        | Op::Fn2(_, d, ..)
-        | Op::Rel(_, d, ..)
-        | Op::RelEvent(_, d, ..)
-        | Op::And(d, ..)
-        | Op::Or(d, ..)
-        | Op::Not(d, _)
-        | Op::Select(d, ..)
-        | Op::Sample(d, _)
-        | Op::Ext(_, d, _)
-        | Op::Held(_, d, ..) => vec![d],
-    }
+    op.written().collect()
 }
 
 /// Every register an instruction reads or writes.
 pub(crate) fn registers(op: Op) -> Vec<Reg> {
     let mut out = written(op);
-    match op {
-        Op::Const(..) | Op::Sample(..) | Op::HeldBounds(..) => {}
-        Op::Copy(_, a) | Op::Neg(_, a) | Op::Not(_, a) | Op::Powi(_, a, _) => out.push(a),
-        Op::Fn1(_, _, a) | Op::Held(_, _, a, _) => out.push(a),
-        Op::Add(_, a, b)
-        | Op::Sub(_, a, b)
-        | Op::Mul(_, a, b)
-        | Op::Div(_, a, b)
-        | Op::Pow(_, a, b)
-        | Op::Fn2(_, _, a, b)
-        | Op::Rel(_, _, a, b)
-        | Op::RelEvent(_, _, a, b, _)
-        | Op::And(_, a, b)
-        | Op::Or(_, a, b) => out.extend([a, b]),
-        Op::Select(_, c, a, b) => out.extend([c, a, b]),
-        Op::Ext(_, _, args) => out.extend(args),
-    }
+    out.extend(op.read());
     out
 }

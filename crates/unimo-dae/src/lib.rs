@@ -52,6 +52,9 @@ pub fn analyze_model_with(
     }
     let aliases = alias::eliminate_aliases(&mut dae);
     let mut a = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()])?;
+    if let Some(e) = differentiated_input(&dae, &a.plan) {
+        return Err(vec![e.to_diagnostic()]);
+    }
     a.plan.stats.aliases_removed = aliases.aliases;
     a.plan.stats.parameters_folded = dae.folded_parameters.len();
     a.plan.stats.constants_removed = aliases.constants;
@@ -62,4 +65,60 @@ pub fn analyze_model_with(
         }
     }
     Ok((dae, a))
+}
+
+/// `E3022` when the plan reads the derivative of a top-level input that no step
+/// computes: index reduction differentiated an equation through the input, and an
+/// input's derivative is not given (the simulator would read zero).
+fn differentiated_input(dae: &Dae, plan: &plan::Plan) -> Option<DaeError> {
+    use plan::PlanStep;
+    let mut computed = std::collections::HashSet::new();
+    let mut read = Vec::new();
+    for step in &plan.steps {
+        match step {
+            PlanStep::Assign { var, value, .. } => {
+                computed.insert(*var);
+                read.push(*value);
+            }
+            PlanStep::Block(b) => {
+                computed.extend(b.iteration_vars.iter().copied());
+                computed.extend(b.inner.iter().map(|&(v, _)| v));
+                read.extend(b.inner.iter().map(|&(_, e)| e));
+                read.extend(b.residuals.iter().copied());
+            }
+        }
+    }
+    let d = read
+        .into_iter()
+        .flat_map(|e| dae.arena.vars(e))
+        .find(|&s| {
+            !computed.contains(&s)
+                && dae.scalar(s).kind == dae::ScalarKind::Derivative
+                && dae
+                    .scalar(s)
+                    .derivative_of
+                    .is_some_and(|u| dae.scalar(u).input)
+        })?;
+    let u = dae.scalar(dae.scalar(d).derivative_of?);
+    Some(
+        DaeError::new(
+            error::DaeCode::DifferentiatedInput,
+            format!(
+                "the model needs `{}`, the derivative of the top-level input `{}`, which is not given",
+                dae.scalar(d).name,
+                u.name
+            ),
+            u.origin,
+        )
+        .label("a top-level input")
+        .note(
+            "index reduction differentiated an equation that reads this input (a derivative of an \
+             output that follows the input algebraically, or a constraint through it)",
+        )
+        .help(format!(
+            "give `{}` an equation inside the model (drop `input`), or pass it through a state \
+             (`der(uf) = (u - uf)/T`) and use the filtered value",
+            u.name
+        )),
+    )
 }

@@ -208,21 +208,3 @@ impl From<FlatError> for Diagnostic {
         }
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_code_is_unique_and_documented() {
-        let docs = include_str!("../../../docs/errors.md");
-        let mut seen = std::collections::HashSet::new();
-        for c in FlatCode::ALL {
-            assert!(seen.insert(c.as_str()), "{c} twice");
-            assert!(
-                docs.contains(&format!("`{c}`")),
-                "{c} ({c:?}) has no row in docs/errors.md"
-            );
-        }
-    }
-}

@@ -134,9 +134,19 @@ pub fn flatten_with(
         diags.extend(type_diags);
     }
 
-    // Canonical order: constants and parameters first, each group in declaration order
-    // (so that flattening the printed model gives the same text).
-    // (a stable partition: moving the large variable records once, not sorting them)
+    parameters_first(&mut model);
+    if cfg!(debug_assertions) && !diags.iter().any(|d| d.is_error()) {
+        if let Err(e) = verify::verify_flat(&model) {
+            panic!("{e}");
+        }
+    }
+    (model, diags)
+}
+
+/// Canonical order: constants and parameters first, each group in declaration order
+/// (so that flattening the printed model gives the same text); a stable partition that
+/// moves the large variable records once instead of sorting them.
+fn parameters_first(model: &mut FlatModel) {
     let is_fixed = |v: &FlatVar| {
         matches!(
             v.variability,
@@ -159,12 +169,6 @@ pub fn flatten_with(
         fixed.append(&mut rest);
         model.vars = fixed;
     }
-    if cfg!(debug_assertions) && !diags.iter().any(|d| d.is_error()) {
-        if let Err(e) = verify::verify_flat(&model) {
-            panic!("{e}");
-        }
-    }
-    (model, diags)
 }
 
 /// The modification `(a.b = v, ...)` of the top-level class.

@@ -30,31 +30,11 @@ pub struct ComponentCost {
     pub seconds: f64,
 }
 
-/// The register an operation writes.
+/// The register an operation writes (the first, for `HeldBounds`).
 fn destination(op: &Op) -> Reg {
-    match *op {
-        Op::Const(d, _)
-        | Op::Copy(d, _)
-        | Op::Add(d, ..)
-        | Op::Sub(d, ..)
-        | Op::Mul(d, ..)
-        | Op::Div(d, ..)
-        | Op::Pow(d, ..)
-        | Op::Powi(d, ..)
-        | Op::Neg(d, _)
-        | Op::Fn1(_, d, _)
-        | Op::Fn2(_, d, ..)
-        | Op::Rel(_, d, ..)
-        | Op::RelEvent(_, d, ..)
-        | Op::And(d, ..)
-        | Op::Or(d, ..)
-        | Op::Not(d, _)
-        | Op::Select(d, ..)
-        | Op::Sample(d, _)
-        | Op::Ext(_, d, _)
-        | Op::Held(_, d, ..)
-        | Op::HeldBounds(_, d, ..) => d,
-    }
+    op.written()
+        .next()
+        .expect("every instruction writes a register")
 }
 
 /// The first `depth` parts of an instance path (`a.b[2].c` at depth 1: `a`, at depth 2:

@@ -51,6 +51,64 @@ pub enum Op {
     HeldBounds(Rounding, Reg, Reg, u32),
 }
 
+impl Op {
+    /// The registers the instruction writes, in order: one, or two for
+    /// `HeldBounds` (`lo`, `hi`). The one home of this fact for the interpreter's
+    /// verifier, the cost profile and the native code generator.
+    pub fn written(&self) -> impl Iterator<Item = Reg> {
+        let (first, second) = match *self {
+            Op::HeldBounds(_, lo, hi, _) => (lo, Some(hi)),
+            Op::Const(d, _)
+            | Op::Copy(d, _)
+            | Op::Add(d, ..)
+            | Op::Sub(d, ..)
+            | Op::Mul(d, ..)
+            | Op::Div(d, ..)
+            | Op::Pow(d, ..)
+            | Op::Powi(d, ..)
+            | Op::Neg(d, _)
+            | Op::Fn1(_, d, _)
+            | Op::Fn2(_, d, ..)
+            | Op::Rel(_, d, ..)
+            | Op::RelEvent(_, d, ..)
+            | Op::And(d, ..)
+            | Op::Or(d, ..)
+            | Op::Not(d, _)
+            | Op::Select(d, ..)
+            | Op::Sample(d, _)
+            | Op::Ext(_, d, _)
+            | Op::Held(_, d, ..) => (d, None),
+        };
+        std::iter::once(first).chain(second)
+    }
+
+    /// The registers the instruction reads, in operand order (`HeldBounds` reads the
+    /// held value's state, no register).
+    pub fn read(&self) -> Vec<Reg> {
+        match *self {
+            Op::Const(..) | Op::Sample(..) | Op::HeldBounds(..) => vec![],
+            Op::Copy(_, a)
+            | Op::Neg(_, a)
+            | Op::Not(_, a)
+            | Op::Fn1(_, _, a)
+            | Op::Powi(_, a, _)
+            | Op::Held(_, _, a, _) => vec![a],
+            Op::Add(_, a, b)
+            | Op::Sub(_, a, b)
+            | Op::Mul(_, a, b)
+            | Op::Div(_, a, b)
+            | Op::Pow(_, a, b)
+            | Op::Fn2(_, _, a, b)
+            | Op::Rel(_, _, a, b)
+            | Op::RelEvent(_, _, a, b, _)
+            | Op::And(_, a, b)
+            | Op::Or(_, a, b) => vec![a, b],
+            Op::Select(_, c, a, b) => vec![c, a, b],
+            Op::Ext(_, _, args) => args.to_vec(),
+        }
+    }
+}
+
 /// How an event-generating integer function rounds its argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rounding {

@@ -27,29 +27,9 @@ pub struct VerifyError {
     pub message: String,
 }
 
-/// The registers an instruction reads and the ones it writes.
+/// The registers an instruction reads and the ones it writes (the tape's own lists).
 fn operands(op: &Op) -> (Vec<Reg>, Vec<Reg>) {
-    match *op {
-        Op::Const(d, _) => (vec![], vec![d]),
-        Op::Copy(d, a) | Op::Neg(d, a) | Op::Not(d, a) | Op::Fn1(_, d, a) | Op::Powi(d, a, _) => {
-            (vec![a], vec![d])
-        }
-        Op::Add(d, a, b)
-        | Op::Sub(d, a, b)
-        | Op::Mul(d, a, b)
-        | Op::Div(d, a, b)
-        | Op::Pow(d, a, b)
-        | Op::Fn2(_, d, a, b)
-        | Op::Rel(_, d, a, b)
-        | Op::RelEvent(_, d, a, b, _)
-        | Op::And(d, a, b)
-        | Op::Or(d, a, b) => (vec![a, b], vec![d]),
-        Op::Select(d, c, a, b) => (vec![c, a, b], vec![d]),
-        Op::Sample(d, _) => (vec![], vec![d]),
-        Op::Ext(_, d, args) => (args.to_vec(), vec![d]),
-        Op::Held(_, d, a, _) => (vec![a], vec![d]),
-        Op::HeldBounds(_, lo, hi, _) => (vec![], vec![lo, hi]),
-    }
+    (op.read(), op.written().collect())
 }
 
 struct Checker<'a> {

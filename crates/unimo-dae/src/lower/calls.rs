@@ -158,22 +158,25 @@ impl Lowerer<'_> {
                 let b = self.positional(args, 1, span)?.as_scalar(span)?;
                 Tensor::scalar(self.a().sample(a, b))
             }
-            "semiLinear" => {
-                let x = self.positional(args, 0, span)?.as_scalar(span)?;
-                let p = self.positional(args, 1, span)?.as_scalar(span)?;
-                let n = self.positional(args, 2, span)?.as_scalar(span)?;
-                let ar = self.a();
-                let zero = ar.zero();
-                let c = ar.rel(RelOp::Ge, x, zero);
-                let px = ar.mul(p, x);
-                let nx = ar.mul(n, x);
-                Tensor::scalar(ar.if_(c, px, nx))
-            }
+            "semiLinear" => self.semi_linear(args, span)?,
             "Integer" | "Real" | "integer_of_enum" => self.positional(args, 0, span)?,
             "abs_" => return Ok(None),
             _ => return self.array_builtin(name, args, span),
         };
         Ok(Some(t))
+    }
+
+    /// `semiLinear(x, p, n)`: `p*x` for `x >= 0`, else `n*x`.
+    fn semi_linear(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        let x = self.positional(args, 0, span)?.as_scalar(span)?;
+        let p = self.positional(args, 1, span)?.as_scalar(span)?;
+        let n = self.positional(args, 2, span)?.as_scalar(span)?;
+        let ar = self.a();
+        let zero = ar.zero();
+        let c = ar.rel(RelOp::Ge, x, zero);
+        let px = ar.mul(p, x);
+        let nx = ar.mul(n, x);
+        Ok(Tensor::scalar(ar.if_(c, px, nx)))
     }
 
     /// `collisionGaps(...)`: the model's one collision world and its two gap outputs.
