@@ -35,7 +35,11 @@ equation
     State = 0;
     Forcen = 0;
     Forcet - nu*normA = zeros(3);
-    if muFlight > 0 and relanFlight < 0 then
+    // changed (not in the paper; S12): the printed first test `muFlight > 0 and
+    // relanFlight < 0` (then 0) is left out: with relanFlight < 0 the branch below gives 0
+    // as well, so the result is the same, and the relation on mu is not watched (with
+    // closed-form points it flips on rounding right after an impact).
+    if false then
       StateIndicator = 0;
     else
       if Clearance < ClearanceTolerance then
