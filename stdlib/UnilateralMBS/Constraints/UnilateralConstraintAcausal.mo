@@ -29,6 +29,7 @@ partial model UnilateralConstraintAcausal "Unilateral constraint: kinematics, im
   SI.Acceleration relan "Normal component of rela";
   SI.Length muFlight "mu in Flight, 1 in contact";
   SI.Length muApproach "mu while the bodies approach in Flight, else 1 (added, not in the paper)";
+  SI.Velocity relvnApproach "relvn in Flight with the impact mask open, else -1 (added, not in the paper)";
   SI.Velocity relvnFlight "relvn in Flight, 0 in contact";
   SI.Acceleration relanFlight "relan in Flight, 0 in contact";
   // printed in the paper (fixed=true added so that the initial value problem is complete)
@@ -93,7 +94,12 @@ equation
   // two O(1) numbers: right after an impact it sits at 0 within rounding while the
   // bodies separate at 1e-6 on a time scale of 1e-6, and every rounding flip of
   // `mu < 0` was an event (E4006 chattering after impacts of FlySlideRoll's Zeno tails).
-  muApproach = if relvnFlight > 0 then muFlight else 1;
+  // relvnApproach (S12): relvn only while the mask is open. Right after a lift-off relvn
+  // starts at 0 and grows like relan*t with relan about 0 too; its rounding (1e-14 for a
+  // body spinning at 10 rad/s) flipped `relvn > 0` 200 times in a row (E4006 on
+  // FlySlideRoll at t = 66.94, BDF rtol 1e-10). With the mask closed nothing reads it.
+  relvnApproach = if ImpactMask then relvnFlight else -1;
+  muApproach = if relvnApproach > 0 then muFlight else 1;
   NormalImpactIndicator = if muApproach < 0 and State == 0 and pre(State) == 0 and ImpactMask then true else false;
   NormalImpact = edge(NormalImpactIndicator);
   Impact = if noEvent(NormalImpact) then true else false;
