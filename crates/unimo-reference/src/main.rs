@@ -2,7 +2,12 @@
 //! and prints a summary; `--events FILE` writes every event as `t,kind`.
 //!
 //! Usage: `ellipsoid-reference [--scene fly-slide-roll|slide-roll-switch|markeev]
-//! [--rtol 1e-12] [--t-stop T] [--events FILE] [--clearance-tolerance X]`
+//! [--rtol 1e-12] [--t-stop T] [--events FILE] [--clearance-tolerance X]
+//! [--perturb INDEX:EPS]`
+//!
+//! `--perturb 1:1e-12` also runs the scene from the initial state with component INDEX
+//! (0..13: r, v, q, body omega) moved by EPS, with the same settings, and prints how far
+//! the two event sequences move apart (the divergence a claim of chaos must measure).
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -17,6 +22,7 @@ struct Args {
     t_stop: Option<f64>,
     events: Option<String>,
     clearance_tolerance: Option<f64>,
+    perturb: Option<(usize, f64)>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -26,6 +32,7 @@ fn parse_args() -> Result<Args, String> {
         t_stop: None,
         events: None,
         clearance_tolerance: None,
+        perturb: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -37,6 +44,17 @@ fn parse_args() -> Result<Args, String> {
             "--t-stop" => args.t_stop = Some(number(value()?)?),
             "--events" => args.events = Some(value()?),
             "--clearance-tolerance" => args.clearance_tolerance = Some(number(value()?)?),
+            "--perturb" => {
+                let text = value()?;
+                let (index, eps) = text.split_once(':').ok_or("--perturb INDEX:EPS")?;
+                let index = index
+                    .parse::<usize>()
+                    .map_err(|e| format!("{index}: {e}"))?;
+                if index >= 13 {
+                    return Err(format!("--perturb index {index} is not below 13"));
+                }
+                args.perturb = Some((index, number(eps.to_owned())?));
+            }
             other => return Err(format!("unknown argument {other}")),
         }
     }
