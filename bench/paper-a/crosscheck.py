@@ -38,6 +38,9 @@ def at_time(c, data, name, when):
     for a, b in zip(data, data[1:]):
         if a[t] <= when <= b[t] and b[t] > a[t]:
             return a[k] + (b[k] - a[k]) * (when - a[t]) / (b[t] - a[t])
+    # the run ends where `t >= tStop` was located, which may be a rounding short of it
+    if abs(data[-1][t] - when) < 1e-9 * max(1.0, abs(when)):
+        return data[-1][k]
     return float("nan")
 
 
