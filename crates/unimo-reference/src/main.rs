@@ -117,7 +117,40 @@ fn run() -> Result<(), String> {
         "steps: {}, rhs evals: {}, wall: {elapsed:.3} s",
         run.steps, run.rhs_evals
     );
+    if let Some((index, eps)) = args.perturb {
+        let mut x0 = example.initial_state;
+        x0[index] += eps;
+        let other = simulate(&example.scene, &x0, &options).map_err(|e| e.to_string())?;
+        divergence(&run, &other, index, eps);
+    }
     Ok(())
+}
+
+/// Prints how two runs' event sequences part: the first event of another kind, and the
+/// largest time difference per block of 200 events before it.
+fn divergence(base: &unimo_reference::Run, other: &unimo_reference::Run, index: usize, eps: f64) {
+    println!(
+        "perturbed x0[{index}] by {eps:e}: {} events",
+        other.events.len()
+    );
+    let part = base
+        .events
+        .iter()
+        .zip(&other.events)
+        .position(|(a, b)| a.kind != b.kind);
+    let agree = part.unwrap_or(base.events.len().min(other.events.len()));
+    println!("same kinds through event {agree}");
+    for start in (0..agree).step_by(200) {
+        let end = (start + 200).min(agree);
+        let worst = (start..end)
+            .map(|k| (base.events[k].t - other.events[k].t).abs())
+            .fold(0.0f64, f64::max);
+        println!(
+            "  events {start}..{end} (t {:.2}..{:.2}): largest |dt| {worst:.2e}",
+            base.events[start].t,
+            base.events[end - 1].t
+        );
+    }
 }
 
 fn main() -> ExitCode {
