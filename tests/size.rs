@@ -19,6 +19,7 @@ const ENFORCED: &[&str] = &[
     "unimo-flat",
     "unimo-geometry",
     "unimo-python",
+    "unimo-reference",
     "unimo-runtime",
     "unimo-solve",
     "unimo-source",

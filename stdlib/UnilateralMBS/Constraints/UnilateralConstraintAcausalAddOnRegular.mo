@@ -19,6 +19,10 @@ partial model UnilateralConstraintAcausalAddOnRegular "Unilateral constraint swi
   // other (relan > 0). In Flight with relan < 0 and a shrunken time scale the bodies
   // drift apart and the next impact is not near: the container resets the time scale
   // to 1 on this signal (otherwise physical time crawls at the last impact's scale).
+  // added (not in the paper; S12): relvn as the landing test reads it, watched only while
+  // a landing is possible (Clearance < ClearanceTolerance), so that rounding flips of
+  // relvn at 0 after a lift-off are no events
+  SI.Velocity relvnLanding = if Clearance < ClearanceTolerance then relvnFlight else -1 "relvn when a landing is possible, else -1";
   Boolean Launching = State == 0 and relanFlight < 0 and Active < 1 "Flight, accelerating apart, with a shrunken time scale";
 equation
   // changed (not in the paper): in contact the paper pulls only v_rn back to 0, so the
@@ -35,11 +39,15 @@ equation
     State = 0;
     Forcen = 0;
     Forcet - nu*normA = zeros(3);
-    if muFlight > 0 and relanFlight < 0 then
+    // changed (not in the paper; S12): the printed first test `muFlight > 0 and
+    // relanFlight < 0` (then 0) is left out: with relanFlight < 0 the branch below gives 0
+    // as well, so the result is the same, and the relation on mu is not watched (with
+    // closed-form points it flips on rounding right after an impact).
+    if false then
       StateIndicator = 0;
     else
       if Clearance < ClearanceTolerance then
-        if relanFlight < 0 or relvnFlight < 0 then
+        if relanFlight < 0 or relvnLanding < 0 then
           // Case of launch; changed (not in the paper): also while the bodies separate
           // (relvn < 0), e.g. at the impact that made Clearance small: the landing then
           // waits for the next approach instead of landing with the rebound velocity.

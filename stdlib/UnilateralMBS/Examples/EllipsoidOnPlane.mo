@@ -28,7 +28,7 @@ model EllipsoidOnPlane "Heavy ellipsoid on a fixed horizontal plane with one aca
   Bodies.HeavyEllipsoidBody FlySlideRollBody(
     semiA=a, semiB=b, semiC=c, m=m, g=g,
     r(start=r0), v(start=v0), q(start=q0), omega(start=omega0)) "Heavy homogeneous ellipsoid";
-  Constraints.EllipsoidAndHorizontalPlaneDifferential ConstraintSurfaces(
+  Constraints.EllipsoidAndHorizontalPlane ConstraintSurfaces(
     a=a, b=b, c=c, k=k, f=f, delta=delta,
     ClearanceTolerance=ClearanceTolerance,
     ConstraintAttraction=ConstraintAttraction,
