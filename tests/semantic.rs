@@ -97,3 +97,22 @@ fn flattening_checks_the_other_classes_of_the_file() {
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert_eq!(common::rendered_codes(&stderr), expected(f), "{stderr}");
 }
+
+/// `W2001`: a parameter with neither a value nor a start value is a warning (spec 8.6
+/// lets it take its type's default); the check still succeeds. Parameters computed by
+/// initial equations (`fixed = false`) or with a start value are not reported.
+#[test]
+fn a_parameter_without_any_value_is_a_warning() {
+    let (code, stderr) = check(Path::new("tests/semantic/warn/unbound_parameter.mo"));
+    assert_eq!(code, Some(0), "{stderr}");
+    let at: Vec<&str> = stderr
+        .lines()
+        .filter_map(|l| {
+            l.trim()
+                .strip_prefix("┌─ tests/semantic/warn/unbound_parameter.mo:")
+        })
+        .collect();
+    assert_eq!(at, ["2:18", "5:21"], "{stderr}");
+    assert_eq!(stderr.matches("warning[W2001]").count(), 2, "{stderr}");
+    assert!(stderr.contains("no errors, 2 warnings"), "{stderr}");
+}

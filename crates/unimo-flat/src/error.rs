@@ -68,6 +68,8 @@ pub enum FlatCode {
     ConnectToItself,
     /// E2032: `pre` of a continuous-time Real outside `when`.
     PreOfContinuous,
+    /// W2001 (a warning): a parameter with neither a binding nor a start value.
+    UnboundParameter,
 }
 
 impl FlatCode {
@@ -104,6 +106,7 @@ impl FlatCode {
         FlatCode::ConnectNonConnector,
         FlatCode::ConnectToItself,
         FlatCode::PreOfContinuous,
+        FlatCode::UnboundParameter,
     ];
 
     /// The code as printed (`E2001`).
@@ -140,6 +143,7 @@ impl FlatCode {
             FlatCode::ConnectNonConnector => "E2030",
             FlatCode::ConnectToItself => "E2031",
             FlatCode::PreOfContinuous => "E2032",
+            FlatCode::UnboundParameter => "W2001",
         }
     }
 }

@@ -1,6 +1,8 @@
 //! Checks on the flat model: a constant's binding reads no parameter (`E2019`, spec
 //! 3.8.1: a constant expression holds constants and literals only); `pre` of a
-//! continuous-time Real only inside `when` (`E2032`, spec 3.7.5).
+//! continuous-time Real only inside `when` (`E2032`, spec 3.7.5); a parameter with
+//! neither a binding nor a start value (`W2001`, spec 8.6: a warning, its value is the
+//! type's default start).
 
 use super::walk::{for_each_equation, for_each_statement};
 use crate::error::FlatCode;
@@ -180,5 +182,54 @@ pub(crate) fn pre_of_continuous(model: &FlatModel) -> Vec<Diagnostic> {
             );
         })
     });
+    diags
+}
+
+/// `W2001` for every parameter with neither a binding nor a `start` value that initial
+/// equations do not compute (`fixed = false`): it takes its type's default start (0,
+/// `false`, the first literal), which is rarely what the modeller meant (spec 8.6).
+pub(crate) fn unbound_parameters(model: &FlatModel) -> Vec<Diagnostic> {
+    let attribute = |v: &crate::flat::FlatVar, name: &str| {
+        v.attributes
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, e)| e.clone())
+    };
+    let mut diags = Vec::new();
+    for v in &model.vars {
+        if v.variability != Variability::Parameter
+            || v.binding.is_some()
+            || attribute(v, "start").is_some()
+            || !matches!(
+                v.ty,
+                FlatType::Real
+                    | FlatType::Integer
+                    | FlatType::Boolean
+                    | FlatType::Enumeration { .. }
+            )
+        {
+            continue;
+        }
+        let fixed_false =
+            attribute(v, "fixed").is_some_and(|e| matches!(e.kind, ExprKind::Bool(false)));
+        if fixed_false {
+            continue;
+        }
+        diags.push(
+            Diagnostic::warning(
+                FlatCode::UnboundParameter,
+                format!(
+                    "parameter `{}` has neither a value nor a start value: it takes its type's default",
+                    v.name
+                ),
+            )
+            .at(v.origin, "declared without a value")
+            .with_help(format!(
+                "give it a value (`{} = ...` in the declaration or a modifier), or `fixed = false` with an initial equation",
+                v.name
+            ))
+            .with_note("Modelica specification, section 8.6"),
+        );
+    }
     diags
 }

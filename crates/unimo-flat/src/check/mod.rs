@@ -68,6 +68,7 @@ pub(crate) fn check_file_siblings(tree: &mut ClassTree<'_>, class: ClassId) -> V
 pub(crate) fn flat_model(model: &crate::FlatModel) -> Vec<Diagnostic> {
     let mut out = flat::constant_bindings(model);
     out.extend(flat::pre_of_continuous(model));
+    out.extend(flat::unbound_parameters(model));
     out
 }
 
