@@ -198,6 +198,12 @@ fn simulate_flat(
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
+    if let Some(page) = &a.animate {
+        let code = crate::animate::command::after_run(page, flat, &dae, &result, &cols);
+        if code != EXIT_OK {
+            return code;
+        }
+    }
     if a.stats {
         let ms = (compile_ms, simulate_ms);
         print_stats(a.method, &compiled, &plan, &result, ms, native.as_ref());
