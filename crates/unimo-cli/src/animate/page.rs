@@ -103,11 +103,15 @@ fn body_json(out: &mut String, b: &Body, table: &ResultTable, frames: &Frames) {
         Rotation::Identity => &[],
         Rotation::Matrix(s) | Rotation::Quaternion(s) => s,
     };
-    let moving = b
-        .position
-        .iter()
-        .chain(rotation)
-        .any(|s| matches!(s, Series::Column(_)));
+    // A body whose columns keep their first value (a fixed obstacle) gets one frame.
+    let varies = |s: &Series| match *s {
+        Series::Column(c) => {
+            let first = table.rows[frames.rows[0]][c];
+            frames.rows.iter().any(|&r| table.rows[r][c] != first)
+        }
+        Series::Constant(_) => false,
+    };
+    let moving = b.position.iter().chain(rotation).any(varies);
     let rows: &[usize] = if moving {
         &frames.rows
     } else {

@@ -19,11 +19,23 @@ scene.add(new THREE.HemisphereLight(0xffffff, 0x666677, 1.6));
 const sun = new THREE.DirectionalLight(0xffffff, 1.8);
 scene.add(sun);
 
+// The largest distance of a body's points from its origin.
+function extent(b) {
+  const [a, c, d] = b.size;
+  switch (b.shape) {
+    case "sphere": return a;
+    case "ellipsoid": return Math.max(a, c, d);
+    case "box": return Math.hypot(a, c, d) / 2;
+    case "capsule": return a + c / 2;
+    default: return Math.hypot(a, c / 2); // cylinder, cone
+  }
+}
+
 // The region the bodies sweep (planes excluded): centre and radius for the camera.
 const box = new THREE.Box3();
 for (const b of data.bodies) {
   if (b.shape === "plane") continue;
-  const reach = Math.max(b.size[0], b.size[1], b.size[2]);
+  const reach = extent(b);
   for (let k = 0; k + 2 < b.p.length; k += 3) {
     const p = new THREE.Vector3(b.p[k], b.p[k + 1], b.p[k + 2]);
     box.expandByPoint(p.clone().addScalar(reach));
@@ -74,9 +86,8 @@ const objects = data.bodies.map((b, k) => {
   } else {
     const color = b.color ? new THREE.Color(b.color) : new THREE.Color(palette[k % palette.length]);
     object = new THREE.Mesh(geometry(b), new THREE.MeshStandardMaterial({ color, roughness: 0.55, metalness: 0.05 }));
-    // The body's axes, so that a spinning symmetric body shows its rotation.
-    const axes = new THREE.AxesHelper(1.15 * Math.max(b.size[0], b.shape === "sphere" ? b.size[0] : b.size[1], b.size[2]));
-    object.add(axes);
+    // A moving body's axes, so that a spinning symmetric body shows its rotation.
+    if (b.p.length > 3) object.add(new THREE.AxesHelper(1.3 * extent(b)));
   }
   object.name = b.name;
   scene.add(object);
