@@ -111,6 +111,8 @@ fn paper_a_draws_the_ellipsoid_and_the_plane_with_its_semi_axes() {
 fn bad_input_gets_coded_errors() {
     let csv = scratch("novisual.csv");
     simulate("tests/animate/NoVisual.mo", &csv, &[]);
+    let own = scratch("own-errors.csv");
+    simulate("tests/animate/OwnBody.mo", &own, &[]);
     let page = scratch("never.html");
     let cases: [(&[&str], &str, i32); 5] = [
         (
@@ -141,7 +143,7 @@ fn bad_input_gets_coded_errors() {
         (
             &[
                 "animate",
-                s(&csv),
+                s(&own),
                 "--model",
                 "tests/animate/OwnBody.mo",
                 "--clock",

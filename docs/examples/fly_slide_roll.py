@@ -7,6 +7,13 @@ command line built (`cargo build --release`, or `UNIMO_BIN=path/to/unimo`):
     python docs/examples/fly_slide_roll.py                  # 6 values of k, t up to 25
     python docs/examples/fly_slide_roll.py --points 3 --t-stop 20 --out /tmp/fsr
 
+The first rolling time is the model's `tFirstRolling` (physical time of the first
+transfer to Rolling, -1 when it has not happened by --t-stop). The motion is a long
+sequence of impacts and stick-slip transitions, sensitive to every detail of the
+integration: the same k run with another stop time or tolerance can roll at a
+different time (k = 0.6 rolls at t = 15.23 with tStop = 25 and at t = 16.19 with
+tStop = 150, docs/results/paper-a.md).
+
 It writes into --out (default `fly_slide_roll/`): `sweep.csv` (one row per k),
 `first_rolling.png` (matplotlib) or `first_rolling.svg` (`unimo plot`, without
 matplotlib), `run.csv` and `run.html` (the 3D animation of the run at the middle k; open
@@ -88,7 +95,10 @@ def plot(table, t_stop, out, cli):
 
 def animate(model, k, t_stop, out, cli):
     """Runs FlySlideRoll at k and writes the run and its 3D animation (clock: physical t)."""
-    result = model.simulate(params={"k": k})
+    # Output every 0.02 of the model's time (the regularised time, close to t in flight
+    # and sliding): without it the rows are the events and a coarse grid, and the
+    # animation jumps.
+    result = model.simulate(params={"k": k}, interval=0.02)
     csv = out / "run.csv"
     result.to_pandas().to_csv(csv, index=False)
     page = out / "run.html"

@@ -47,8 +47,11 @@ impl Shape {
             Shape::Ellipsoid,
             Shape::Plane,
         ];
-        let k = code.round();
-        (k >= 1.0 && k <= 7.0 && k == code).then(|| ORDER[k as usize - 1])
+        if (1.0..=7.0).contains(&code) && code.fract() == 0.0 {
+            Some(ORDER[code as usize - 1])
+        } else {
+            None
+        }
     }
 
     pub fn name(self) -> &'static str {
@@ -148,7 +151,7 @@ fn body(model: &ModelValues<'_>, table: &ResultTable, v: &FlatVisual) -> Result<
         (None, None) => Rotation::Identity,
     };
     let size = match at.get("size") {
-        Some(e) => at.numbers(e, "size")?,
+        Some(e) => at.numbers(e)?,
         None if shape == Shape::Plane => Vec::new(),
         None => return Err(at.malformed("`size` is missing".into())),
     };
@@ -158,7 +161,7 @@ fn body(model: &ModelValues<'_>, table: &ResultTable, v: &FlatVisual) -> Result<
         Shape::Box | Shape::Ellipsoid => 3,
         Shape::Plane => 0,
     };
-    if size.len() < needed || size.iter().take(needed).any(|x| !(*x > 0.0)) {
+    if size.len() < needed || size.iter().take(needed).any(|x| x.is_nan() || *x <= 0.0) {
         return Err(at.malformed(format!(
             "a {} needs {needed} positive dimension(s) in `size`, got {size:?}",
             shape.name()
@@ -170,9 +173,9 @@ fn body(model: &ModelValues<'_>, table: &ResultTable, v: &FlatVisual) -> Result<
     }
     let normal = match at.get("normal") {
         Some(e) => {
-            let n = at.numbers(e, "normal")?;
+            let n = at.numbers(e)?;
             let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if n.len() != 3 || !(len > 0.0) {
+            if n.len() != 3 || len.is_nan() || len <= 0.0 {
                 return Err(at.malformed("`normal` must be a nonzero 3-vector".into()));
             }
             [n[0] / len, n[1] / len, n[2] / len]
@@ -358,7 +361,7 @@ impl Resolver<'_, '_> {
     }
 
     /// Numbers known before the run (dimensions, a normal).
-    fn numbers(&self, e: &Expr, _key: &str) -> Result<Vec<f64>, ApiError> {
+    fn numbers(&self, e: &Expr) -> Result<Vec<f64>, ApiError> {
         let mut items = Vec::new();
         self.items(e, &mut items)?;
         items
