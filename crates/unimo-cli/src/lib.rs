@@ -4,6 +4,7 @@
 //! Exit codes, for the whole tool: 0 success, 1 errors in the model, 2 usage errors
 //! (bad flags, missing files), 3 simulation failure.
 
+pub mod animate;
 pub mod api;
 mod bench;
 mod check;
@@ -154,6 +155,7 @@ enum Command {
     ///
     /// Example: `unimo plot result.csv --vars t --x time -o time.svg`.
     Plot(plot::PlotArgs),
+    Animate(animate::command::AnimateArgs),
     /// Print an intermediate representation of a model.
     ///
     /// Stages in pipeline order: `ast` (syntax tree of the first file), `flat` (as
@@ -276,6 +278,10 @@ pub struct SimulateArgs {
     /// runs on the tape either way; `--stats` says which engine ran.
     #[arg(long, value_enum, default_value_t = EngineArg::Native)]
     pub engine: EngineArg,
+    /// Also write a 3D animation of the run as a self-contained HTML page (see
+    /// `unimo animate` and docs/animation.md).
+    #[arg(long, value_name = "FILE.html")]
+    pub animate: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug, Clone)]
@@ -435,6 +441,7 @@ fn run_on_this_thread() -> i32 {
         Command::Bench(args) => bench::bench(&args, color),
         Command::Sweep(args) => sweep::command(&args),
         Command::Plot(args) => plot::plot(&args),
+        Command::Animate(args) => animate::command::command(&args),
         Command::Emit {
             stage,
             files,

@@ -189,18 +189,18 @@ fn simulate_flat(
     let simulate_ms = ms_since(sim_started);
     phases.simulate = simulate_ms;
     let write_started = Instant::now();
-    let written = match result_format(a) {
-        ResultFormat::Csv => write_results(a.output.as_deref(), &result, &cols),
-        ResultFormat::Mat => {
-            let ids = (&output_ids[..], &cols[..]);
-            write_mat(a, flat, &dae, &result, ids, (start, options.stop))
-        }
-    };
-    if let Err(e) = written {
+    let ids = (&output_ids[..], &cols[..]);
+    if let Err(e) = write_result_file(a, flat, &dae, &result, ids, (start, options.stop)) {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
     phases.write = ms_since(write_started);
+    if let Some(page) = &a.animate {
+        let code = crate::animate::command::after_run(page, flat, &dae, &result, &cols);
+        if code != EXIT_OK {
+            return code;
+        }
+    }
     if a.stats {
         print_stats(
             a.method,
@@ -218,6 +218,21 @@ fn simulate_flat(
         );
     }
     how_it_ended(&dae, map, &result, start)
+}
+
+/// The result file in the format `--format` (or the extension) asks for.
+fn write_result_file(
+    a: &SimulateArgs,
+    flat: &unimo_flat::FlatModel,
+    dae: &Dae,
+    result: &SimResult,
+    (output_ids, cols): (&[unimo_dae::expr::ScalarId], &[usize]),
+    span: (f64, f64),
+) -> std::io::Result<()> {
+    match result_format(a) {
+        ResultFormat::Csv => write_results(a.output.as_deref(), result, cols),
+        ResultFormat::Mat => write_mat(a, flat, dae, result, (output_ids, cols), span),
+    }
 }
 
 /// Native code for the compiled model, or `None` with a note when it cannot be had

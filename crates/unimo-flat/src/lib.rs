@@ -32,9 +32,10 @@ pub mod tree;
 pub mod typecheck;
 mod values;
 pub mod verify;
+pub mod visual;
 
 pub use error::FlatError;
-pub use flat::{FlatModel, FlatVar, VarId};
+pub use flat::{FlatModel, FlatVar, FlatVisual, VarId};
 pub use provider::{LibFile, LibLocation, MemoryProvider, SourceProvider};
 pub use tree::{ClassId, ClassTree, LoadStats};
 use unimo_source::Diagnostic;

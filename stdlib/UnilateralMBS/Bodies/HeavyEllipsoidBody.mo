@@ -14,4 +14,6 @@ equation
   M1 = zeros(3);
   ImpactForce1 = zeros(3);
   ImpactTorque1 = zeros(3);
+  // Drawn by `unimo animate` (docs/animation.md).
+  annotation(__unimo_visual(shape = "ellipsoid", size = {semiA, semiB, semiC}, position = r, rotation = T));
 end HeavyEllipsoidBody;

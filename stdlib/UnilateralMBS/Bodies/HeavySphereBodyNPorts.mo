@@ -10,4 +10,6 @@ equation
   M1 = zeros(3);
   ImpactForce1 = zeros(3);
   ImpactTorque1 = zeros(3);
+  // Drawn by `unimo animate` (docs/animation.md).
+  annotation(__unimo_visual(shape = "sphere", size = {R}, position = r, rotation = T));
 end HeavySphereBodyNPorts;

@@ -44,4 +44,6 @@ initial equation
   rPA = rPB - ((rPB - InPortA.r)*nA)*nA;
   mu*(gradgB*gradgB) = (rPA - rPB)*gradgB;
   lambda*(gradgB*gradgB) = -(gradgA*gradgB);
+  // Drawn by `unimo animate` (docs/animation.md): the plane y = 0 of body A.
+  annotation(__unimo_visual(shape = "plane", normal = {0, 1, 0}, position = InPortA.r, rotation = InPortA.T));
 end EllipsoidAndHorizontalPlaneCausal;

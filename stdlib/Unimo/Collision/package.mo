@@ -66,6 +66,8 @@ package Collision "Collision detection and contact forces between rigid bodies (
   equation
     cat(1, F, T) = collisionBody(Integer(shape), dims, r, R, v, w, dynamic, K, n,
       Integer(law), D, e, muStatic, muSliding, vSwitch, fMax, impulses, m, I, group);
+    // Drawn by `unimo animate` (docs/animation.md); a HalfSpace is the plane z = 0.
+    annotation(__unimo_visual(shape = shape, size = dims, position = r, rotation = R, normal = {0, 0, 1}));
   end CollisionBody;
 
   model Ball "A free homogeneous sphere"

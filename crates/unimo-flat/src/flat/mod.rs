@@ -116,6 +116,20 @@ pub struct FlatModel {
     /// subscripts, and what those depend on), sorted: changing one changes the
     /// model's structure, so it needs flattening again.
     pub evaluated: Vec<String>,
+    /// The components the animation draws, in instantiation order (see
+    /// [`crate::visual`]).
+    pub visuals: Vec<FlatVisual>,
+}
+
+/// A component whose class (or a base of it) declares `annotation(__unimo_visual(...))`.
+#[derive(Clone, Debug)]
+pub struct FlatVisual {
+    /// The instance path (`ball`, `balls[2]`, `a.b`).
+    pub path: String,
+    /// The component's class, full name.
+    pub class: String,
+    /// The annotation's arguments as written: names in them are relative to the instance.
+    pub spec: ClassModification,
 }
 
 /// Array dimensions as text: `scalar` or `[3, 2]`.

@@ -147,6 +147,9 @@ impl Instantiator<'_, '_> {
         }
         let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
         if dims.is_empty() {
+            if !record {
+                self.note_visual(c, super::instance_key(&path));
+            }
             self.class_body(c, &path, &merged, variability, top);
         } else {
             let elements = (record, per_element);
@@ -218,6 +221,8 @@ impl Instantiator<'_, '_> {
                 };
                 element = self.split_record_binding(c, element);
                 self.record_binding_equation(&element, &p, variability, &key, span);
+            } else {
+                self.note_visual(c, instance_key(&p));
             }
             self.class_body(c, &p, &element, variability, top);
         }
