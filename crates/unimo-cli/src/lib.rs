@@ -7,6 +7,7 @@
 pub mod api;
 mod bench;
 mod check;
+pub mod fmu;
 mod params;
 pub mod plot;
 mod provider;
@@ -154,6 +155,17 @@ enum Command {
     ///
     /// Example: `unimo plot result.csv --vars t --x time -o time.svg`.
     Plot(plot::PlotArgs),
+    /// Export a model as an FMU (FMI 2.0 or 3.0, Model Exchange or Co-Simulation).
+    ///
+    /// The FMU holds `modelDescription.xml` (every variable with causality,
+    /// variability, initial, start, unit and description; derivatives, event
+    /// indicators, model structure), the flat model in `resources/model.mo` and the
+    /// shared library `binaries/x86_64-linux/<id>.so`, which compiles the model at
+    /// instantiation and runs it on unimo's runtime. The library is `libunimo_fmi.so`
+    /// next to the `unimo` executable (or `UNIMO_FMI_LIBRARY`). See docs/fmi.md.
+    ///
+    /// Example: `unimo fmu models/BouncingBall.mo --fmi 2 --kind me -o BouncingBall.fmu`.
+    Fmu(fmu::FmuArgs),
     /// Print an intermediate representation of a model.
     ///
     /// Stages in pipeline order: `ast` (syntax tree of the first file), `flat` (as
@@ -435,6 +447,7 @@ fn run_on_this_thread() -> i32 {
         Command::Bench(args) => bench::bench(&args, color),
         Command::Sweep(args) => sweep::command(&args),
         Command::Plot(args) => plot::plot(&args),
+        Command::Fmu(args) => fmu::command(&args),
         Command::Emit {
             stage,
             files,
