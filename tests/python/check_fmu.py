@@ -1,7 +1,10 @@
 """Checks a unimo FMU with FMPy: `fmpy validate`, then a simulation compared with the
 CSV of `unimo simulate` for the same model and output grid.
 
-Usage: check_fmu.py FMU RESULT.csv VARS TOL [stop=T] [parameter=value ...]
+Usage: check_fmu.py FMU RESULT.csv VARS TOL [stop=T] [rtol=R] [parameter=value ...]
+
+stop and rtol override the FMU's default experiment (rtol: the relative tolerance of
+FMPy's CVode in Model Exchange, or of our solver in Co-Simulation).
 
 VARS: comma-separated variables to compare. The comparison is on the output grid
 points (rows whose time appears once in both results: event instants, where the left
@@ -45,6 +48,7 @@ def main():
     starts = dict(a.split("=", 1) for a in sys.argv[5:])
     starts = {k: float(v) for k, v in starts.items()}
     stop = starts.pop("stop", None)
+    rtol = starts.pop("rtol", None)
     problems = validate_fmu(fmu)
     if problems:
         print("fmpy validate:", *problems, sep="\n  ")
@@ -54,13 +58,14 @@ def main():
     reference = read_csv(csv_path)
     t_ref = reference["time"]
     ex = md.defaultExperiment
-    interval = float(ex.stepSize)
+    # The reference's output grid (`unimo simulate --stop-time` changes it).
+    interval = float(t_ref[1] - t_ref[0])
     result = fmpy.simulate_fmu(
         fmu,
         fmi_type=kind,
         start_time=float(ex.startTime),
         stop_time=float(ex.stopTime) if stop is None else stop,
-        relative_tolerance=float(ex.tolerance),
+        relative_tolerance=float(ex.tolerance) if rtol is None else rtol,
         output_interval=interval,
         output=names,
         start_values=starts,

@@ -7,6 +7,7 @@ exactly as each runs alone.
 Usage: check_fmu_api.py FMI2_CS.fmu FMI3_ME.fmu. Exit code 77 when FMPy is missing.
 """
 
+import ctypes
 import sys
 
 try:
@@ -20,6 +21,16 @@ except ImportError as e:
     sys.exit(77)
 
 MESSAGES = []
+
+
+def raw(fmu, name, *args):
+    """Calls an FMI function of the library directly (those FMPy's class lacks)."""
+    function = getattr(fmu.dll, name)
+    function.restype = ctypes.c_int
+    component = fmu.component if isinstance(fmu.component, ctypes.c_void_p) else ctypes.c_void_p(fmu.component)
+    status = function(component, *args)
+    if status > 1:
+        raise FMICallException(function=name, status=status)
 
 
 def log2(env, name, status, category, message):
@@ -97,7 +108,9 @@ def check_fmi2(path):
     fmu.exitInitializationMode()
     expect_error("fmi2SetReal of a parameter after initialization", lambda: fmu.setReal([vrs["e"]], [0.1]), "E4705")
     expect_error("fmi2DoStep from the wrong time", lambda: fmu.doStep(5.0, 0.1), "E4705")
-    expect_error("fmi2GetDerivatives in Co-Simulation", lambda: fmu.getDerivatives(2), "E4704")
+    buffer = (ctypes.c_double * 2)()
+    expect_error("fmi2GetDerivatives in Co-Simulation", lambda: raw(fmu, "fmi2GetDerivatives", buffer, ctypes.c_size_t(2)), "E4704")
+    expect_error("fmi2GetReal with a null array", lambda: raw(fmu, "fmi2GetReal", None, ctypes.c_size_t(2), buffer), "E4705")
     fmu.terminate()
     fmu.freeInstance()
     # A wrong GUID: no instance, and the reason logged.
@@ -110,7 +123,7 @@ def check_fmi2(path):
         assert any("E4703" in m for _, m in MESSAGES), MESSAGES
         print(f"ok: wrong GUID refused: {MESSAGES[-1][1]}")
     # Two instances side by side, interleaved, with different restitutions.
-    steps, h = 80, 0.1
+    steps, h = 40, 0.1
     alone = {e: run_alone(unzipped, md, vrs, e, steps, h) for e in (0.8, 0.5)}
     a, b = slave(unzipped, md, "a"), slave(unzipped, md, "b")
     start(a, vrs, 0.8)
@@ -147,8 +160,11 @@ def check_fmi3(path):
     fmu.exitInitializationMode()
     fmu.updateDiscreteStates()
     fmu.enterContinuousTimeMode()
-    expect_error("fmi3GetContinuousStates with a wrong size", lambda: fmu.getContinuousStates(5), "E4705")
-    expect_error("fmi3GetClock (not provided)", lambda: fmu.fmi3GetClock(fmu.component, None, 0, None), "E4702")
+    states = (ctypes.c_double * 5)()
+    expect_error("fmi3GetContinuousStates with a wrong size", lambda: fmu.getContinuousStates(states, 5), "E4705")
+    fmu.getContinuousStates(states, 2)
+    assert list(states[:2]) == [10.0, 0.0], list(states)
+    expect_error("fmi3GetClock (not provided)", lambda: raw(fmu, "fmi3GetClock", None, ctypes.c_size_t(0), None), "E4702")
     fmu.terminate()
     fmu.freeInstance()
 

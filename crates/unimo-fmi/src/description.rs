@@ -296,7 +296,7 @@ fn write_fmi3_variables(x: &mut String, c: &Compiled) {
     let (time, first_indicator) = fmi3_extra_references(c);
     let _ = writeln!(
         x,
-        r#"    <Float64 name="time" valueReference="{time}" causality="independent" variability="continuous" description="Simulation time" unit="s"/>"#
+        r#"    <Float64 name="time" valueReference="{time}" causality="independent" variability="continuous" description="Simulation time"/>"#
     );
     for v in &c.variables {
         let (causality, variability, initial) = attributes(v);
