@@ -70,13 +70,17 @@ pub fn locate_library() -> Result<PathBuf, FmiError> {
     let exe = std::env::current_exe().map_err(|e| FmiError::LibraryMissing(e.to_string()))?;
     let dir = exe.parent().map(PathBuf::from).unwrap_or_default();
     let candidates = [dir.join(LIBRARY), dir.join("deps").join(LIBRARY)];
-    candidates.iter().find(|p| p.is_file()).cloned().ok_or_else(|| {
-        FmiError::LibraryMissing(format!(
+    candidates
+        .iter()
+        .find(|p| p.is_file())
+        .cloned()
+        .ok_or_else(|| {
+            FmiError::LibraryMissing(format!(
             "the FMU library {LIBRARY} is not next to {} (build it with `cargo build -p unimo-fmi` \
              in the same profile, or set UNIMO_FMI_LIBRARY)",
             exe.display()
         ))
-    })
+        })
 }
 
 pub fn command(a: &FmuArgs) -> i32 {

@@ -160,7 +160,7 @@ enum Command {
     /// The FMU holds `modelDescription.xml` (every variable with causality,
     /// variability, initial, start, unit and description; derivatives, event
     /// indicators, model structure), the flat model in `resources/model.mo` and the
-    /// shared library `binaries/x86_64-linux/<id>.so`, which compiles the model at
+    /// shared library `binaries/<platform>/<id>.so`, which compiles the model at
     /// instantiation and runs it on unimo's runtime. The library is `libunimo_fmi.so`
     /// next to the `unimo` executable (or `UNIMO_FMI_LIBRARY`). See docs/fmi.md.
     ///

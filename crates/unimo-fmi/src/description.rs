@@ -147,7 +147,11 @@ fn initial_unknowns(c: &Compiled) -> Vec<u32> {
 }
 
 fn units(c: &Compiled) -> Vec<&str> {
-    let mut units: Vec<&str> = c.variables.iter().filter_map(|v| v.unit.as_deref()).collect();
+    let mut units: Vec<&str> = c
+        .variables
+        .iter()
+        .filter_map(|v| v.unit.as_deref())
+        .collect();
     units.sort_unstable();
     units.dedup();
     units
@@ -347,7 +351,10 @@ fn write_fmi3_variables(x: &mut String, c: &Compiled) {
         let _ = writeln!(x, r#"    <Output valueReference="{r}"/>"#);
     }
     for &(_, dx) in &c.states {
-        let _ = writeln!(x, r#"    <ContinuousStateDerivative valueReference="{dx}"/>"#);
+        let _ = writeln!(
+            x,
+            r#"    <ContinuousStateDerivative valueReference="{dx}"/>"#
+        );
     }
     for r in initial_unknowns(c) {
         let _ = writeln!(x, r#"    <InitialUnknown valueReference="{r}"/>"#);

@@ -155,7 +155,12 @@ pub fn check_types(
 }
 
 /// `n` checked to be the size the model has.
-pub fn expect_size(function: &'static str, what: &str, n: usize, expected: usize) -> Result<(), FmiError> {
+pub fn expect_size(
+    function: &'static str,
+    what: &str,
+    n: usize,
+    expected: usize,
+) -> Result<(), FmiError> {
     if n == expected {
         Ok(())
     } else {
@@ -169,6 +174,8 @@ pub fn expect_size(function: &'static str, what: &str, n: usize, expected: usize
 /// The instance state guard of the functions an FMU does not provide.
 pub fn unsupported(ptr: *mut c_void, function: &'static str) -> i32 {
     call(ptr, function, ANY, |_| {
-        Err(FmiError::Unsupported(format!("{function} is not provided by unimo's FMUs")))
+        Err(FmiError::Unsupported(format!(
+            "{function} is not provided by unimo's FMUs"
+        )))
     })
 }

@@ -14,14 +14,8 @@ type Bool = c_int;
 type Vr = c_uint;
 
 /// `fmi2CallbackLogger` (variadic: the message is a format string).
-type LoggerFn = unsafe extern "C" fn(
-    *mut c_void,
-    *const c_char,
-    c_int,
-    *const c_char,
-    *const c_char,
-    ...
-);
+type LoggerFn =
+    unsafe extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char, ...);
 
 /// `fmi2CallbackFunctions`.
 #[repr(C)]
@@ -63,7 +57,8 @@ fn make_logger(name: &str, callbacks: &CallbackFunctions) -> crate::instance::Lo
     Box::new(move |error: bool, message: &str| {
         let Some(logger) = logger else { return };
         // The message is a printf format: `%` doubled.
-        let message = CString::new(message.replace('\0', " ").replace('%', "%%")).unwrap_or_default();
+        let message =
+            CString::new(message.replace('\0', " ").replace('%', "%%")).unwrap_or_default();
         let (status, category) = if error {
             (ERROR, c"logStatusError")
         } else {
@@ -96,7 +91,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
 ) -> Component {
     let outcome = catch_unwind(AssertUnwindSafe(|| {
         // SAFETY: the FMI contract on the arguments.
-        let (name, guid, location) = unsafe { (text(instance_name), text(guid), text(resource_location)) };
+        let (name, guid, location) =
+            unsafe { (text(instance_name), text(guid), text(resource_location)) };
         let callbacks = unsafe { functions.as_ref() }?;
         let name = name.unwrap_or_default();
         let logger = make_logger(&name, callbacks);
@@ -104,12 +100,18 @@ pub unsafe extern "C" fn fmi2Instantiate(
             0 => Kind::ModelExchange,
             1 => Kind::CoSimulation,
             _ => {
-                logger(true, &format!("error[E4705]: fmi2Instantiate: unknown fmuType {fmu_type}"));
+                logger(
+                    true,
+                    &format!("error[E4705]: fmi2Instantiate: unknown fmuType {fmu_type}"),
+                );
                 return None;
             }
         };
         let (Some(guid), Some(location)) = (guid, location) else {
-            logger(true, "error[E4705]: fmi2Instantiate: the GUID or the resource location is missing");
+            logger(
+                true,
+                "error[E4705]: fmi2Instantiate: the GUID or the resource location is missing",
+            );
             return None;
         };
         let folder = resource_folder(&location);
@@ -137,7 +139,12 @@ pub extern "C" fn fmi2FreeInstance(c: Component) {
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2SetDebugLogging(c: Component, _on: Bool, _n: usize, _categories: *const *const c_char) -> Status {
+pub extern "C" fn fmi2SetDebugLogging(
+    c: Component,
+    _on: Bool,
+    _n: usize,
+    _categories: *const *const c_char,
+) -> Status {
     call(c, "fmi2SetDebugLogging", ANY, |_| Ok(OK))
 }
 
@@ -160,26 +167,41 @@ pub extern "C" fn fmi2SetupExperiment(
 
 #[no_mangle]
 pub extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
-    call(c, "fmi2EnterInitializationMode", &[State::Instantiated], |i| {
-        i.state = State::Initialization;
-        Ok(OK)
-    })
+    call(
+        c,
+        "fmi2EnterInitializationMode",
+        &[State::Instantiated],
+        |i| {
+            i.state = State::Initialization;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
-    call(c, "fmi2ExitInitializationMode", &[State::Initialization], |i| {
-        i.exit_initialization()?;
-        Ok(OK)
-    })
+    call(
+        c,
+        "fmi2ExitInitializationMode",
+        &[State::Initialization],
+        |i| {
+            i.exit_initialization()?;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi2Terminate(c: Component) -> Status {
-    call(c, "fmi2Terminate", &[State::Event, State::ContinuousTime, State::Step], |i| {
-        i.terminate()?;
-        Ok(OK)
-    })
+    call(
+        c,
+        "fmi2Terminate",
+        &[State::Event, State::ContinuousTime, State::Step],
+        |i| {
+            i.terminate()?;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
@@ -190,7 +212,14 @@ pub extern "C" fn fmi2Reset(c: Component) -> Status {
     })
 }
 
-fn get_values(c: Component, function: &'static str, refs: *const Vr, n: usize, want: Type, out: &mut dyn FnMut(usize, f64)) -> Status {
+fn get_values(
+    c: Component,
+    function: &'static str,
+    refs: *const Vr,
+    n: usize,
+    want: Type,
+    out: &mut dyn FnMut(usize, f64),
+) -> Status {
     call(c, function, ANY, |i| {
         // SAFETY: `refs` holds `n` references (FMI contract).
         let refs = unsafe { slice(refs, n, function)? };
@@ -202,7 +231,14 @@ fn get_values(c: Component, function: &'static str, refs: *const Vr, n: usize, w
     })
 }
 
-fn set_values(c: Component, function: &'static str, refs: *const Vr, n: usize, want: Type, values: &dyn Fn(usize) -> f64) -> Status {
+fn set_values(
+    c: Component,
+    function: &'static str,
+    refs: *const Vr,
+    n: usize,
+    want: Type,
+    values: &dyn Fn(usize) -> f64,
+) -> Status {
     call(c, function, ANY, |i| {
         // SAFETY: as in `get_values`.
         let refs = unsafe { slice(refs, n, function)? };
@@ -216,64 +252,124 @@ fn set_values(c: Component, function: &'static str, refs: *const Vr, n: usize, w
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetReal(c: Component, vr: *const Vr, n: usize, value: *mut f64) -> Status {
+pub unsafe extern "C" fn fmi2GetReal(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *mut f64,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetReal") }) else { return ERROR };
+    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetReal") }) else {
+        return ERROR;
+    };
     get_values(c, "fmi2GetReal", vr, n, Type::Real, &mut |k, v| out[k] = v)
 }
 
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetInteger(c: Component, vr: *const Vr, n: usize, value: *mut c_int) -> Status {
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *mut c_int,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetInteger") }) else { return ERROR };
-    get_values(c, "fmi2GetInteger", vr, n, Type::Integer, &mut |k, v| out[k] = v as c_int)
+    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetInteger") }) else {
+        return ERROR;
+    };
+    get_values(c, "fmi2GetInteger", vr, n, Type::Integer, &mut |k, v| {
+        out[k] = v as c_int
+    })
 }
 
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetBoolean(c: Component, vr: *const Vr, n: usize, value: *mut Bool) -> Status {
+pub unsafe extern "C" fn fmi2GetBoolean(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *mut Bool,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetBoolean") }) else { return ERROR };
-    get_values(c, "fmi2GetBoolean", vr, n, Type::Boolean, &mut |k, v| out[k] = Bool::from(v != 0.0))
+    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetBoolean") }) else {
+        return ERROR;
+    };
+    get_values(c, "fmi2GetBoolean", vr, n, Type::Boolean, &mut |k, v| {
+        out[k] = Bool::from(v != 0.0)
+    })
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2GetString(c: Component, _vr: *const Vr, _n: usize, _value: *mut *const c_char) -> Status {
+pub extern "C" fn fmi2GetString(
+    c: Component,
+    _vr: *const Vr,
+    _n: usize,
+    _value: *mut *const c_char,
+) -> Status {
     ffi::unsupported(c, "fmi2GetString")
 }
 
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetReal(c: Component, vr: *const Vr, n: usize, value: *const f64) -> Status {
+pub unsafe extern "C" fn fmi2SetReal(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *const f64,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetReal") }) else { return ERROR };
+    let Ok(values) = (unsafe { slice(value, n, "fmi2SetReal") }) else {
+        return ERROR;
+    };
     set_values(c, "fmi2SetReal", vr, n, Type::Real, &|k| values[k])
 }
 
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetInteger(c: Component, vr: *const Vr, n: usize, value: *const c_int) -> Status {
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *const c_int,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetInteger") }) else { return ERROR };
-    set_values(c, "fmi2SetInteger", vr, n, Type::Integer, &|k| f64::from(values[k]))
+    let Ok(values) = (unsafe { slice(value, n, "fmi2SetInteger") }) else {
+        return ERROR;
+    };
+    set_values(c, "fmi2SetInteger", vr, n, Type::Integer, &|k| {
+        f64::from(values[k])
+    })
 }
 
 /// # Safety
 /// `vr` and `value` hold `n` elements.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetBoolean(c: Component, vr: *const Vr, n: usize, value: *const Bool) -> Status {
+pub unsafe extern "C" fn fmi2SetBoolean(
+    c: Component,
+    vr: *const Vr,
+    n: usize,
+    value: *const Bool,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetBoolean") }) else { return ERROR };
-    set_values(c, "fmi2SetBoolean", vr, n, Type::Boolean, &|k| f64::from(u8::from(values[k] != 0)))
+    let Ok(values) = (unsafe { slice(value, n, "fmi2SetBoolean") }) else {
+        return ERROR;
+    };
+    set_values(c, "fmi2SetBoolean", vr, n, Type::Boolean, &|k| {
+        f64::from(u8::from(values[k] != 0))
+    })
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2SetString(c: Component, _vr: *const Vr, _n: usize, _value: *const *const c_char) -> Status {
+pub extern "C" fn fmi2SetString(
+    c: Component,
+    _vr: *const Vr,
+    _n: usize,
+    _value: *const *const c_char,
+) -> Status {
     ffi::unsupported(c, "fmi2SetString")
 }
 
@@ -293,17 +389,31 @@ pub extern "C" fn fmi2FreeFMUstate(c: Component, _state: *mut *mut c_void) -> St
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2SerializedFMUstateSize(c: Component, _state: *mut c_void, _size: *mut usize) -> Status {
+pub extern "C" fn fmi2SerializedFMUstateSize(
+    c: Component,
+    _state: *mut c_void,
+    _size: *mut usize,
+) -> Status {
     ffi::unsupported(c, "fmi2SerializedFMUstateSize")
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2SerializeFMUstate(c: Component, _state: *mut c_void, _bytes: *mut c_char, _size: usize) -> Status {
+pub extern "C" fn fmi2SerializeFMUstate(
+    c: Component,
+    _state: *mut c_void,
+    _bytes: *mut c_char,
+    _size: usize,
+) -> Status {
     ffi::unsupported(c, "fmi2SerializeFMUstate")
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2DeSerializeFMUstate(c: Component, _bytes: *const c_char, _size: usize, _state: *mut *mut c_void) -> Status {
+pub extern "C" fn fmi2DeSerializeFMUstate(
+    c: Component,
+    _bytes: *const c_char,
+    _size: usize,
+    _state: *mut *mut c_void,
+) -> Status {
     ffi::unsupported(c, "fmi2DeSerializeFMUstate")
 }
 
@@ -359,35 +469,65 @@ pub extern "C" fn fmi2EnterContinuousTimeMode(c: Component) -> Status {
 /// # Safety
 /// The two flags point to writable booleans.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2CompletedIntegratorStep(c: Component, _no_set_prior: Bool, enter_event_mode: *mut Bool, terminate: *mut Bool) -> Status {
-    call(c, "fmi2CompletedIntegratorStep", &[State::ContinuousTime], |_| {
-        // SAFETY: FMI contract; checked for null.
-        let (enter, stop) = unsafe { (slice_mut(enter_event_mode, 1, "fmi2CompletedIntegratorStep")?, slice_mut(terminate, 1, "fmi2CompletedIntegratorStep")?) };
-        enter[0] = 0;
-        stop[0] = 0;
-        Ok(OK)
-    })
+pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
+    c: Component,
+    _no_set_prior: Bool,
+    enter_event_mode: *mut Bool,
+    terminate: *mut Bool,
+) -> Status {
+    call(
+        c,
+        "fmi2CompletedIntegratorStep",
+        &[State::ContinuousTime],
+        |_| {
+            // SAFETY: FMI contract; checked for null.
+            let (enter, stop) = unsafe {
+                (
+                    slice_mut(enter_event_mode, 1, "fmi2CompletedIntegratorStep")?,
+                    slice_mut(terminate, 1, "fmi2CompletedIntegratorStep")?,
+                )
+            };
+            enter[0] = 0;
+            stop[0] = 0;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi2SetTime(c: Component, time: f64) -> Status {
-    call(c, "fmi2SetTime", &[State::Event, State::ContinuousTime, State::Instantiated, State::Initialization], |i| {
-        i.set_time(time);
-        Ok(OK)
-    })
+    call(
+        c,
+        "fmi2SetTime",
+        &[
+            State::Event,
+            State::ContinuousTime,
+            State::Instantiated,
+            State::Initialization,
+        ],
+        |i| {
+            i.set_time(time);
+            Ok(OK)
+        },
+    )
 }
 
 /// # Safety
 /// `x` holds `n` values.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetContinuousStates(c: Component, x: *const f64, n: usize) -> Status {
-    call(c, "fmi2SetContinuousStates", &[State::ContinuousTime], |i| {
-        ffi::expect_size("fmi2SetContinuousStates", "states", n, i.n_states())?;
-        // SAFETY: FMI contract; checked for null.
-        let x = unsafe { slice(x, n, "fmi2SetContinuousStates")? };
-        i.set_states(x);
-        Ok(OK)
-    })
+    call(
+        c,
+        "fmi2SetContinuousStates",
+        &[State::ContinuousTime],
+        |i| {
+            ffi::expect_size("fmi2SetContinuousStates", "states", n, i.n_states())?;
+            // SAFETY: FMI contract; checked for null.
+            let x = unsafe { slice(x, n, "fmi2SetContinuousStates")? };
+            i.set_states(x);
+            Ok(OK)
+        },
+    )
 }
 
 /// # Safety
@@ -408,7 +548,12 @@ pub unsafe extern "C" fn fmi2GetDerivatives(c: Component, dx: *mut f64, n: usize
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetEventIndicators(c: Component, z: *mut f64, n: usize) -> Status {
     call(c, "fmi2GetEventIndicators", ME_STATES, |i| {
-        ffi::expect_size("fmi2GetEventIndicators", "event indicators", n, i.n_indicators())?;
+        ffi::expect_size(
+            "fmi2GetEventIndicators",
+            "event indicators",
+            n,
+            i.n_indicators(),
+        )?;
         // SAFETY: FMI contract; checked for null.
         let out = unsafe { slice_mut(z, n, "fmi2GetEventIndicators")? };
         i.event_indicators(out)?;
@@ -432,9 +577,18 @@ pub unsafe extern "C" fn fmi2GetContinuousStates(c: Component, x: *mut f64, n: u
 /// # Safety
 /// `x` holds `n` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: Component, x: *mut f64, n: usize) -> Status {
+pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
+    c: Component,
+    x: *mut f64,
+    n: usize,
+) -> Status {
     call(c, "fmi2GetNominalsOfContinuousStates", ANY, |i| {
-        ffi::expect_size("fmi2GetNominalsOfContinuousStates", "states", n, i.n_states())?;
+        ffi::expect_size(
+            "fmi2GetNominalsOfContinuousStates",
+            "states",
+            n,
+            i.n_states(),
+        )?;
         // SAFETY: FMI contract; checked for null.
         let out = unsafe { slice_mut(x, n, "fmi2GetNominalsOfContinuousStates")? };
         out.copy_from_slice(&i.nominals());
@@ -443,12 +597,24 @@ pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(c: Component, x: *mut
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2SetRealInputDerivatives(c: Component, _vr: *const Vr, _n: usize, _order: *const c_int, _value: *const f64) -> Status {
+pub extern "C" fn fmi2SetRealInputDerivatives(
+    c: Component,
+    _vr: *const Vr,
+    _n: usize,
+    _order: *const c_int,
+    _value: *const f64,
+) -> Status {
     ffi::unsupported(c, "fmi2SetRealInputDerivatives")
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2GetRealOutputDerivatives(c: Component, _vr: *const Vr, _n: usize, _order: *const c_int, _value: *mut f64) -> Status {
+pub extern "C" fn fmi2GetRealOutputDerivatives(
+    c: Component,
+    _vr: *const Vr,
+    _n: usize,
+    _order: *const c_int,
+    _value: *mut f64,
+) -> Status {
     ffi::unsupported(c, "fmi2GetRealOutputDerivatives")
 }
 
@@ -456,7 +622,10 @@ pub extern "C" fn fmi2GetRealOutputDerivatives(c: Component, _vr: *const Vr, _n:
 pub extern "C" fn fmi2DoStep(c: Component, t: f64, h: f64, _no_set_prior: Bool) -> Status {
     call(c, "fmi2DoStep", &[State::Step], |i| {
         if i.kind != Kind::CoSimulation {
-            return Err(crate::error::FmiError::WrongState { function: "fmi2DoStep", state: "Model Exchange" });
+            return Err(crate::error::FmiError::WrongState {
+                function: "fmi2DoStep",
+                state: "Model Exchange",
+            });
         }
         Ok(if i.do_step(t, h)? { OK } else { DISCARD })
     })
@@ -481,7 +650,9 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mu
         let out = unsafe { slice_mut(value, 1, "fmi2GetRealStatus")? };
         // fmi2LastSuccessfulTime = 2.
         if kind != 2 {
-            return Err(crate::error::FmiError::Unsupported(format!("fmi2GetRealStatus of kind {kind}")));
+            return Err(crate::error::FmiError::Unsupported(format!(
+                "fmi2GetRealStatus of kind {kind}"
+            )));
         }
         out[0] = i.time();
         Ok(OK)
@@ -496,13 +667,19 @@ pub extern "C" fn fmi2GetIntegerStatus(c: Component, _kind: c_int, _value: *mut 
 /// # Safety
 /// `value` points to a writable boolean.
 #[no_mangle]
-pub unsafe extern "C" fn fmi2GetBooleanStatus(c: Component, kind: c_int, value: *mut Bool) -> Status {
+pub unsafe extern "C" fn fmi2GetBooleanStatus(
+    c: Component,
+    kind: c_int,
+    value: *mut Bool,
+) -> Status {
     call(c, "fmi2GetBooleanStatus", ANY, |i| {
         // SAFETY: FMI contract; checked for null.
         let out = unsafe { slice_mut(value, 1, "fmi2GetBooleanStatus")? };
         // fmi2Terminated = 3.
         if kind != 3 {
-            return Err(crate::error::FmiError::Unsupported(format!("fmi2GetBooleanStatus of kind {kind}")));
+            return Err(crate::error::FmiError::Unsupported(format!(
+                "fmi2GetBooleanStatus of kind {kind}"
+            )));
         }
         out[0] = Bool::from(i.terminated);
         Ok(OK)
@@ -510,6 +687,10 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(c: Component, kind: c_int, value: 
 }
 
 #[no_mangle]
-pub extern "C" fn fmi2GetStringStatus(c: Component, _kind: c_int, _value: *mut *const c_char) -> Status {
+pub extern "C" fn fmi2GetStringStatus(
+    c: Component,
+    _kind: c_int,
+    _value: *mut *const c_char,
+) -> Status {
     ffi::unsupported(c, "fmi2GetStringStatus")
 }

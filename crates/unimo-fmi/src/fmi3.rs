@@ -5,7 +5,7 @@
 
 use crate::description::{Kind, Version};
 use crate::error::FmiError;
-use crate::ffi::{self, call, check_types, slice, slice_mut, text, Type, ANY, DISCARD, ERROR, OK};
+use crate::ffi::{self, call, check_types, slice, slice_mut, text, Type, ANY, ERROR, OK};
 use crate::instance::{resource_folder, Instance, State};
 use std::ffi::{c_char, c_int, c_void, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -35,7 +35,14 @@ fn make_logger(environment: *mut c_void, log: Option<LogFn>) -> crate::instance:
             (OK, c"logEvents")
         };
         // SAFETY: the importer's callback with valid NUL-terminated strings.
-        unsafe { log(environment as *mut c_void, status, category.as_ptr(), message.as_ptr()) };
+        unsafe {
+            log(
+                environment as *mut c_void,
+                status,
+                category.as_ptr(),
+                message.as_ptr(),
+            )
+        };
     })
 }
 
@@ -85,12 +92,22 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     log: Option<LogFn>,
 ) -> Inst {
     // SAFETY: forwarded contract.
-    unsafe { instantiate(Kind::ModelExchange, name, token, resource_path, environment, log) }
+    unsafe {
+        instantiate(
+            Kind::ModelExchange,
+            name,
+            token,
+            resource_path,
+            environment,
+            log,
+        )
+    }
 }
 
 /// # Safety
 /// FMI 3.0: strings NUL-terminated.
 #[no_mangle]
+#[allow(clippy::too_many_arguments)] // the FMI 3.0 signature
 pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     name: *const c_char,
     token: *const c_char,
@@ -106,7 +123,16 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     _intermediate_update: *const c_void,
 ) -> Inst {
     // SAFETY: forwarded contract.
-    unsafe { instantiate(Kind::CoSimulation, name, token, resource_path, environment, log) }
+    unsafe {
+        instantiate(
+            Kind::CoSimulation,
+            name,
+            token,
+            resource_path,
+            environment,
+            log,
+        )
+    }
 }
 
 #[no_mangle]
@@ -126,7 +152,12 @@ pub extern "C" fn fmi3FreeInstance(instance: Inst) {
 }
 
 #[no_mangle]
-pub extern "C" fn fmi3SetDebugLogging(instance: Inst, _on: bool, _n: usize, _categories: *const *const c_char) -> Status {
+pub extern "C" fn fmi3SetDebugLogging(
+    instance: Inst,
+    _on: bool,
+    _n: usize,
+    _categories: *const *const c_char,
+) -> Status {
     call(instance, "fmi3SetDebugLogging", ANY, |_| Ok(OK))
 }
 
@@ -139,28 +170,47 @@ pub extern "C" fn fmi3EnterInitializationMode(
     stop_defined: bool,
     stop: f64,
 ) -> Status {
-    call(instance, "fmi3EnterInitializationMode", &[State::Instantiated], |i| {
-        i.setup(tolerance_defined.then_some(tolerance), start, stop_defined.then_some(stop));
-        i.set_time(start);
-        i.state = State::Initialization;
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3EnterInitializationMode",
+        &[State::Instantiated],
+        |i| {
+            i.setup(
+                tolerance_defined.then_some(tolerance),
+                start,
+                stop_defined.then_some(stop),
+            );
+            i.set_time(start);
+            i.state = State::Initialization;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi3ExitInitializationMode(instance: Inst) -> Status {
-    call(instance, "fmi3ExitInitializationMode", &[State::Initialization], |i| {
-        i.exit_initialization()?;
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3ExitInitializationMode",
+        &[State::Initialization],
+        |i| {
+            i.exit_initialization()?;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi3Terminate(instance: Inst) -> Status {
-    call(instance, "fmi3Terminate", &[State::Event, State::ContinuousTime, State::Step], |i| {
-        i.terminate()?;
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3Terminate",
+        &[State::Event, State::ContinuousTime, State::Step],
+        |i| {
+            i.terminate()?;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
@@ -172,7 +222,15 @@ pub extern "C" fn fmi3Reset(instance: Inst) -> Status {
 }
 
 /// A get of `n` values of type `want` into `out`.
-fn get_values(instance: Inst, function: &'static str, refs: *const Vr, n: usize, n_values: usize, want: Type, out: &mut dyn FnMut(usize, f64)) -> Status {
+fn get_values(
+    instance: Inst,
+    function: &'static str,
+    refs: *const Vr,
+    n: usize,
+    n_values: usize,
+    want: Type,
+    out: &mut dyn FnMut(usize, f64),
+) -> Status {
     call(instance, function, ANY, |i| {
         ffi::expect_size(function, "values", n_values, n)?;
         // SAFETY: `refs` holds `n` references (FMI contract).
@@ -185,7 +243,15 @@ fn get_values(instance: Inst, function: &'static str, refs: *const Vr, n: usize,
     })
 }
 
-fn set_values(instance: Inst, function: &'static str, refs: *const Vr, n: usize, n_values: usize, want: Type, values: &dyn Fn(usize) -> f64) -> Status {
+fn set_values(
+    instance: Inst,
+    function: &'static str,
+    refs: *const Vr,
+    n: usize,
+    n_values: usize,
+    want: Type,
+    values: &dyn Fn(usize) -> f64,
+) -> Status {
     call(instance, function, ANY, |i| {
         ffi::expect_size(function, "values", n_values, n)?;
         // SAFETY: as in `get_values`.
@@ -200,63 +266,164 @@ fn set_values(instance: Inst, function: &'static str, refs: *const Vr, n: usize,
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetFloat64(instance: Inst, vr: *const Vr, n: usize, values: *mut f64, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3GetFloat64(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *mut f64,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetFloat64") }) else { return ERROR };
-    get_values(instance, "fmi3GetFloat64", vr, n, out.len(), Type::Real, &mut |k, v| out[k] = v)
+    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetFloat64") }) else {
+        return ERROR;
+    };
+    get_values(
+        instance,
+        "fmi3GetFloat64",
+        vr,
+        n,
+        out.len(),
+        Type::Real,
+        &mut |k, v| out[k] = v,
+    )
 }
 
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt32(instance: Inst, vr: *const Vr, n: usize, values: *mut i32, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3GetInt32(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *mut i32,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetInt32") }) else { return ERROR };
-    get_values(instance, "fmi3GetInt32", vr, n, out.len(), Type::Integer, &mut |k, v| out[k] = v as i32)
+    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetInt32") }) else {
+        return ERROR;
+    };
+    get_values(
+        instance,
+        "fmi3GetInt32",
+        vr,
+        n,
+        out.len(),
+        Type::Integer,
+        &mut |k, v| out[k] = v as i32,
+    )
 }
 
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetBoolean(instance: Inst, vr: *const Vr, n: usize, values: *mut bool, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3GetBoolean(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *mut bool,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetBoolean") }) else { return ERROR };
-    get_values(instance, "fmi3GetBoolean", vr, n, out.len(), Type::Boolean, &mut |k, v| out[k] = v != 0.0)
+    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetBoolean") }) else {
+        return ERROR;
+    };
+    get_values(
+        instance,
+        "fmi3GetBoolean",
+        vr,
+        n,
+        out.len(),
+        Type::Boolean,
+        &mut |k, v| out[k] = v != 0.0,
+    )
 }
 
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetFloat64(instance: Inst, vr: *const Vr, n: usize, values: *const f64, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3SetFloat64(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *const f64,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetFloat64") }) else { return ERROR };
-    set_values(instance, "fmi3SetFloat64", vr, n, v.len(), Type::Real, &|k| v[k])
+    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetFloat64") }) else {
+        return ERROR;
+    };
+    set_values(
+        instance,
+        "fmi3SetFloat64",
+        vr,
+        n,
+        v.len(),
+        Type::Real,
+        &|k| v[k],
+    )
 }
 
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt32(instance: Inst, vr: *const Vr, n: usize, values: *const i32, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3SetInt32(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *const i32,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetInt32") }) else { return ERROR };
-    set_values(instance, "fmi3SetInt32", vr, n, v.len(), Type::Integer, &|k| f64::from(v[k]))
+    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetInt32") }) else {
+        return ERROR;
+    };
+    set_values(
+        instance,
+        "fmi3SetInt32",
+        vr,
+        n,
+        v.len(),
+        Type::Integer,
+        &|k| f64::from(v[k]),
+    )
 }
 
 /// # Safety
 /// `vr` holds `n` references, `values` `n_values` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetBoolean(instance: Inst, vr: *const Vr, n: usize, values: *const bool, n_values: usize) -> Status {
+pub unsafe extern "C" fn fmi3SetBoolean(
+    instance: Inst,
+    vr: *const Vr,
+    n: usize,
+    values: *const bool,
+    n_values: usize,
+) -> Status {
     // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetBoolean") }) else { return ERROR };
-    set_values(instance, "fmi3SetBoolean", vr, n, v.len(), Type::Boolean, &|k| f64::from(u8::from(v[k])))
+    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetBoolean") }) else {
+        return ERROR;
+    };
+    set_values(
+        instance,
+        "fmi3SetBoolean",
+        vr,
+        n,
+        v.len(),
+        Type::Boolean,
+        &|k| f64::from(u8::from(v[k])),
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi3EnterEventMode(instance: Inst) -> Status {
-    call(instance, "fmi3EnterEventMode", &[State::ContinuousTime, State::Step], |i| {
-        i.enter_event_mode();
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3EnterEventMode",
+        &[State::ContinuousTime, State::Step],
+        |i| {
+            i.enter_event_mode();
+            Ok(OK)
+        },
+    )
 }
 
 /// Writes `value` through a pointer checked for null.
@@ -294,24 +461,39 @@ pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
 
 #[no_mangle]
 pub extern "C" fn fmi3EnterContinuousTimeMode(instance: Inst) -> Status {
-    call(instance, "fmi3EnterContinuousTimeMode", &[State::Event], |i| {
-        i.state = State::ContinuousTime;
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3EnterContinuousTimeMode",
+        &[State::Event],
+        |i| {
+            i.state = State::ContinuousTime;
+            Ok(OK)
+        },
+    )
 }
 
 #[no_mangle]
 pub extern "C" fn fmi3EnterStepMode(instance: Inst) -> Status {
-    call(instance, "fmi3EnterStepMode", &[State::Event, State::Step], |i| {
-        i.state = State::Step;
-        Ok(OK)
-    })
+    call(
+        instance,
+        "fmi3EnterStepMode",
+        &[State::Event, State::Step],
+        |i| {
+            i.state = State::Step;
+            Ok(OK)
+        },
+    )
 }
 
 /// # Safety
 /// The two flags writable.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3CompletedIntegratorStep(instance: Inst, _no_set_prior: bool, enter_event_mode: *mut bool, terminate: *mut bool) -> Status {
+pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
+    instance: Inst,
+    _no_set_prior: bool,
+    enter_event_mode: *mut bool,
+    terminate: *mut bool,
+) -> Status {
     let f = "fmi3CompletedIntegratorStep";
     call(instance, f, &[State::ContinuousTime], |_| {
         put(enter_event_mode, false, f)?;
@@ -331,7 +513,11 @@ pub extern "C" fn fmi3SetTime(instance: Inst, time: f64) -> Status {
 /// # Safety
 /// `x` holds `n` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3SetContinuousStates(instance: Inst, x: *const f64, n: usize) -> Status {
+pub unsafe extern "C" fn fmi3SetContinuousStates(
+    instance: Inst,
+    x: *const f64,
+    n: usize,
+) -> Status {
     let f = "fmi3SetContinuousStates";
     call(instance, f, &[State::ContinuousTime], |i| {
         ffi::expect_size(f, "states", n, i.n_states())?;
@@ -343,7 +529,15 @@ pub unsafe extern "C" fn fmi3SetContinuousStates(instance: Inst, x: *const f64, 
 }
 
 /// The array getters of Model Exchange: `what` fills `n` values.
-fn get_array(instance: Inst, f: &'static str, allowed: &[State], p: *mut f64, n: usize, expected: fn(&Instance) -> usize, what: fn(&mut Instance, &mut [f64]) -> Result<(), FmiError>) -> Status {
+fn get_array(
+    instance: Inst,
+    f: &'static str,
+    allowed: &[State],
+    p: *mut f64,
+    n: usize,
+    expected: fn(&Instance) -> usize,
+    what: fn(&mut Instance, &mut [f64]) -> Result<(), FmiError>,
+) -> Status {
     call(instance, f, allowed, |i| {
         ffi::expect_size(f, "values", n, expected(i))?;
         // SAFETY: FMI contract; checked for null.
@@ -356,35 +550,75 @@ fn get_array(instance: Inst, f: &'static str, allowed: &[State], p: *mut f64, n:
 /// # Safety
 /// `dx` holds `n` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(instance: Inst, dx: *mut f64, n: usize) -> Status {
-    get_array(instance, "fmi3GetContinuousStateDerivatives", ME_STATES, dx, n, Instance::n_states, Instance::derivatives)
+pub unsafe extern "C" fn fmi3GetContinuousStateDerivatives(
+    instance: Inst,
+    dx: *mut f64,
+    n: usize,
+) -> Status {
+    get_array(
+        instance,
+        "fmi3GetContinuousStateDerivatives",
+        ME_STATES,
+        dx,
+        n,
+        Instance::n_states,
+        Instance::derivatives,
+    )
 }
 
 /// # Safety
 /// `z` holds `n` values.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetEventIndicators(instance: Inst, z: *mut f64, n: usize) -> Status {
-    get_array(instance, "fmi3GetEventIndicators", ME_STATES, z, n, Instance::n_indicators, Instance::event_indicators)
+    get_array(
+        instance,
+        "fmi3GetEventIndicators",
+        ME_STATES,
+        z,
+        n,
+        Instance::n_indicators,
+        Instance::event_indicators,
+    )
 }
 
 /// # Safety
 /// `x` holds `n` values.
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetContinuousStates(instance: Inst, x: *mut f64, n: usize) -> Status {
-    get_array(instance, "fmi3GetContinuousStates", ANY, x, n, Instance::n_states, |i, out| {
-        out.copy_from_slice(&i.states());
-        Ok(())
-    })
+    get_array(
+        instance,
+        "fmi3GetContinuousStates",
+        ANY,
+        x,
+        n,
+        Instance::n_states,
+        |i, out| {
+            out.copy_from_slice(&i.states());
+            Ok(())
+        },
+    )
 }
 
 /// # Safety
 /// `x` holds `n` values.
 #[no_mangle]
-pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(instance: Inst, x: *mut f64, n: usize) -> Status {
-    get_array(instance, "fmi3GetNominalsOfContinuousStates", ANY, x, n, Instance::n_states, |i, out| {
-        out.copy_from_slice(&i.nominals());
-        Ok(())
-    })
+pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(
+    instance: Inst,
+    x: *mut f64,
+    n: usize,
+) -> Status {
+    get_array(
+        instance,
+        "fmi3GetNominalsOfContinuousStates",
+        ANY,
+        x,
+        n,
+        Instance::n_states,
+        |i, out| {
+            out.copy_from_slice(&i.nominals());
+            Ok(())
+        },
+    )
 }
 
 /// # Safety
@@ -392,7 +626,9 @@ pub unsafe extern "C" fn fmi3GetNominalsOfContinuousStates(instance: Inst, x: *m
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetNumberOfEventIndicators(instance: Inst, n: *mut usize) -> Status {
     let f = "fmi3GetNumberOfEventIndicators";
-    call(instance, f, ANY, |i| put(n, i.n_indicators(), f).map(|_| OK))
+    call(instance, f, ANY, |i| {
+        put(n, i.n_indicators(), f).map(|_| OK)
+    })
 }
 
 /// # Safety
@@ -406,6 +642,7 @@ pub unsafe extern "C" fn fmi3GetNumberOfContinuousStates(instance: Inst, n: *mut
 /// # Safety
 /// Every pointer writable.
 #[no_mangle]
+#[allow(clippy::too_many_arguments)] // the FMI 3.0 signature
 pub unsafe extern "C" fn fmi3DoStep(
     instance: Inst,
     t: f64,
@@ -419,14 +656,18 @@ pub unsafe extern "C" fn fmi3DoStep(
     let f = "fmi3DoStep";
     call(instance, f, &[State::Step], |i| {
         if i.kind != Kind::CoSimulation {
-            return Err(FmiError::WrongState { function: f, state: "Model Exchange" });
+            return Err(FmiError::WrongState {
+                function: f,
+                state: "Model Exchange",
+            });
         }
         let going = i.do_step(t, h)?;
         put(event_handling_needed, false, f)?;
         put(terminate, !going, f)?;
         put(early_return, false, f)?;
         put(last_successful_time, i.time(), f)?;
-        Ok(if going { OK } else { DISCARD })
+        // FMI 3.0: a model that terminated ends its step with `terminateSimulation`.
+        Ok(OK)
     })
 }
 
@@ -445,16 +686,49 @@ macro_rules! not_provided {
 }
 
 not_provided!(
-    fmi3ActivateModelPartition, fmi3DeserializeFMUState, fmi3EnterConfigurationMode,
-    fmi3EvaluateDiscreteStates, fmi3ExitConfigurationMode, fmi3FreeFMUState,
-    fmi3GetAdjointDerivative, fmi3GetBinary, fmi3GetClock, fmi3GetDirectionalDerivative,
-    fmi3GetFMUState, fmi3GetFloat32, fmi3GetInt16, fmi3GetInt64, fmi3GetInt8,
-    fmi3GetIntervalDecimal, fmi3GetIntervalFraction, fmi3GetNumberOfVariableDependencies,
-    fmi3GetOutputDerivatives, fmi3GetShiftDecimal, fmi3GetShiftFraction, fmi3GetString,
-    fmi3GetUInt16, fmi3GetUInt32, fmi3GetUInt64, fmi3GetUInt8, fmi3GetVariableDependencies,
-    fmi3SerializeFMUState, fmi3SerializedFMUStateSize, fmi3SetBinary, fmi3SetClock,
-    fmi3SetFMUState, fmi3SetFloat32, fmi3SetInt16, fmi3SetInt64, fmi3SetInt8,
-    fmi3SetIntervalDecimal, fmi3SetIntervalFraction, fmi3SetShiftDecimal,
-    fmi3SetShiftFraction, fmi3SetString, fmi3SetUInt16, fmi3SetUInt32, fmi3SetUInt64,
+    fmi3ActivateModelPartition,
+    fmi3DeserializeFMUState,
+    fmi3EnterConfigurationMode,
+    fmi3EvaluateDiscreteStates,
+    fmi3ExitConfigurationMode,
+    fmi3FreeFMUState,
+    fmi3GetAdjointDerivative,
+    fmi3GetBinary,
+    fmi3GetClock,
+    fmi3GetDirectionalDerivative,
+    fmi3GetFMUState,
+    fmi3GetFloat32,
+    fmi3GetInt16,
+    fmi3GetInt64,
+    fmi3GetInt8,
+    fmi3GetIntervalDecimal,
+    fmi3GetIntervalFraction,
+    fmi3GetNumberOfVariableDependencies,
+    fmi3GetOutputDerivatives,
+    fmi3GetShiftDecimal,
+    fmi3GetShiftFraction,
+    fmi3GetString,
+    fmi3GetUInt16,
+    fmi3GetUInt32,
+    fmi3GetUInt64,
+    fmi3GetUInt8,
+    fmi3GetVariableDependencies,
+    fmi3SerializeFMUState,
+    fmi3SerializedFMUStateSize,
+    fmi3SetBinary,
+    fmi3SetClock,
+    fmi3SetFMUState,
+    fmi3SetFloat32,
+    fmi3SetInt16,
+    fmi3SetInt64,
+    fmi3SetInt8,
+    fmi3SetIntervalDecimal,
+    fmi3SetIntervalFraction,
+    fmi3SetShiftDecimal,
+    fmi3SetShiftFraction,
+    fmi3SetString,
+    fmi3SetUInt16,
+    fmi3SetUInt32,
+    fmi3SetUInt64,
     fmi3SetUInt8,
 );

@@ -106,7 +106,11 @@ pub fn resource_folder(location: &str) -> std::path::PathBuf {
     let mut k = 0;
     while k < raw.len() {
         let hex = |b: u8| (b as char).to_digit(16);
-        match (raw[k], raw.get(k + 1).and_then(|&b| hex(b)), raw.get(k + 2).and_then(|&b| hex(b))) {
+        match (
+            raw[k],
+            raw.get(k + 1).and_then(|&b| hex(b)),
+            raw.get(k + 2).and_then(|&b| hex(b)),
+        ) {
             (b'%', Some(h), Some(l)) => {
                 bytes.push((h * 16 + l) as u8);
                 k += 3;
@@ -238,9 +242,15 @@ impl Instance {
         for &vr in refs {
             self.check_reference(function, vr)?;
         }
-        let evaluating = matches!(self.state, State::Event | State::ContinuousTime | State::Step);
+        let evaluating = matches!(
+            self.state,
+            State::Event | State::ContinuousTime | State::Step
+        );
         if evaluating {
-            self.running.stepper.evaluate().map_err(|e| FmiError::simulation(&e))?;
+            self.running
+                .stepper
+                .evaluate()
+                .map_err(|e| FmiError::simulation(&e))?;
         }
         let n = self.compiled().variables.len() as u32;
         let mut indicators = Vec::new();
@@ -252,7 +262,9 @@ impl Instance {
         Ok(refs
             .iter()
             .map(|&vr| match vr.cmp(&n) {
-                std::cmp::Ordering::Less => self.overridden(vr).unwrap_or_else(|| stepper.registers()[vr as usize]),
+                std::cmp::Ordering::Less => self
+                    .overridden(vr)
+                    .unwrap_or_else(|| stepper.registers()[vr as usize]),
                 std::cmp::Ordering::Equal => stepper.time(),
                 std::cmp::Ordering::Greater => indicators[(vr - n - 1) as usize],
             })
@@ -265,11 +277,19 @@ impl Instance {
             return None;
         }
         let name = &self.compiled().variables[vr as usize].name;
-        self.parameters.iter().find(|(n, _, _)| n == name).map(|p| p.2)
+        self.parameters
+            .iter()
+            .find(|(n, _, _)| n == name)
+            .map(|p| p.2)
     }
 
     /// Sets parameters (before the end of initialization) and inputs.
-    pub fn set(&mut self, function: &'static str, refs: &[u32], values: &[f64]) -> Result<(), FmiError> {
+    pub fn set(
+        &mut self,
+        function: &'static str,
+        refs: &[u32],
+        values: &[f64],
+    ) -> Result<(), FmiError> {
         for (&vr, &value) in refs.iter().zip(values) {
             self.check_reference(function, vr)?;
             let Some(v) = self.compiled().variables.get(vr as usize) else {
@@ -331,7 +351,10 @@ impl Instance {
     }
 
     pub fn derivatives(&mut self, out: &mut [f64]) -> Result<(), FmiError> {
-        self.running.stepper.derivatives(out).map_err(|e| FmiError::simulation(&e))
+        self.running
+            .stepper
+            .derivatives(out)
+            .map_err(|e| FmiError::simulation(&e))
     }
 
     pub fn event_indicators(&mut self, out: &mut [f64]) -> Result<(), FmiError> {
@@ -378,7 +401,7 @@ impl Instance {
     /// model terminated inside it.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<bool, FmiError> {
         let now = self.running.stepper.time();
-        if (t - now).abs() > 1e-9 * now.abs().max(1.0) || !(h >= 0.0) {
+        if (t - now).abs() > 1e-9 * now.abs().max(1.0) || h.is_nan() || h < 0.0 {
             return Err(FmiError::BadArgument {
                 function: "doStep",
                 message: format!(
@@ -405,8 +428,14 @@ impl Instance {
 
     /// The end of the run: the terminal event (`when terminal()`).
     pub fn terminate(&mut self) -> Result<(), FmiError> {
-        let result = if matches!(self.state, State::Event | State::ContinuousTime | State::Step) {
-            self.running.stepper.terminal().map_err(|e| FmiError::simulation(&e))
+        let result = if matches!(
+            self.state,
+            State::Event | State::ContinuousTime | State::Step
+        ) {
+            self.running
+                .stepper
+                .terminal()
+                .map_err(|e| FmiError::simulation(&e))
         } else {
             Ok(())
         };

@@ -76,9 +76,10 @@ fn flatten(text: &str, modifiers: &[(String, Expr)]) -> Result<FlatModel, FmiErr
             .map(|(p, t)| (p.to_string(), t.to_string())),
     );
     let mut tree = ClassTree::new(&provider);
-    let id = tree
-        .sources
-        .add(std::path::PathBuf::from("resources/model.mo"), text.to_owned());
+    let id = tree.sources.add(
+        std::path::PathBuf::from("resources/model.mo"),
+        text.to_owned(),
+    );
     let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
     if parsed.has_errors() {
         return Err(FmiError::Model(diagnostics_text(&parsed.diagnostics)));
@@ -193,9 +194,7 @@ pub fn variables(dae: &Dae, flat: &FlatModel, model: &CompiledModel) -> Vec<Vari
         .map(|s| {
             let scalar = dae.scalar(s);
             let name = plain(&scalar.name);
-            let flat_var = by_name
-                .get(flat_name(&name))
-                .map(|&k| &flat.vars[k]);
+            let flat_var = by_name.get(flat_name(&name)).map(|&k| &flat.vars[k]);
             let output = flat_var.is_some_and(|v| {
                 v.top_level && v.causality == Some(unimo_syntax::ast::Causality::Output)
             });

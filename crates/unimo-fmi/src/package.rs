@@ -40,8 +40,13 @@ pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
             "models with a collision world (their contact set changes at events our solver locates) are not exported yet".into(),
         ));
     }
-    let options = SimOptions::resolve(&compiled.dae.experiment, &Default::default(), Method::Auto, false)
-        .map_err(FmiError::Model)?;
+    let options = SimOptions::resolve(
+        &compiled.dae.experiment,
+        &Default::default(),
+        Method::Auto,
+        false,
+    )
+    .map_err(FmiError::Model)?;
     let starts = {
         let mut stepper = Stepper::new(&compiled.model, options.clone());
         stepper.initialize().map_err(|e| FmiError::simulation(&e))?;
@@ -68,8 +73,9 @@ pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
         experiment: (options.start, options.stop, options.rtol, options.interval),
     };
     let xml = description::write(&header, &compiled);
-    let library = std::fs::read(r.library)
-        .map_err(|e| FmiError::LibraryMissing(format!("cannot read {}: {e}", r.library.display())))?;
+    let library = std::fs::read(r.library).map_err(|e| {
+        FmiError::LibraryMissing(format!("cannot read {}: {e}", r.library.display()))
+    })?;
     // FMI 2.0 names the platform `linux64`, FMI 3.0 by its tuple.
     let platform = match r.version {
         Version::Fmi2 => "linux64",
@@ -97,7 +103,11 @@ fn crc32(data: &[u8]) -> u32 {
     for &b in data {
         crc ^= u32::from(b);
         for _ in 0..8 {
-            crc = if crc & 1 != 0 { (crc >> 1) ^ 0xedb8_8320 } else { crc >> 1 };
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
         }
     }
     !crc

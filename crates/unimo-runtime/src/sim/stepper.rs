@@ -5,8 +5,8 @@
 
 use super::run::Integration;
 use super::{after_crossing, crossings, Crossed, SimError, SimOptions, Simulator};
-use unimo_dae::expr::RelOp;
 use crate::model::CompiledModel;
+use unimo_dae::expr::RelOp;
 use unimo_solve::newton::NewtonTolerance;
 use unimo_solve::{Direction, Solver, StopReason, System};
 
@@ -86,7 +86,10 @@ impl<'a> Stepper<'a> {
     /// The model's states (without the clock state of a model that has none).
     pub fn states(&self) -> Vec<f64> {
         let m = self.model();
-        m.states.iter().map(|&r| self.sim.ode.regs[r as usize]).collect()
+        m.states
+            .iter()
+            .map(|&r| self.sim.ode.regs[r as usize])
+            .collect()
     }
 
     pub fn set_states(&mut self, x: &[f64]) {
@@ -103,7 +106,8 @@ impl<'a> Stepper<'a> {
         if self.dirty {
             self.sim.eval_plan()?;
             let m = self.model();
-            m.alias_tape.run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
+            m.alias_tape
+                .run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
             self.dirty = false;
         }
         Ok(())
@@ -135,14 +139,20 @@ impl<'a> Stepper<'a> {
                 culprits: Vec::new(),
             })?;
         let m = self.model();
-        m.alias_tape.run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
+        m.alias_tape
+            .run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
         self.dirty = false;
         Ok(())
     }
 
     /// The next sample instant, if any.
     pub fn next_time_event(&self) -> Option<f64> {
-        let next = self.sim.sample_next.iter().copied().fold(f64::INFINITY, f64::min);
+        let next = self
+            .sim
+            .sample_next
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
         next.is_finite().then_some(next)
     }
 
@@ -154,7 +164,9 @@ impl<'a> Stepper<'a> {
         let t = self.time();
         let before = self.states();
         let crossed = self.crossed()?;
-        let sample_due = self.next_time_event().is_some_and(|s| s <= t * (1.0 + 1e-15) + 1e-300);
+        let sample_due = self
+            .next_time_event()
+            .is_some_and(|s| s <= t * (1.0 + 1e-15) + 1e-300);
         if sample_due {
             self.sim.sample_event(t, None)?;
         }
@@ -178,7 +190,8 @@ impl<'a> Stepper<'a> {
     /// no result rows kept (the caller reads the registers).
     fn finish_event(&mut self) -> Result<(), SimError> {
         let m = self.model();
-        m.alias_tape.run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
+        m.alias_tape
+            .run(&mut self.sim.ode.regs, &mut self.sim.ode.ev);
         self.sim.result.times.clear();
         self.sim.result.rows.clear();
         if let Some(e) = self.sim.take_non_finite(None) {
@@ -191,8 +204,20 @@ impl<'a> Stepper<'a> {
             if *gk == 0.0 && m.relation_held[k] {
                 let held = self.sim.ode.ev.relations[k] != 0.0;
                 *gk = match m.root_ops[k] {
-                    RelOp::Lt | RelOp::Le => if held { -1.0 } else { 1.0 },
-                    RelOp::Gt | RelOp::Ge => if held { 1.0 } else { -1.0 },
+                    RelOp::Lt | RelOp::Le => {
+                        if held {
+                            -1.0
+                        } else {
+                            1.0
+                        }
+                    }
+                    RelOp::Gt | RelOp::Ge => {
+                        if held {
+                            1.0
+                        } else {
+                            -1.0
+                        }
+                    }
                     RelOp::Eq | RelOp::Ne => 0.0,
                 };
             }
