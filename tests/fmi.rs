@@ -127,7 +127,6 @@ fn python(script: &str, args: &[&str], more: &[&str]) -> String {
 // same tolerance. Tolerances are about ten times the errors measured (docs/fmi.md).
 const TIGHT_SIMULATE: &[&str] = &["--tolerance", "1e-10"];
 const TIGHT_ME: &[&str] = &["rtol=1e-9"];
-const TIGHT_CS: &[&str] = &["rtol=1e-10"];
 
 const BALL: Case = Case {
     stem: "ball",
