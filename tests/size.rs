@@ -16,6 +16,7 @@ const ENFORCED: &[&str] = &[
     "unimo-cli",
     "unimo-codegen",
     "unimo-dae",
+    "unimo-fmi",
     "unimo-flat",
     "unimo-geometry",
     "unimo-python",

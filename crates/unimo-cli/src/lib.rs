@@ -8,6 +8,7 @@ pub mod animate;
 pub mod api;
 mod bench;
 mod check;
+pub mod fmu;
 mod params;
 pub mod plot;
 mod provider;
@@ -156,6 +157,17 @@ enum Command {
     /// Example: `unimo plot result.csv --vars t --x time -o time.svg`.
     Plot(plot::PlotArgs),
     Animate(animate::command::AnimateArgs),
+    /// Export a model as an FMU (FMI 2.0 or 3.0, Model Exchange or Co-Simulation).
+    ///
+    /// The FMU holds `modelDescription.xml` (every variable with causality,
+    /// variability, initial, start, unit and description; derivatives, event
+    /// indicators, model structure), the flat model in `resources/model.mo` and the
+    /// shared library `binaries/<platform>/<id>.so`, which compiles the model at
+    /// instantiation and runs it on unimo's runtime. The library is `libunimo_fmi.so`
+    /// next to the `unimo` executable (or `UNIMO_FMI_LIBRARY`). See docs/fmi.md.
+    ///
+    /// Example: `unimo fmu models/BouncingBall.mo --fmi 2 --kind me -o BouncingBall.fmu`.
+    Fmu(fmu::FmuArgs),
     /// Print an intermediate representation of a model.
     ///
     /// Stages in pipeline order: `ast` (syntax tree of the first file), `flat` (as
@@ -442,6 +454,7 @@ fn run_on_this_thread() -> i32 {
         Command::Sweep(args) => sweep::command(&args),
         Command::Plot(args) => plot::plot(&args),
         Command::Animate(args) => animate::command::command(&args),
+        Command::Fmu(args) => fmu::command(&args),
         Command::Emit {
             stage,
             files,

@@ -14,6 +14,7 @@ mod crossings;
 mod events;
 mod init;
 mod run;
+pub mod stepper;
 
 /// Internal steps of one simulation before it is stopped.
 const MAX_STEPS: u64 = 20_000_000;

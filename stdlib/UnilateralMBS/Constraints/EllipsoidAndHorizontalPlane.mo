@@ -32,4 +32,6 @@ equation
   gap = (rPB - rPA)*nA;
   mu = gap*support/2;
   lambda = support/2;
+  // Drawn by `unimo animate` (docs/animation.md): the plane y = 0 of body A.
+  annotation(__unimo_visual(shape = "plane", normal = {0, 1, 0}, position = InPortA.r, rotation = InPortA.T));
 end EllipsoidAndHorizontalPlane;

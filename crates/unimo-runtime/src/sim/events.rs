@@ -244,7 +244,7 @@ impl Simulator<'_> {
         t: f64,
         x: &[f64],
         components: &[(usize, Direction)],
-        solver: &mut Solver,
+        mut solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
         self.load_state(t, x)?;
         self.record(t);
@@ -265,12 +265,13 @@ impl Simulator<'_> {
             })
             .collect::<Vec<_>>()
             .join(", ");
-        self.after_event(t, what, components.first().map(|c| c.0), solver)?;
+        let first = components.first().map(|c| c.0);
+        self.after_event(t, what, first, solver.as_deref_mut())?;
         let mut settled = self.settle_relations(t, components);
         if settled.fires {
             // The relations just after t make a `when` condition true: it fires now.
             let what = "settled relations".to_string();
-            self.after_event(t, what, components.first().map(|c| c.0), solver)?;
+            self.after_event(t, what, first, solver)?;
             settled = self.settle_relations(t, components);
             if settled.fires {
                 // Keep the baseline consistent; the next crossing decides.
@@ -297,7 +298,11 @@ impl Simulator<'_> {
         Ok(())
     }
 
-    pub(super) fn sample_event(&mut self, t: f64, solver: &mut Solver) -> Result<(), SimError> {
+    pub(super) fn sample_event(
+        &mut self,
+        t: f64,
+        solver: Option<&mut Solver>,
+    ) -> Result<(), SimError> {
         let m = self.m();
         let mut due = Vec::new();
         for (k, next) in self.sample_next.iter_mut().enumerate() {
@@ -340,7 +345,7 @@ impl Simulator<'_> {
         t: f64,
         what: String,
         crossing: Option<usize>,
-        solver: &mut Solver,
+        solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
         self.event_iteration(t, false)?;
         self.result.stats.events += 1;
@@ -368,8 +373,13 @@ impl Simulator<'_> {
         self.record(t);
         let x = self.states();
         self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
-        solver
-            .reset(&mut self.ode, t, &x)
-            .map_err(|e| self.solver_error(e))
+        // Without a solver (an FMU's Model Exchange: the importer integrates), the
+        // importer restarts its own after the event.
+        match solver {
+            Some(solver) => solver
+                .reset(&mut self.ode, t, &x)
+                .map_err(|e| self.solver_error(e)),
+            None => Ok(()),
+        }
     }
 }

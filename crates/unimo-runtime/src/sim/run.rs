@@ -7,15 +7,15 @@ use unimo_solve::newton::NewtonTolerance;
 use unimo_solve::{Direction, Options, SolveError, Solver, StopReason, System};
 
 /// The integration loop's state between its steps.
-struct Integration<'o> {
-    o: &'o SimOptions,
+pub(super) struct Integration<'o> {
+    pub(super) o: &'o SimOptions,
     /// The step cap of the options (the collision world may lower it further).
-    max_step: f64,
+    pub(super) max_step: f64,
     /// The next output grid point.
-    next_output: usize,
+    pub(super) next_output: usize,
     /// Interpolated states.
-    buf: Vec<f64>,
-    steps_taken: u64,
+    pub(super) buf: Vec<f64>,
+    pub(super) steps_taken: u64,
 }
 
 impl Integration<'_> {
@@ -121,7 +121,7 @@ impl Simulator<'_> {
 
     /// The solver's options: the tolerances (the absolute one scaled by the states'
     /// nominal values) and the largest step.
-    fn solver_options(&self, o: &SimOptions) -> Options {
+    pub(super) fn solver_options(&self, o: &SimOptions) -> Options {
         let m = self.m();
         let mut options = Options::with_tolerances(o.rtol, o.atol);
         if !m.states.is_empty() {
@@ -182,7 +182,7 @@ impl Simulator<'_> {
 
     /// The solver's step towards the stop time or the next sample instant, stopped at
     /// a crossing the root search missed: (previous time, time reached, why).
-    fn advance(
+    pub(super) fn advance(
         &mut self,
         solver: &mut Solver,
         run: &mut Integration<'_>,
@@ -258,7 +258,7 @@ impl Simulator<'_> {
         if now >= o.stop {
             // A sample instant at the stop time is an event like any other.
             if t_event <= now {
-                self.sample_event(now, solver)?;
+                self.sample_event(now, Some(solver))?;
             }
             if self.result.times.last() != Some(&now) {
                 self.record(now);
@@ -267,12 +267,12 @@ impl Simulator<'_> {
             return Ok(false);
         }
         // A sample instant.
-        self.sample_event(now, solver)?;
+        self.sample_event(now, Some(solver))?;
         Ok(true)
     }
 
     /// A zero crossing at `t`: the state event. Ok(false): the model terminated.
-    fn root_stop(
+    pub(super) fn root_stop(
         &mut self,
         solver: &mut Solver,
         run: &mut Integration<'_>,
@@ -284,7 +284,7 @@ impl Simulator<'_> {
             // A crossing the driver found inside the step.
             let _ = solver.interpolate(t, &mut x);
         }
-        self.state_event(t, &x, components, solver)?;
+        self.state_event(t, &x, components, Some(solver))?;
         if self.m().collision.is_some() {
             let x = solver.state().to_vec();
             self.commit_collision(solver.current_time(), &x)?;
