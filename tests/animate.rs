@@ -94,7 +94,7 @@ fn paper_a_draws_the_ellipsoid_and_the_plane_with_its_semi_axes() {
     let page = animate(&csv, "models/FlySlideRoll.mo", &scratch("fly.html"), &short);
     let d = data(&page);
     assert!(d.contains("\"name\":\"FlySlideRollBody\",\"class\":\"UnilateralMBS.Bodies.HeavyEllipsoidBody\",\"shape\":\"ellipsoid\",\"size\":[1,0.7,1.2]"), "{}", &d[..d.len().min(2000)]);
-    assert!(d.contains("\"name\":\"ConstraintSurfaces\",\"class\":\"UnilateralMBS.Constraints.EllipsoidAndHorizontalPlaneDifferential\",\"shape\":\"plane\",\"size\":[0,0,0],\"normal\":[0,1,0]"));
+    assert!(d.contains("\"name\":\"ConstraintSurfaces\",\"class\":\"UnilateralMBS.Constraints.EllipsoidAndHorizontalPlane\",\"shape\":\"plane\",\"size\":[0,0,0],\"normal\":[0,1,0]"));
     assert!(d.contains("\"up\":1"), "y is up: the plane's normal");
     // The same page from `simulate --animate` (the run's own values, no recompiling).
     let direct = scratch("fly-direct.html");
