@@ -211,9 +211,19 @@ fn paper_a_slide_roll_switch_fmus_agree_with_unimo_simulate() {
     if !fmpy_available() {
         return;
     }
-    // The model's own tolerance (1e-8): CVode does not reach t = 20 at 1e-10.
+    // unimo at the model's tolerance (1e-8) against CVode at 1e-9: CVode does not reach
+    // t = 20 at 1e-10, and at 1e-8 it misses the roll-to-slide switch at t = 7.368 that
+    // unimo (1e-8, and Radau5 at 1e-10) and the event-driven reference have (measured:
+    // 13 switches instead of 15, State error 0.5); at 1e-9 it has all 15 at the same
+    // times and the largest error is 5.8e-6.
     let stop = &["--stop-time", "20"];
-    agree(&SLIDE_ROLL, ("2", "me"), stop, &["stop=20"], 2e-3);
+    agree(
+        &SLIDE_ROLL,
+        ("2", "me"),
+        stop,
+        &["stop=20", "rtol=1e-9"],
+        6e-5,
+    );
     agree(&SLIDE_ROLL, ("3", "cs"), stop, &["stop=20"], 2e-5);
 }
 

@@ -136,6 +136,9 @@ pub fn flatten_with(
     }
 
     parameters_first(&mut model);
+    if !diags.iter().any(|d| d.is_error()) {
+        diags.extend(check::unbound_parameters(&model));
+    }
     if cfg!(debug_assertions) && !diags.iter().any(|d| d.is_error()) {
         if let Err(e) = verify::verify_flat(&model) {
             panic!("{e}");

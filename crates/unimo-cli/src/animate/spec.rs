@@ -403,20 +403,7 @@ impl Resolver<'_, '_> {
 
 /// The scalar names of a variable: `x`, `x[1]`.., `x[1,1]`, `x[1,2]`.. (row-major).
 fn scalar_names(name: &str, dims: &[usize]) -> Vec<String> {
-    let mut tuples: Vec<Vec<usize>> = vec![Vec::new()];
-    for &d in dims {
-        tuples = tuples
-            .into_iter()
-            .flat_map(|t| {
-                (1..=d).map(move |i| {
-                    let mut t = t.clone();
-                    t.push(i);
-                    t
-                })
-            })
-            .collect();
-    }
-    tuples
+    unimo_dae::lower::index_tuples(dims)
         .into_iter()
         .map(|t| {
             if t.is_empty() {

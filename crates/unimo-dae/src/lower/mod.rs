@@ -166,7 +166,7 @@ pub(crate) fn broadcast(t: Tensor, dims: &[usize], span: Span) -> DaeResult<Tens
 }
 
 /// Every index tuple of an array of size `dims` in row-major order (1-based).
-pub(crate) fn index_tuples(dims: &[usize]) -> Vec<Vec<usize>> {
+pub fn index_tuples(dims: &[usize]) -> Vec<Vec<usize>> {
     let mut out = vec![Vec::new()];
     for &d in dims {
         out = out

@@ -68,8 +68,13 @@ pub(crate) fn check_file_siblings(tree: &mut ClassTree<'_>, class: ClassId) -> V
 pub(crate) fn flat_model(model: &crate::FlatModel) -> Vec<Diagnostic> {
     let mut out = flat::constant_bindings(model);
     out.extend(flat::pre_of_continuous(model));
-    out.extend(flat::unbound_parameters(model));
     out
+}
+
+/// `W2001` for parameters without any value; run on a model without errors (an error
+/// in a binding leaves its fields unbound, which is no news to the modeller).
+pub(crate) fn unbound_parameters(model: &crate::FlatModel) -> Vec<Diagnostic> {
+    flat::unbound_parameters(model)
 }
 
 /// The class tree and the diagnostics found so far.
