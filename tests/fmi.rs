@@ -100,6 +100,15 @@ fn agree(
         check_args,
     );
     eprintln!("{} FMI {fmi} {kind}:\n{out}", case.stem);
+    // Passed: the files go (an FMU of a debug build holds a ~50 MB library); a failure
+    // above leaves them for inspection.
+    remove(&[&fmu, &csv]);
+}
+
+fn remove(files: &[&Path]) {
+    for f in files {
+        let _ = std::fs::remove_file(f);
+    }
 }
 
 fn python(script: &str, args: &[&str], more: &[&str]) -> String {
@@ -260,6 +269,7 @@ fn calls_in_the_wrong_order_fail_cleanly_and_instances_are_independent() {
         &[],
     );
     eprintln!("{out}");
+    remove(&[&cs2, &me3]);
 }
 
 #[test]

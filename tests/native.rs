@@ -201,9 +201,77 @@ fn the_simulator_runs_the_native_code() {
             t.native = None;
         }
     }
+    n.native_rhs = None;
     let interpreted = unimo_runtime::sim::simulate(&n, &o);
     assert!(
         interpreted.rows != reference.rows || interpreted.error.is_some(),
         "the change must be visible to the interpreter"
     );
+}
+
+/// A plan of one explicit step gets a whole right-hand side function
+/// (`CompiledModel::native_rhs`): the same bits as the interpreter, at many points, and
+/// the evaluator really calls it (an instruction changed behind its back does not
+/// change its result, while the interpreter sees the change).
+#[test]
+fn the_whole_right_hand_side_is_one_native_call() {
+    use unimo_runtime::eval::RhsEvaluator;
+    for file in [
+        "models/Robertson.mo",
+        "models/Hires.mo",
+        "models/VanDerPol.mo",
+    ] {
+        let l = common::load(file, None);
+        assert!(
+            l.compiled.native_rhs.is_none(),
+            "{file}: no native code before codegen"
+        );
+        let (n, _) = native(&l.compiled);
+        assert!(
+            n.native_rhs.is_some(),
+            "{file}: a plan of one explicit step"
+        );
+        let states = n.states.len();
+        let mut tape = RhsEvaluator::new(&l.compiled);
+        let mut fast = RhsEvaluator::new(&n);
+        for k in 0..50 {
+            let x: Vec<f64> = (0..states)
+                .map(|i| 0.1 + 0.37 * ((k * states + i) as f64).sin())
+                .collect();
+            let t = 0.01 * k as f64;
+            let (mut a, mut b) = (vec![0.0; states], vec![0.0; states]);
+            tape.rhs(t, &x, &mut a).unwrap();
+            fast.rhs(t, &x, &mut b).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|z| z.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&a), bits(&b), "{file} at point {k}");
+        }
+    }
+    let l = common::load("models/Robertson.mo", None);
+    let (mut n, _) = native(&l.compiled);
+    let x = [0.9, 1e-4];
+    let mut before = [0.0; 2];
+    RhsEvaluator::new(&n).rhs(0.0, &x, &mut before).unwrap();
+    let CompiledStep::Explicit(t) = &mut n.steps[0] else {
+        panic!("one explicit step")
+    };
+    let last = t.ops.len() - 1;
+    let unimo_runtime::tape::Op::Copy(d, _) = t.ops[last] else {
+        panic!("the last instruction copies der(y2): {:?}", t.ops[last])
+    };
+    t.ops[last] = unimo_runtime::tape::Op::Const(d, 0.0);
+    let mut after = [0.0; 2];
+    RhsEvaluator::new(&n).rhs(0.0, &x, &mut after).unwrap();
+    assert_eq!(
+        before, after,
+        "the native function ran, not the changed tape"
+    );
+    n.native_rhs = None;
+    for step in &mut n.steps {
+        if let CompiledStep::Explicit(t) = step {
+            t.native = None;
+        }
+    }
+    RhsEvaluator::new(&n).rhs(0.0, &x, &mut after).unwrap();
+    assert_eq!(after[1], 0.0, "the interpreter sees the change");
+    assert_ne!(before[1], 0.0);
 }

@@ -8,8 +8,8 @@ use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Module};
 use std::sync::Arc;
-use unimo_runtime::native::NativeFn;
-use unimo_runtime::tape::Op;
+use unimo_runtime::native::{NativeFn, NativeRhsFn};
+use unimo_runtime::tape::{Op, Reg};
 
 use crate::translate::{registers, Counts, Params, PinnedOp, Signatures, Translator};
 use crate::{CodegenError, NativeOptions, NativeStats};
@@ -51,6 +51,7 @@ pub(crate) struct TapeCode {
 /// The compiled tapes of a model.
 pub(crate) struct Compiled {
     pub tapes: Vec<TapeCode>,
+    pub rhs: Option<RhsCode>,
     pub owner: Arc<dyn std::any::Any + Send + Sync>,
     pub stats: NativeStats,
 }
@@ -80,9 +81,27 @@ fn new_module(options: &NativeOptions) -> Result<JITModule, CodegenError> {
     )))
 }
 
-/// Compiles every tape (`(name, instructions)`), splitting long ones.
+/// A whole right-hand side to compile as one function (see
+/// `unimo_runtime::native::NativeRhs`): the plan's one step and where time, states and
+/// derivatives live.
+pub(crate) struct RhsSpec<'a> {
+    pub ops: &'a [Op],
+    pub time: Reg,
+    pub states: &'a [Reg],
+    pub derivatives: &'a [Reg],
+}
+
+/// The compiled right-hand side.
+pub(crate) struct RhsCode {
+    pub function: NativeRhsFn,
+    pub min_registers: usize,
+    pub min_relations: usize,
+}
+
+/// Compiles every tape (`(name, instructions)`), splitting long ones, and `rhs`.
 pub(crate) fn compile(
     tapes: &[(&str, &[Op])],
+    rhs: Option<&RhsSpec<'_>>,
     options: &NativeOptions,
 ) -> Result<Compiled, CodegenError> {
     let mut module = new_module(options)?;
@@ -127,37 +146,42 @@ pub(crate) fn compile(
         stats.functions += tape_ids.len();
         ids.push(tape_ids);
     }
+    let rhs_id = match rhs {
+        Some(spec) => Some(define_rhs(
+            &mut module,
+            (&mut ctx, &mut builder_ctx),
+            &signature,
+            spec,
+            &mut interpreted_ops,
+            &mut stats,
+        )?),
+        None => None,
+    };
     module
         .finalize_definitions()
         .map_err(|e| CodegenError::Link(e.to_string()))?;
+    let rhs = rhs.zip(rhs_id).map(|(spec, id)| {
+        let address = module.get_finalized_function(id);
+        RhsCode {
+            // SAFETY: built with the signature `NativeRhsFn` describes (`NativeFn`'s
+            // arguments, an `f64` and two pointers, the platform's C calling
+            // convention) and finalized.
+            function: unsafe { std::mem::transmute::<*const u8, NativeRhsFn>(address) },
+            min_registers: min_registers(spec.ops).max(spec.time as usize + 1).max(
+                spec.states
+                    .iter()
+                    .chain(spec.derivatives)
+                    .map(|&r| r as usize + 1)
+                    .max()
+                    .unwrap_or(0),
+            ),
+            min_relations: min_relations(spec.ops),
+        }
+    });
     let codes = tapes
         .iter()
         .zip(&ids)
-        .map(|(&(_, ops), tape_ids)| TapeCode {
-            functions: tape_ids
-                .iter()
-                .map(|&id| {
-                    let address = module.get_finalized_function(id);
-                    // SAFETY: the function was built with the signature `NativeFn`
-                    // describes (four pointers and an `i32`, the platform's C calling
-                    // convention) and is finalized.
-                    unsafe { std::mem::transmute::<*const u8, NativeFn>(address) }
-                })
-                .collect(),
-            min_registers: ops
-                .iter()
-                .flat_map(|&op| registers(op))
-                .max()
-                .map_or(0, |r| r as usize + 1),
-            min_relations: ops
-                .iter()
-                .filter_map(|op| match *op {
-                    Op::RelEvent(_, _, _, _, k) => Some(k as usize + 1),
-                    _ => None,
-                })
-                .max()
-                .unwrap_or(0),
-        })
+        .map(|(&(_, ops), tape_ids)| tape_code(&module, ops, tape_ids))
         .collect();
     let owner = Arc::new(NativeCode {
         module: Some(module),
@@ -165,9 +189,29 @@ pub(crate) fn compile(
     });
     Ok(Compiled {
         tapes: codes,
+        rhs,
         owner,
         stats,
     })
+}
+
+/// One past the highest register `ops` read or write.
+fn min_registers(ops: &[Op]) -> usize {
+    ops.iter()
+        .flat_map(|&op| registers(op))
+        .max()
+        .map_or(0, |r| r as usize + 1)
+}
+
+/// One past the highest relation index `ops` read.
+fn min_relations(ops: &[Op]) -> usize {
+    ops.iter()
+        .filter_map(|op| match *op {
+            Op::RelEvent(_, _, _, _, k) => Some(k as usize + 1),
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 fn compile_error(tape: &str, e: impl std::fmt::Display) -> CodegenError {
@@ -208,4 +252,97 @@ fn build(
     b.ins().return_(&[]);
     b.finalize(target);
     counts
+}
+
+/// Builds the right-hand side function: time and states into their registers (and
+/// known as values), the step's instructions, the derivatives out.
+fn build_rhs(
+    func: &mut cranelift_codegen::ir::Function,
+    builder_ctx: &mut FunctionBuilderContext,
+    spec: &RhsSpec<'_>,
+    interpreted_ops: &mut Vec<PinnedOp>,
+    target: TargetFrontendConfig,
+) {
+    let call_conv = func.signature.call_conv;
+    let mut b = FunctionBuilder::new(func, builder_ctx);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    b.seal_block(entry);
+    let p = b.block_params(entry).to_vec();
+    let params = Params {
+        registers: p[0],
+        n_registers: p[1],
+        events: p[2],
+        relations: p[3],
+        event_mode: p[4],
+    };
+    let (time, states, derivatives) = (p[5], p[6], p[7]);
+    let sigs = Signatures::import(&mut b, call_conv);
+    let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
+    t.set(spec.time, time);
+    for (k, &r) in spec.states.iter().enumerate() {
+        let flags = cranelift_codegen::ir::MemFlagsData::trusted();
+        let v = t.b.ins().load(types::F64, flags, states, (k * 8) as i32);
+        t.set(r, v);
+    }
+    for &op in spec.ops {
+        t.op(op);
+    }
+    for (k, &r) in spec.derivatives.iter().enumerate() {
+        let v = t.get(r);
+        let flags = cranelift_codegen::ir::MemFlagsData::trusted();
+        t.b.ins().store(flags, v, derivatives, (k * 8) as i32);
+    }
+    b.ins().return_(&[]);
+    b.finalize(target);
+}
+
+/// Declares, builds and defines the right-hand side function of `spec`.
+fn define_rhs(
+    module: &mut JITModule,
+    (ctx, builder_ctx): (&mut cranelift_codegen::Context, &mut FunctionBuilderContext),
+    signature: &cranelift_codegen::ir::Signature,
+    spec: &RhsSpec<'_>,
+    interpreted_ops: &mut Vec<PinnedOp>,
+    stats: &mut NativeStats,
+) -> Result<FuncId, CodegenError> {
+    let mut rhs_signature = signature.clone();
+    rhs_signature
+        .params
+        .extend([types::F64, types::I64, types::I64].map(AbiParam::new));
+    let id = module
+        .declare_anonymous_function(&rhs_signature)
+        .map_err(|e| compile_error("right-hand side", e))?;
+    ctx.func.signature = rhs_signature;
+    ctx.func.name = UserFuncName::user(0, id.as_u32());
+    let target = module.target_config();
+    build_rhs(&mut ctx.func, builder_ctx, spec, interpreted_ops, target);
+    module
+        .define_function(id, ctx)
+        .map_err(|e| compile_error("right-hand side", e))?;
+    if let Some(code) = ctx.compiled_code() {
+        stats.code_bytes += code.code_buffer().len();
+    }
+    module.clear_context(ctx);
+    stats.functions += 1;
+    Ok(id)
+}
+
+/// The finalized functions of one tape.
+fn tape_code(module: &JITModule, ops: &[Op], ids: &[FuncId]) -> TapeCode {
+    TapeCode {
+        functions: ids
+            .iter()
+            .map(|&id| {
+                let address = module.get_finalized_function(id);
+                // SAFETY: the function was built with the signature `NativeFn`
+                // describes (four pointers and an `i32`, the platform's C calling
+                // convention) and is finalized.
+                unsafe { std::mem::transmute::<*const u8, NativeFn>(address) }
+            })
+            .collect(),
+        min_registers: min_registers(ops),
+        min_relations: min_relations(ops),
+    }
 }

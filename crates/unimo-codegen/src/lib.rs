@@ -16,6 +16,7 @@ mod translate;
 
 use std::time::Instant;
 use unimo_runtime::model::{CompiledModel, CompiledStep};
+use unimo_runtime::native::NativeRhs;
 use unimo_runtime::tape::Tape;
 
 /// Why native code could not be made (the model then runs on the tape).
@@ -117,6 +118,17 @@ pub fn compile_model(
 ) -> Result<NativeStats, CodegenError> {
     let started = Instant::now();
     let n_registers = m.n_registers;
+    // A plan of one short explicit step also gets a whole right-hand side function.
+    let rhs = m
+        .single_step_ops()
+        .filter(|&n| n <= options.max_ops_per_function)
+        .and_then(|_| match m.steps.first() {
+            Some(CompiledStep::Explicit(t)) => {
+                Some((t.ops.clone(), m.states.clone(), m.derivatives.clone()))
+            }
+            _ => None,
+        });
+    let time = m.layout.time;
     let mut tapes = hot_tapes(m);
     let total: usize = tapes.iter().map(|(_, t)| t.ops.len()).sum();
     if total > options.max_model_ops {
@@ -133,7 +145,13 @@ pub fn compile_model(
         .iter()
         .map(|(name, t)| (name.as_str(), t.ops.as_slice()))
         .collect();
-    let compiled = jit::compile(&views, options)?;
+    let spec = rhs.as_ref().map(|(ops, states, derivatives)| jit::RhsSpec {
+        ops,
+        time,
+        states,
+        derivatives,
+    });
+    let compiled = jit::compile(&views, spec.as_ref(), options)?;
     let mut stats = compiled.stats.clone();
     for ((_, tape), code) in tapes.iter_mut().zip(compiled.tapes) {
         tape.native = Some(unimo_runtime::native::NativeTape {
@@ -145,6 +163,17 @@ pub fn compile_model(
         });
     }
     stats.tapes = tapes.len();
+    drop(tapes);
+    m.native_rhs = rhs
+        .zip(compiled.rhs)
+        .map(|((ops, states, _), code)| NativeRhs {
+            function: code.function,
+            n_ops: ops.len(),
+            n_states: states.len(),
+            min_registers: code.min_registers,
+            min_relations: code.min_relations,
+            owner: compiled.owner.clone(),
+        });
     stats.compile_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(stats)
 }

@@ -108,7 +108,8 @@ impl<'a, 'b> Translator<'a, 'b> {
         }
     }
 
-    fn get(&mut self, r: Reg) -> Value {
+    /// The value of register `r` at this point (loaded once).
+    pub fn get(&mut self, r: Reg) -> Value {
         if let Some(&v) = self.known.get(&r) {
             return v;
         }
@@ -120,7 +121,8 @@ impl<'a, 'b> Translator<'a, 'b> {
         v
     }
 
-    fn set(&mut self, r: Reg, v: Value) {
+    /// Stores `v` to register `r` and remembers it.
+    pub fn set(&mut self, r: Reg, v: Value) {
         self.b
             .ins()
             .store(FLAGS, v, self.params.registers, offset(r));

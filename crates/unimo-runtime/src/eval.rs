@@ -343,6 +343,15 @@ impl<'m> RhsEvaluator<'m> {
     /// The state derivatives at `(t, x)`.
     pub fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), BlockFailure> {
         let m = self.model;
+        if let Some(native) = &m.native_rhs {
+            if self.work.profile.is_none()
+                && native.fits(m.single_step_ops(), x.len(), &self.registers, &self.events)
+                && out.len() == x.len()
+            {
+                native.call(t, x, out, &mut self.registers, &mut self.events);
+                return Ok(());
+            }
+        }
         self.registers[m.layout.time as usize] = t;
         for (k, &r) in m.states.iter().enumerate() {
             self.registers[r as usize] = x[k];

@@ -151,6 +151,9 @@ pub struct CompiledModel {
     /// Some equation reads `initial()`: after initialization the simulator runs one
     /// more event iteration at the start time with it false.
     pub equations_read_initial: bool,
+    /// Native code for the whole right-hand side, when the plan is one explicit step
+    /// and `unimo-codegen` compiled it (see [`CompiledModel::single_step_ops`]).
+    pub native_rhs: Option<crate::native::NativeRhs>,
 }
 
 /// A constraint all of whose variables have fixed start values.
@@ -191,6 +194,16 @@ impl CompiledModel {
                 CompiledStep::Block(b) => b.residual_tape.ops.len() + b.jacobian_tape.ops.len(),
             })
             .sum()
+    }
+
+    /// The instruction count of the plan's only step, when the plan is one explicit
+    /// step and there is no collision world (what [`crate::native::NativeRhs`] needs).
+    #[inline]
+    pub fn single_step_ops(&self) -> Option<usize> {
+        match self.steps.as_slice() {
+            [CompiledStep::Explicit(t)] if self.collision.is_none() => Some(t.ops.len()),
+            _ => None,
+        }
     }
 
     /// A register file with the constants in place.

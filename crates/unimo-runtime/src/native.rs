@@ -74,6 +74,97 @@ impl NativeTape {
     }
 }
 
+/// The signature of a compiled right-hand side: [`NativeFn`]'s arguments, then the
+/// time, the states (`n_states` values) and where the derivatives go (`n_states`).
+pub type NativeRhsFn = unsafe extern "C" fn(
+    registers: *mut f64,
+    n_registers: usize,
+    events: *mut EventState,
+    relations: *const f64,
+    event_mode: u32,
+    time: f64,
+    states: *const f64,
+    derivatives: *mut f64,
+);
+
+/// Machine code for a whole right-hand side evaluation of a plan that is one explicit
+/// step: it writes the time and the states into the register file, runs the step and
+/// copies the derivatives out, in one call (the per-call bookkeeping of the tape path
+/// costs as much as a small model's arithmetic).
+#[derive(Clone)]
+pub struct NativeRhs {
+    pub function: NativeRhsFn,
+    /// The number of instructions of the plan's one step the code was compiled from.
+    pub n_ops: usize,
+    /// The number of states (and derivatives) the code reads (writes).
+    pub n_states: usize,
+    /// As for [`NativeTape`].
+    pub min_registers: usize,
+    pub min_relations: usize,
+    pub owner: Arc<dyn Any + Send + Sync>,
+}
+
+impl std::fmt::Debug for NativeRhs {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NativeRhs")
+            .field("n_ops", &self.n_ops)
+            .field("n_states", &self.n_states)
+            .finish()
+    }
+}
+
+impl NativeRhs {
+    /// Whether the code may run: compiled from a plan of one explicit step with `n_ops`
+    /// instructions and `n_states` states, on a register file and event state as large
+    /// as it assumes.
+    #[inline]
+    pub fn fits(
+        &self,
+        plan_ops: Option<usize>,
+        n_states: usize,
+        registers: &[f64],
+        ev: &EventState,
+    ) -> bool {
+        plan_ops == Some(self.n_ops)
+            && n_states == self.n_states
+            && registers.len() >= self.min_registers
+            && ev.relations.len() >= self.min_relations
+    }
+
+    /// Evaluates the right-hand side. The caller has checked [`NativeRhs::fits`], and
+    /// `x` and `out` hold `n_states` values each.
+    #[inline]
+    pub fn call(
+        &self,
+        t: f64,
+        x: &[f64],
+        out: &mut [f64],
+        registers: &mut [f64],
+        ev: &mut EventState,
+    ) {
+        assert!(x.len() == self.n_states && out.len() == self.n_states);
+        let relations = ev.relations.as_ptr();
+        let event_mode = u32::from(ev.event_mode);
+        let (regs, n) = (registers.as_mut_ptr(), registers.len());
+        let events: *mut EventState = ev;
+        // SAFETY: as in `NativeTape::call` (the caller checked `fits`); besides the
+        // register file the code reads `n_states` values at `x` and writes `n_states`
+        // at `out`, both checked above.
+        unsafe {
+            (self.function)(
+                regs,
+                n,
+                events,
+                relations,
+                event_mode,
+                t,
+                x.as_ptr(),
+                out.as_mut_ptr(),
+            )
+        };
+    }
+}
+
 /// Executes one instruction with the interpreter's semantics: what native code calls
 /// for the instructions it does not translate itself (event-mode relations, samples,
 /// tables, held roundings).

@@ -275,7 +275,18 @@ impl System for Ode<'_> {
     }
 
     fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
-        self.load(t, x)?;
+        let n = self.m.states.len();
+        match &self.m.native_rhs {
+            // The whole right-hand side in one native call (a plan of one explicit step).
+            Some(native)
+                if self.work.profile.is_none()
+                    && native.fits(self.m.single_step_ops(), n, &self.regs, &self.ev) =>
+            {
+                self.evaluations += 1;
+                native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
+            }
+            _ => self.load(t, x)?,
+        }
         for (k, &reg) in self.m.derivatives.iter().enumerate() {
             let v = self.regs[reg as usize];
             if !v.is_finite() {

@@ -472,6 +472,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         uses_terminal: dae.uses_terminal,
         state_sets,
         equations_read_initial: reads_initial(dae),
+        native_rhs: None,
     };
     finish(m)
 }
