@@ -255,9 +255,10 @@ fn the_whole_right_hand_side_is_one_native_call() {
         panic!("one explicit step")
     };
     let last = t.ops.len() - 1;
-    let unimo_runtime::tape::Op::Copy(d, _) = t.ops[last] else {
-        panic!("the last instruction copies der(y2): {:?}", t.ops[last])
-    };
+    let d = t.ops[last]
+        .written()
+        .next()
+        .expect("the last instruction writes der(y2)");
     t.ops[last] = unimo_runtime::tape::Op::Const(d, 0.0);
     let mut after = [0.0; 2];
     RhsEvaluator::new(&n).rhs(0.0, &x, &mut after).unwrap();

@@ -108,7 +108,9 @@ fn native_code_computes_the_interpreters_bits() {
     let n = 200;
     let mut m = model(ops, n);
     let stats = compile_model(&mut m, &NativeOptions::default()).expect("compiles");
-    assert_eq!(stats.functions, 1);
+    // The step's function, and the whole right-hand side's (the plan is one step).
+    assert_eq!(stats.functions, 2);
+    assert!(m.native_rhs.is_some());
     assert_eq!(stats.interpreted_ops, 3);
     let CompiledStep::Explicit(tape) = &m.steps[0] else {
         unreachable!()

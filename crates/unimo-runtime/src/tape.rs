@@ -424,7 +424,13 @@ impl<'a> Compiler<'a> {
             let child_ne = ne || matches!(node, Node::NoEvent(_));
             if !expanded {
                 stack.push((x, ne, true));
-                for c in self.arena.children(x) {
+                for (i, c) in self.arena.children(x).enumerate() {
+                    // `a + (-b)` is `Sub(a, b)` (see `op_of`): the negation itself is
+                    // not computed unless something else needs it.
+                    let c = match (node, self.arena.node(c)) {
+                        (Node::Add(..), Node::Neg(nb)) if i == 1 => nb,
+                        _ => c,
+                    };
                     stack.push((c, child_ne, false));
                 }
                 continue;
@@ -640,9 +646,20 @@ impl<'a> Compiler<'a> {
     ) {
         let r = self.expr(e, tape, memo);
         let d = self.layout.var(target);
-        if r != d {
-            tape.ops.push(Op::Copy(d, r));
+        if r == d {
+            return;
         }
+        // The value was just computed into a fresh temporary: the instruction writes
+        // the variable instead (one instruction and one store less), and the
+        // expression's value is read from the variable from now on.
+        if let Some(last) = tape.ops.last_mut() {
+            if r + 1 == self.next_temp && retargetable(*last, r) {
+                *last = with_dst(*last, d);
+                memo.insert(e, d);
+                return;
+            }
+        }
+        tape.ops.push(Op::Copy(d, r));
     }
 }
 
@@ -654,6 +671,29 @@ pub fn held_rounding(node: Node) -> Option<Rounding> {
         Node::Fn2(Fn2::Div | Fn2::Rem, ..) => Some(Rounding::Trunc),
         _ => None,
     }
+}
+
+/// Whether `op` is a pure arithmetic or logical instruction writing `r` alone (one
+/// [`with_dst`] may point elsewhere without changing what else it does).
+fn retargetable(op: Op, r: Reg) -> bool {
+    matches!(
+        op,
+        Op::Add(d, ..)
+            | Op::Sub(d, ..)
+            | Op::Mul(d, ..)
+            | Op::Div(d, ..)
+            | Op::Pow(d, ..)
+            | Op::Powi(d, ..)
+            | Op::Neg(d, _)
+            | Op::Fn1(_, d, _)
+            | Op::Fn2(_, d, ..)
+            | Op::Rel(_, d, ..)
+            | Op::And(d, ..)
+            | Op::Or(d, ..)
+            | Op::Not(d, _)
+            | Op::Select(d, ..)
+            if d == r
+    )
 }
 
 fn with_dst(op: Op, d: Reg) -> Op {

@@ -99,6 +99,7 @@ fn compile_steps(
 ) -> (Vec<CompiledStep>, HashMap<Reg, unimo_dae::dae::EqId>) {
     let mut steps: Vec<CompiledStep> = Vec::new();
     let mut definitions = HashMap::default();
+    let mut memo = HashMap::default();
     for step in &plan.steps {
         match step {
             PlanStep::Assign { var, eq, .. } => {
@@ -118,14 +119,16 @@ fn compile_steps(
         }
         match step {
             PlanStep::Assign { var, value, .. } => {
-                // Consecutive assignments share one tape (one dispatch loop).
+                // Consecutive assignments share one tape (one dispatch loop) and its
+                // memo: a subexpression is computed once per tape (every value it
+                // reads is assigned before it and not again within the pass).
                 if !matches!(steps.last(), Some(CompiledStep::Explicit(_))) {
                     steps.push(CompiledStep::Explicit(Tape::default()));
+                    memo.clear();
                 }
                 let Some(CompiledStep::Explicit(t)) = steps.last_mut() else {
                     unreachable!("pushed above")
                 };
-                let mut memo = HashMap::default();
                 c.assign(*var, *value, t, &mut memo);
             }
             PlanStep::Block(b) => steps.push(CompiledStep::Block(compile_block(dae, b, layout, c))),
