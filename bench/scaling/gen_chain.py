@@ -34,7 +34,7 @@ equation
   for k in 1:m loop
     w[k] = x[5*k - 4] + y[5*k - 4];
   end for;
-  annotation(experiment(StartTime = 0, StopTime = 1));
+  annotation(experiment(StartTime = 0, StopTime = 1, Interval = 0.01));
 end Chain;
 """
 

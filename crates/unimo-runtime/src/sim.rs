@@ -410,7 +410,7 @@ fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {
 
 /// The Jacobian's sparsity pattern: the symbolic Jacobian's nonzeros when the plan has
 /// one, else the structural pattern of the plan (see `pattern`).
-fn jacobian_pattern(m: &CompiledModel) -> Option<unimo_solve::SparsityPattern> {
+pub fn jacobian_pattern(m: &CompiledModel) -> Option<unimo_solve::SparsityPattern> {
     if m.states.is_empty() {
         return None;
     }
