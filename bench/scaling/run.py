@@ -4,6 +4,7 @@ on the chain model at growing N, and the growth exponents (log-log slopes).
 
     bench/scaling/run.py [--bin target/release/unimo] [--sizes 1000,3000,...]
                          [--kinds explicit,newton] [--methods bdf,radau5] [--repeat 3]
+                         [--engine tape|native]
 
 Prints one Markdown table per (kind, method): the median of each phase over the
 repeats per N, then the slope between successive N and the least-squares slope over
@@ -28,10 +29,12 @@ PHASES = ["parse", "flatten", "lower", "structure", "compile", "native", "initia
           "write"]
 
 
-def run_once(binary, path, method):
+def run_once(binary, path, method, engine):
     started = time.perf_counter()
-    done = subprocess.run([binary, "simulate", path, "--method", method, "--stats",
-                           "-o", os.devnull], capture_output=True, text=True)
+    args = [binary, "simulate", path, "--method", method, "--stats", "-o", os.devnull]
+    if engine:
+        args += ["--engine", engine]
+    done = subprocess.run(args, capture_output=True, text=True)
     wall = (time.perf_counter() - started) * 1e3
     if done.returncode != 0:
         raise SystemExit(f"{path} ({method}) failed:\n{done.stderr}")
@@ -77,6 +80,7 @@ def main():
     p.add_argument("--kinds", default="explicit,newton")
     p.add_argument("--methods", default="bdf,radau5")
     p.add_argument("--repeat", type=int, default=3)
+    p.add_argument("--engine", default="", help="passed to --engine (default: unimo's choice)")
     a = p.parse_args()
     sizes = [int(s) for s in a.sizes.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
@@ -87,7 +91,7 @@ def main():
                     path = os.path.join(tmp, f"chain_{kind}_{n}.mo")
                     with open(path, "w") as f:
                         f.write(chain(n, kind))
-                    runs = [run_once(a.bin, path, method) for _ in range(a.repeat)]
+                    runs = [run_once(a.bin, path, method, a.engine) for _ in range(a.repeat)]
                     rows[n] = {k: (statistics.median(r[k] for r in runs)
                                    if isinstance(runs[0][k], float) else runs[0][k])
                                for k in runs[0]}
