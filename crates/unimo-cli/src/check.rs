@@ -502,6 +502,17 @@ pub struct ParameterOverrides<'a> {
     pub file: Option<&'a std::path::Path>,
 }
 
+thread_local! {
+    /// Seconds spent parsing the files given on the command line (`--stats`).
+    static PARSE_SECONDS: std::cell::Cell<f64> = const { std::cell::Cell::new(0.0) };
+}
+
+/// Seconds this thread has spent parsing command-line files in
+/// [`with_flat_model_overridden`] (library files are parsed as flattening reads them).
+pub fn parse_seconds() -> f64 {
+    PARSE_SECONDS.with(std::cell::Cell::get)
+}
+
 /// Like [`with_flat_model`], with parameter overrides: they are checked against the
 /// model (coded `E00xx` errors, exit code 2) and the model flattened again with them
 /// as top-level modifiers.
@@ -526,7 +537,9 @@ pub fn with_flat_model_overridden(
             }
         };
         let id = tree.sources.add(file.to_path_buf(), text);
+        let started = Instant::now();
         let parsed = unimo_syntax::parse(id, tree.sources.get(id).text());
+        PARSE_SECONDS.with(|c| c.set(c.get() + started.elapsed().as_secs_f64()));
         if parsed.has_errors() {
             let (mut e, mut w) = (0, 0);
             report(&parsed.diagnostics, &tree.sources, color, &mut e, &mut w);

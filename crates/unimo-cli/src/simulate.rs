@@ -139,8 +139,11 @@ fn simulate_flat(
     color: bool,
     started: Instant,
 ) -> i32 {
+    let load = ms_since(started);
+    let parse = crate::check::parse_seconds() * 1e3;
     let mut phases = Phases {
-        load: ms_since(started),
+        parse,
+        flatten: load - parse,
         ..Phases::default()
     };
     let fold = fold_options(a);
@@ -148,7 +151,8 @@ fn simulate_flat(
         eprintln!("{msg}");
         return EXIT_USAGE;
     }
-    let (dae, analysis) = match unimo_dae::analyze_model_with(flat, &fold) {
+    let mut seconds = [0.0; 2];
+    let (dae, analysis) = match unimo_dae::analyze_model_timed(flat, &fold, &mut seconds) {
         Ok(x) => x,
         Err(diags) => {
             render_stage(&diags, map, color);
@@ -168,12 +172,15 @@ fn simulate_flat(
         let wanted: Vec<_> = cols.iter().map(|&c| output_ids[c]).collect();
         unimo_dae::prune::prune(&dae, &mut plan, &wanted);
     }
-    phases.analyze = ms_since(started) - phases.load;
+    phases.lower = seconds[0] * 1e3;
+    // The structure phase also holds selecting the outputs and pruning.
+    phases.structure = ms_since(started) - load - phases.lower;
+    let compile_started = Instant::now();
     let mut compiled = unimo_runtime::model::compile(&dae, &plan);
-    phases.compile = ms_since(started) - phases.load - phases.analyze;
+    phases.compile = ms_since(compile_started);
+    let native_started = Instant::now();
     let native = native_or_tape(a.engine, &mut compiled);
-    let compile_ms = ms_since(started);
-    phases.native = compile_ms - phases.load - phases.analyze - phases.compile;
+    phases.native = ms_since(native_started);
     let options = match sim_options(a, &dae) {
         Ok(o) => o,
         Err(msg) => {
@@ -188,6 +195,7 @@ fn simulate_flat(
     let result = run(&compiled, &options, sim_started, profile.clone());
     let simulate_ms = ms_since(sim_started);
     phases.simulate = simulate_ms;
+    phases.run = result.phase_times.clone();
     let write_started = Instant::now();
     let ids = (&output_ids[..], &cols[..]);
     if let Err(e) = write_result_file(a, flat, &dae, &result, ids, (start, options.stop)) {
@@ -530,26 +538,50 @@ fn engine_stats(native: Option<&unimo_codegen::NativeStats>) -> String {
     }
 }
 
-/// Wall time of each phase of one run, in milliseconds: loading (parse, name lookup
-/// and flattening, with the libraries the model reads), lowering with alias
-/// elimination and the structural analysis, compiling the tapes, compiling them to
-/// machine code, simulating (initialization, integration, events and the rows kept),
-/// writing the result file.
-#[derive(Clone, Copy, Debug, Default)]
+/// Wall time of each phase of one run, in milliseconds: parsing the command-line
+/// files, flattening (name lookup, with the library files the model reads), lowering
+/// with alias elimination, the structural analysis, compiling the tapes, compiling them
+/// to machine code, simulating (and inside it, in `run`, initialization, integration
+/// with its evaluation and linear-algebra shares, events and the rows kept), writing
+/// the result file.
+#[derive(Clone, Debug, Default)]
 struct Phases {
-    load: f64,
-    analyze: f64,
+    parse: f64,
+    flatten: f64,
+    lower: f64,
+    structure: f64,
     compile: f64,
     native: f64,
     simulate: f64,
+    run: unimo_runtime::sim::RunTimes,
     write: f64,
 }
 
 impl Phases {
+    /// Everything before the simulation.
+    fn before_run(&self) -> f64 {
+        self.parse + self.flatten + self.lower + self.structure + self.compile + self.native
+    }
+
     fn json(&self) -> String {
+        let r = &self.run;
+        let ms = |seconds: f64| seconds * 1e3;
         format!(
-            "{{\"load\":{:.3},\"lower_structure\":{:.3},\"compile\":{:.3},\"native\":{:.3},\"simulate\":{:.3},\"write\":{:.3}}}",
-            self.load, self.analyze, self.compile, self.native, self.simulate, self.write
+            "{{\"parse\":{:.3},\"flatten\":{:.3},\"lower\":{:.3},\"structure\":{:.3},\"compile\":{:.3},\"native\":{:.3},\"simulate\":{:.3},\"initialize\":{:.3},\"integrate\":{:.3},\"evaluation\":{:.3},\"linear_algebra\":{:.3},\"events\":{:.3},\"output\":{:.3},\"write\":{:.3}}}",
+            self.parse,
+            self.flatten,
+            self.lower,
+            self.structure,
+            self.compile,
+            self.native,
+            self.simulate,
+            ms(r.initialize),
+            ms(r.integrate),
+            ms(r.evaluation),
+            ms(r.linear_algebra),
+            ms(r.events),
+            ms(r.output),
+            self.write
         )
     }
 }
@@ -568,7 +600,7 @@ fn print_stats(
     phases: &Phases,
     native: Option<&unimo_codegen::NativeStats>,
 ) {
-    let compile_ms = phases.load + phases.analyze + phases.compile + phases.native;
+    let compile_ms = phases.before_run();
     let simulate_ms = phases.simulate;
     let s = &result.stats;
     let collision = match &s.collision {
@@ -584,7 +616,7 @@ fn print_stats(
         None => String::new(),
     };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"jacobian_nonzeros\":{},\"sparse_lu\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -601,6 +633,9 @@ fn print_stats(
         plan.stats.parameters_folded,
         compiled.plan_ops(),
         compiled.roots.len(),
+        s.jacobian_nonzeros
+            .map_or_else(|| "null".to_string(), |n| n.to_string()),
+        s.sparse_lu,
         compile_ms,
         simulate_ms,
         phases.json(),

@@ -46,12 +46,28 @@ pub fn analyze_model_with(
     model: &unimo_flat::FlatModel,
     fold: &FoldOptions,
 ) -> Result<(Dae, analysis::Analysis), Vec<unimo_source::Diagnostic>> {
+    analyze_model_timed(model, fold, &mut [0.0; 2])
+}
+
+/// [`analyze_model_with`], writing the seconds spent in `seconds`: lowering with alias
+/// elimination, then the structural analysis (index reduction, matching, BLT, tearing,
+/// the plan).
+pub fn analyze_model_timed(
+    model: &unimo_flat::FlatModel,
+    fold: &FoldOptions,
+    seconds: &mut [f64; 2],
+) -> Result<(Dae, analysis::Analysis), Vec<unimo_source::Diagnostic>> {
+    let started = std::time::Instant::now();
     let (mut dae, diags) = lower_with(model, fold);
     if diags.iter().any(|d| d.is_error()) {
         return Err(diags);
     }
     let aliases = alias::eliminate_aliases(&mut dae);
-    let mut a = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()])?;
+    seconds[0] = started.elapsed().as_secs_f64();
+    let started = std::time::Instant::now();
+    let analyzed = analysis::analyze(&mut dae).map_err(|e| vec![e.to_diagnostic()]);
+    seconds[1] = started.elapsed().as_secs_f64();
+    let mut a = analyzed?;
     if let Some(e) = differentiated_input(&dae, &a.plan) {
         return Err(vec![e.to_diagnostic()]);
     }

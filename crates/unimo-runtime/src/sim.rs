@@ -6,6 +6,7 @@
 use crate::eval::{eval_steps, BlockFailure, Workspace};
 use crate::model::CompiledModel;
 use crate::tape::EventState;
+use std::time::Instant;
 use unimo_dae::expr::RelOp;
 use unimo_solve::dense::{abs_det, pick_columns};
 use unimo_solve::{Direction, EvalError, Method, Solver, System};
@@ -13,6 +14,7 @@ use unimo_solve::{Direction, EvalError, Method, Solver, System};
 mod crossings;
 mod events;
 mod init;
+mod pattern;
 mod run;
 pub mod stepper;
 
@@ -209,6 +211,27 @@ pub struct SimStats {
     pub collision: Option<crate::collision::CollisionStats>,
     /// Times a dynamically selected state set changed its states (after the start).
     pub state_selections: usize,
+    /// Nonzeros of the Jacobian's sparsity pattern (symbolic or structural); `None`:
+    /// no pattern, the Jacobian is dense (differences column by column).
+    pub jacobian_nonzeros: Option<usize>,
+    /// The implicit method factored its iteration matrices with the sparse LU.
+    pub sparse_lu: bool,
+}
+
+/// Seconds spent in each phase of a run (`unimo simulate --stats`). `integrate` is the
+/// solver's steps (root search included); `evaluation` and `linear_algebra` are the
+/// parts of `integrate` spent evaluating the plan (right-hand sides, Jacobians, root
+/// functions) and factoring and solving the iteration matrices. `events` is the
+/// handling of state, time and terminal events (event iteration, reinit, restart),
+/// `output` the rows kept on the output grid.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunTimes {
+    pub initialize: f64,
+    pub integrate: f64,
+    pub evaluation: f64,
+    pub linear_algebra: f64,
+    pub events: f64,
+    pub output: f64,
 }
 
 /// Results computed so far (also after a failure).
@@ -219,6 +242,9 @@ pub struct SimResult {
     pub rows: Vec<Vec<f64>>,
     pub events: Vec<EventRecord>,
     pub stats: SimStats,
+    /// Wall time of the run's phases (apart from `stats`: counters compare equal
+    /// between runs, times do not).
+    pub phase_times: RunTimes,
     pub error: Option<SimError>,
     pub terminated: Option<String>,
     /// Final state values (for references).
@@ -237,6 +263,8 @@ struct Ode<'a> {
     work: Workspace,
     differential: Vec<bool>,
     evaluations: u64,
+    /// Seconds spent evaluating the plan and the Jacobian's tape.
+    eval_seconds: f64,
     last_failure: Option<BlockFailure>,
     /// Nonzeros of the symbolic Jacobian (large systems then use the sparse LU).
     pattern: Option<unimo_solve::SparsityPattern>,
@@ -255,7 +283,10 @@ impl Ode<'_> {
             self.regs[reg as usize] = x[k];
         }
         self.evaluations += 1;
-        eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work).map_err(|f| {
+        let started = Instant::now();
+        let evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
+        self.eval_seconds += started.elapsed().as_secs_f64();
+        evaluated.map_err(|f| {
             let msg = format!("{} in the loop of {}", f.reason, f.variables.join(", "));
             self.last_failure = Some(f);
             EvalError::failed(msg)
@@ -313,7 +344,9 @@ impl System for Ode<'_> {
             return Ok(false);
         };
         self.load(t, x)?;
+        let started = Instant::now();
         tape.run(&mut self.regs, &mut self.ev);
+        self.eval_seconds += started.elapsed().as_secs_f64();
         for &(i, j, r) in entries {
             let v = self.regs[r as usize];
             if !v.is_finite() {
@@ -386,6 +419,22 @@ fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {
     }
 }
 
+/// The Jacobian's sparsity pattern: the symbolic Jacobian's nonzeros when the plan has
+/// one, else the structural pattern of the plan (see `pattern`).
+pub fn jacobian_pattern(m: &CompiledModel) -> Option<unimo_solve::SparsityPattern> {
+    if m.states.is_empty() {
+        return None;
+    }
+    match &m.jacobian {
+        Some((_, entries)) => unimo_solve::SparsityPattern::from_entries(
+            m.states.len(),
+            entries.iter().map(|&(i, j, _)| (i, j)),
+        )
+        .ok(),
+        None => pattern::structural_pattern(m),
+    }
+}
+
 pub struct Simulator<'a> {
     ode: Ode<'a>,
     cond_prev: Vec<f64>,
@@ -419,18 +468,9 @@ impl<'a> Simulator<'a> {
             clock,
             last_roots: (f64::NEG_INFINITY, Vec::new()),
             evaluations: 0,
+            eval_seconds: 0.0,
             last_failure: None,
-            pattern: m
-                .jacobian
-                .as_ref()
-                .filter(|_| !m.states.is_empty())
-                .and_then(|(_, entries)| {
-                    unimo_solve::SparsityPattern::from_entries(
-                        m.states.len(),
-                        entries.iter().map(|&(i, j, _)| (i, j)),
-                    )
-                    .ok()
-                }),
+            pattern: jacobian_pattern(m),
         };
         Simulator {
             ode,

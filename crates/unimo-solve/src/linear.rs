@@ -13,6 +13,24 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
 use crate::system::{JacobianMatrix, SparsityPattern};
+use std::cell::Cell;
+use std::time::Instant;
+
+thread_local! {
+    /// Seconds this thread spent factoring and solving iteration matrices.
+    static LINEAR_ALGEBRA_SECONDS: Cell<f64> = const { Cell::new(0.0) };
+}
+
+/// Seconds the calling thread has spent in LU factorizations and solves so far (all
+/// solvers; take the difference of two readings for one stretch of work).
+pub fn linear_algebra_seconds() -> f64 {
+    LINEAR_ALGEBRA_SECONDS.with(Cell::get)
+}
+
+fn add_linear_algebra_time(started: Instant) {
+    let seconds = started.elapsed().as_secs_f64();
+    LINEAR_ALGEBRA_SECONDS.with(|c| c.set(c.get() + seconds));
+}
 
 /// Scalars the iteration matrices are built from: `f64` and `c64`.
 pub(crate) trait LuScalar:
@@ -110,6 +128,18 @@ impl<T: LuScalar> ShiftedLu<T> {
         differential: &[bool],
         shift: T,
     ) -> Result<(), SingularMatrix> {
+        let started = Instant::now();
+        let factored = self.factor_untimed(jacobian, differential, shift);
+        add_linear_algebra_time(started);
+        factored
+    }
+
+    fn factor_untimed(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        shift: T,
+    ) -> Result<(), SingularMatrix> {
         match &mut self.backend {
             Backend::Dense {
                 factors,
@@ -145,6 +175,12 @@ impl<T: LuScalar> ShiftedLu<T> {
 
     /// Solves in place with the last factorization.
     pub fn solve(&mut self, rhs: &mut [T]) {
+        let started = Instant::now();
+        self.solve_untimed(rhs);
+        add_linear_algebra_time(started);
+    }
+
+    fn solve_untimed(&mut self, rhs: &mut [T]) {
         let size = self.size;
         let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, size, 1);
         match &mut self.backend {

@@ -82,6 +82,18 @@ pub enum LinearSolverChoice {
 /// Size from which `LinearSolverChoice::Auto` picks the sparse LU (given a pattern).
 pub const SPARSE_AUTO_THRESHOLD: usize = 100;
 
+impl LinearSolverChoice {
+    /// Whether the implicit methods factor a system of `size` unknowns with the sparse
+    /// LU (`has_pattern`: the system gives a sparsity pattern).
+    pub fn picks_sparse(self, size: usize, has_pattern: bool) -> bool {
+        match self {
+            LinearSolverChoice::Dense => false,
+            LinearSolverChoice::Sparse => has_pattern,
+            LinearSolverChoice::Auto => has_pattern && size >= SPARSE_AUTO_THRESHOLD,
+        }
+    }
+}
+
 /// Settings shared by all methods.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {

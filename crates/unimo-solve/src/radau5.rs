@@ -34,7 +34,7 @@ use crate::integrator::{eval_failure, Integrator, ProblemSetup};
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, worst_components, Tolerances};
-use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
+use crate::options::{LinearSolverChoice, Method, Options};
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, step_above_floor, InitialStepProblem};
 use crate::system::System;
@@ -609,13 +609,7 @@ fn transform_tolerances(tolerances: &mut Tolerances) {
 }
 
 pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
-    match choice {
-        LinearSolverChoice::Dense => false,
-        LinearSolverChoice::Sparse => system.sparsity().is_some(),
-        LinearSolverChoice::Auto => {
-            system.sparsity().is_some() && system.len() >= SPARSE_AUTO_THRESHOLD
-        }
-    }
+    choice.picks_sparse(system.len(), system.sparsity().is_some())
 }
 
 impl Integrator for Radau5 {

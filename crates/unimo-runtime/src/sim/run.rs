@@ -3,8 +3,10 @@
 //! the result with its counters.
 
 use super::{SimError, SimOptions, SimResult, Simulator, MAX_STEPS};
+use std::time::Instant;
+use unimo_solve::linear_algebra_seconds;
 use unimo_solve::newton::NewtonTolerance;
-use unimo_solve::{Direction, Options, SolveError, Solver, StopReason, System};
+use unimo_solve::{Direction, LinearSolverChoice, Options, SolveError, Solver, StopReason, System};
 
 /// The integration loop's state between its steps.
 pub(super) struct Integration<'o> {
@@ -66,7 +68,10 @@ impl Simulator<'_> {
         let m = self.m();
         self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
         self.ode.work.tolerance = NewtonTolerance::new(o.rtol, o.atol);
-        if let Err(e) = self.initialize(o.start) {
+        let started = Instant::now();
+        let initialized = self.initialize(o.start);
+        self.result.phase_times.initialize = started.elapsed().as_secs_f64();
+        if let Err(e) = initialized {
             self.result.error = Some(e);
             return self.result;
         }
@@ -99,6 +104,10 @@ impl Simulator<'_> {
         if let Some(c) = self.ode.ev.collision.as_ref() {
             solver.set_max_step(options_max_step.min(c.step_cap()));
         }
+        let pattern = self.ode.pattern.as_ref();
+        self.result.stats.jacobian_nonzeros = pattern.map(|p| p.nonzeros());
+        self.result.stats.sparse_lu = o.method.resolved() != unimo_solve::Method::Dopri5
+            && LinearSolverChoice::Auto.picks_sparse(self.ode.len(), pattern.is_some());
         let mut run = Integration {
             o,
             max_step: options_max_step,
@@ -152,24 +161,35 @@ impl Simulator<'_> {
             .iter()
             .copied()
             .fold(f64::INFINITY, f64::min);
-        let (prev, now, reason) = self.advance(solver, run, t_event, progress)?;
+        let started = Instant::now();
+        let (eval_before, linear_before) = (self.ode.eval_seconds, linear_algebra_seconds());
+        let advanced = self.advance(solver, run, t_event, progress);
+        let times = &mut self.result.phase_times;
+        times.integrate += started.elapsed().as_secs_f64();
+        times.evaluation += self.ode.eval_seconds - eval_before;
+        times.linear_algebra += linear_algebra_seconds() - linear_before;
+        let (prev, now, reason) = advanced?;
+        let started = Instant::now();
         self.write_grid(solver, run, prev, now, &reason)?;
         if let Some(e) = self.take_non_finite(Some(now - prev)) {
             return Err(e);
         }
+        if run.o.every_step && matches!(reason, StopReason::InternalStep) {
+            let x = solver.state().to_vec();
+            self.load_state(now, &x)?;
+            self.record(now);
+        }
+        self.result.phase_times.output += started.elapsed().as_secs_f64();
+        let started = Instant::now();
         let go_on = match reason {
             StopReason::InternalStep => {
-                if run.o.every_step {
-                    let x = solver.state().to_vec();
-                    self.load_state(now, &x)?;
-                    self.record(now);
-                }
                 self.check_assertions(now)?;
                 true
             }
             StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_event)?,
             StopReason::Root { t, components } => self.root_stop(solver, run, t, &components)?,
         };
+        self.result.phase_times.events += started.elapsed().as_secs_f64();
         if !go_on {
             return Ok(false);
         }
