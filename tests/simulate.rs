@@ -490,6 +490,32 @@ fn function_outputs_sized_by_inputs() {
     }
 }
 
+/// References through arrays of components (`sum(port.Q_flow)`, `s[2:3].port.Q_flow`),
+/// a String parameter compared at translation, array flows connected whole, and
+/// `buf[tick] := ..` at a run-time index (the MSL's RealFFT and machine models).
+#[test]
+fn component_array_references_strings_and_dynamic_indices() {
+    let m = load("tests/simulate/ComponentArrayRefs.mo");
+    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 4);
+    let expect = [
+        ("total", 6.0),
+        ("temperatures", 900.0),
+        ("twoFlows", -5.0),
+        ("scaled", 2.0),
+        ("sourceCurrent", -6.0),
+        ("buf[1]", 10.25),
+        ("buf[2]", 20.5),
+        ("buf[3]", 30.75),
+    ];
+    for (name, want) in expect {
+        let got = value(&r, name);
+        assert!(
+            (got - want).abs() < 1e-9 * want.abs().max(1.0),
+            "{name} = {got}"
+        );
+    }
+}
+
 /// A built-in of the language that unimo does not implement (clocks, streams,
 /// overconstrained connections) passes the name check and is E3001 naming it.
 #[test]

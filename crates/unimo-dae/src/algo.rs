@@ -428,6 +428,9 @@ impl Lowerer<'_> {
                 span,
             ));
         }
+        if let Some(k) = self.dynamic_index(&dims, &subs)? {
+            return self.assign_dynamic(first, dims[0], k, value, span);
+        }
         let positions = if subs.is_empty() {
             (0..dims.iter().product()).collect()
         } else {
@@ -437,6 +440,52 @@ impl Lowerer<'_> {
         let assigned = self.assigned.as_mut().expect("checked above");
         for (p, e) in positions.into_iter().zip(v.data) {
             assigned.insert(ScalarId(first.0 + p as u32), e);
+        }
+        Ok(())
+    }
+
+    /// The index of `v[i] := ..` of a vector `v` when `i` is a scalar not known at
+    /// compile time (`buf[iTick] := u`); `None` otherwise.
+    fn dynamic_index(&mut self, dims: &[usize], subs: &[Subscript]) -> DaeResult<Option<ExprId>> {
+        let [Subscript::Expr(e)] = subs else {
+            return Ok(None);
+        };
+        if dims.len() != 1 || matches!(e.kind, ExprKind::Integer(_) | ExprKind::Range { .. }) {
+            return Ok(None);
+        }
+        self.end_stack.push(dims[0]);
+        let t = self.expr(e);
+        self.end_stack.pop();
+        let t = t?;
+        if !t.is_scalar() || self.const_value(t.data[0]).is_some() {
+            return Ok(None);
+        }
+        Ok(Some(t.data[0]))
+    }
+
+    /// `v[i] := x` with `i` known only at run time: every element `k` of the vector
+    /// becomes `if i == k then x else v[k]` (an index outside 1..n assigns nothing).
+    fn assign_dynamic(
+        &mut self,
+        first: ScalarId,
+        n: usize,
+        index: ExprId,
+        value: Tensor,
+        span: Span,
+    ) -> DaeResult<()> {
+        let x = broadcast(value, &[], span)?.data[0];
+        for k in 0..n {
+            let s = ScalarId(first.0 + k as u32);
+            let old = self.current_value(s);
+            let ar = self.a();
+            let kk = ar.constant((k + 1) as f64);
+            let hit = ar.rel(crate::expr::RelOp::Eq, index, kk);
+            let hit = ar.no_event(hit);
+            let new = ar.if_(hit, x, old);
+            self.assigned
+                .as_mut()
+                .expect("checked by the caller")
+                .insert(s, new);
         }
         Ok(())
     }

@@ -29,6 +29,9 @@ struct Shapes<'m> {
     records: HashMap<&'m str, &'m crate::functions::FlatRecord>,
     /// Bindings of the Integer parameters and constants (slice bounds `a[2:na]`).
     integers: HashMap<&'m str, &'m Expr>,
+    /// Dimensions of the references through arrays of components (`port.T` of the
+    /// variables `port[1].T` ... `port[3].T` is a 3-vector): see [`through_arrays`].
+    through: HashMap<String, Vec<usize>>,
 }
 
 impl Shapes<'_> {
@@ -205,6 +208,9 @@ impl Shapes<'_> {
             self.dims.get(buf.as_str()).copied()
         };
         let Some(d) = d else {
+            if let Some(d) = self.through_array(r) {
+                return d;
+            }
             if self.record_sizes.is_empty() {
                 return Vec::new();
             }
@@ -245,6 +251,14 @@ impl Shapes<'_> {
             }
         }
         out
+    }
+
+    /// The dimensions of a reference without subscripts through arrays of components.
+    fn through_array(&self, r: &ComponentRef) -> Option<Vec<usize>> {
+        if self.through.is_empty() || r.parts.iter().any(|p| !p.subscripts.is_empty()) {
+            return None;
+        }
+        self.through.get(var_key(r).as_str()).cloned()
     }
 
     fn size(&self, e: &Expr) -> usize {
@@ -354,6 +368,57 @@ fn assigned(stmts: &[Statement], out: &mut BTreeSet<String>) {
     }
 }
 
+/// The references through arrays of components, with their dimensions: the variable
+/// `a.port[2].T` (of `Real T[2]`) makes `a.port.T` have the dimensions of `port`
+/// (largest index seen) followed by those of `T` (spec 10.6.9: `port.T` is the array
+/// of the elements' `T`).
+fn through_arrays(model: &FlatModel) -> HashMap<String, Vec<usize>> {
+    let mut out: HashMap<String, Vec<usize>> = HashMap::default();
+    for v in &model.vars {
+        let parts = crate::flat::split_name(&v.name);
+        let Some((_, init)) = parts.split_last() else {
+            continue;
+        };
+        if !init.iter().any(|p| p.ends_with(']')) {
+            continue;
+        }
+        let mut key = String::with_capacity(v.name.len());
+        let mut dims = Vec::new();
+        let mut ok = true;
+        for (k, p) in parts.iter().enumerate() {
+            if k > 0 {
+                key.push('.');
+            }
+            match p
+                .find('[')
+                .filter(|_| p.ends_with(']') && k + 1 < parts.len())
+            {
+                Some(i) => {
+                    key.push_str(&p[..i]);
+                    for x in p[i + 1..p.len() - 1].split(',') {
+                        match x.trim().parse::<usize>() {
+                            Ok(n) => dims.push(n),
+                            Err(_) => ok = false,
+                        }
+                    }
+                }
+                None => key.push_str(p),
+            }
+        }
+        if !ok {
+            continue;
+        }
+        dims.extend_from_slice(&v.dims);
+        let e = out.entry(key).or_insert_with(|| vec![0; dims.len()]);
+        if e.len() == dims.len() {
+            for (a, b) in e.iter_mut().zip(&dims) {
+                *a = (*a).max(*b);
+            }
+        }
+    }
+    out
+}
+
 /// Counts the scalar equations and unknowns of `model`.
 pub fn count(model: &FlatModel) -> Balance {
     let mut record_sizes: HashMap<&str, usize> = HashMap::default();
@@ -397,6 +462,7 @@ pub fn count(model: &FlatModel) -> Balance {
             })
             .filter_map(|v| Some((v.name.as_str(), v.binding.as_deref()?)))
             .collect(),
+        through: through_arrays(model),
     };
     let unknowns = model
         .vars

@@ -9,7 +9,8 @@ use crate::instantiate::Connect;
 use rustc_hash::FxHashMap as HashMap;
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::{
-    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, RefPart, Subscript,
+    BinaryOp, CallArgs, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, Name, RefPart,
+    Subscript,
 };
 
 /// A node of the connection graph: a primitive variable (or one element of an array
@@ -96,6 +97,42 @@ fn find(parent: &mut [usize], x: usize) -> usize {
         c = next;
     }
     r
+}
+
+/// `0.0` for a scalar, `zeros(n, m, ..)` for an array of dimensions `dims`.
+fn zeros(dims: &[usize], span: Span) -> Expr {
+    if dims.is_empty() {
+        return Expr {
+            kind: ExprKind::Real(0.0),
+            span,
+        };
+    }
+    let positional = dims
+        .iter()
+        .map(|&n| Expr {
+            kind: ExprKind::Integer(n as i64),
+            span,
+        })
+        .collect();
+    Expr {
+        kind: ExprKind::Call {
+            func: Name {
+                global: false,
+                parts: vec![Ident {
+                    text: "zeros".into(),
+                    span,
+                }],
+                span,
+            },
+            args: Box::new(CallArgs {
+                positional,
+                named: Vec::new(),
+                iterators: Vec::new(),
+                span,
+            }),
+        },
+        span,
+    }
 }
 
 fn var_ref(name: &str, span: Span) -> Expr {
@@ -518,14 +555,13 @@ fn set_equations(
     let first = &nodes[set[0]];
     if model.vars[first.var].flow {
         if let Some(sum) = flow_sum(model, nodes, set, span) {
-            out.push(eq(
-                sum,
-                Expr {
-                    kind: ExprKind::Real(0.0),
-                    span,
-                },
-                span,
-            ));
+            // Whole array flows (`i_[2]` of a space phasor) sum to an array of zeros.
+            let dims: &[usize] = if first.elem == WHOLE {
+                &model.vars[first.var].dims
+            } else {
+                &[]
+            };
+            out.push(eq(sum, zeros(dims, span), span));
         }
     } else {
         let mut seen = vec![(first.var, first.elem)];

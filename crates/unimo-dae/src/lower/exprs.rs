@@ -55,6 +55,9 @@ impl Lowerer<'_> {
                 })
             }
             ExprKind::Binary { op, lhs, rhs } => {
+                if let Some(t) = self.string_comparison(*op, lhs, rhs)? {
+                    return Ok(t);
+                }
                 let a = self.expr(lhs)?;
                 let b = self.expr(rhs)?;
                 self.binary(*op, &a, &b, span)

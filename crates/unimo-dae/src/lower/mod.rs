@@ -18,6 +18,7 @@ mod array_builtins;
 mod calls;
 mod exprs;
 mod references;
+mod strings;
 mod variables;
 
 /// How deep user functions may call each other while being inlined.
@@ -58,6 +59,9 @@ pub struct Lowerer<'m> {
     pub(crate) errors: Vec<DaeError>,
     /// Conditional `return`/`break` exits of the algorithm being executed.
     pub(crate) exits: Vec<crate::algo::Exit>,
+    /// Instance paths that have variables inside (`a.port[2]` of `a.port[2].T`),
+    /// built when a reference through an array of components first needs it.
+    pub(crate) instances: Option<rustc_hash::FxHashSet<String>>,
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
@@ -92,6 +96,7 @@ impl<'m> Lowerer<'m> {
             evaluated: HashMap::default(),
             errors: Vec::new(),
             exits: Vec::new(),
+            instances: None,
         }
     }
 

@@ -9,6 +9,15 @@ use crate::tensor::{self, Tensor};
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
+/// Whether subscripts pick a slice (`[:]`, `[1:3]`) of one dimension.
+fn slice(subs: &[Subscript]) -> bool {
+    match subs {
+        [Subscript::Colon(_)] => true,
+        [Subscript::Expr(e)] => matches!(e.kind, ExprKind::Range { .. }),
+        _ => false,
+    }
+}
+
 impl Lowerer<'_> {
     pub(super) fn local(&self, name: &str) -> Option<&Local> {
         self.locals.iter().rev().find(|l| l.name == name)
@@ -47,6 +56,15 @@ impl Lowerer<'_> {
                 }
             }
         }
+        // A slice of an array of components (`pin[1:3].i`): the elements' values.
+        if r.parts[..r.parts.len() - 1]
+            .iter()
+            .any(|p| slice(&p.subscripts))
+        {
+            if let Some(t) = self.through_component_array(r)? {
+                return Ok(t);
+            }
+        }
         // Subscripts of an inner part (`p[i].x` in a loop) must be known here: they
         // select the component, hence the variable.
         let folded = self.fold_inner_subscripts(r)?;
@@ -67,6 +85,9 @@ impl Lowerer<'_> {
                 instance.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
             }
             if let Some(t) = self.record_instance(&instance, r.span)? {
+                return Ok(t);
+            }
+            if let Some(t) = self.through_component_array(r)? {
                 return Ok(t);
             }
             return Err(DaeError::new(
@@ -102,6 +123,96 @@ impl Lowerer<'_> {
         self.subscript(t, &subs, r.span)
     }
 
+    /// A reference through an array of components without subscripts (`port.T` of
+    /// `port[1].T` ... `port[3].T`, spec 10.6.9): the array of the elements' values,
+    /// the components' dimension first. `None`: no part of `r` is such an array.
+    fn through_component_array(&mut self, r: &ComponentRef) -> DaeResult<Option<Tensor>> {
+        let n = r.parts.len();
+        for j in 0..n.saturating_sub(1) {
+            // The indices picked: all (probed), or a range of constants.
+            let range = match r.parts[j].subscripts.as_slice() {
+                [] | [Subscript::Colon(_)] => None,
+                [Subscript::Expr(e)] => match &e.kind {
+                    ExprKind::Range { start, step, stop } => {
+                        let a = self.constant_int(start)?;
+                        let h = match step {
+                            Some(h) => self.constant_int(h)?,
+                            None => 1,
+                        };
+                        let b = self.constant_int(stop)?;
+                        if h == 0 {
+                            return Err(unsupported("a range with step 0", e.span));
+                        }
+                        Some((a, h, b))
+                    }
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            let mut c = r.clone();
+            let mut elements: Vec<Tensor> = Vec::new();
+            let mut k = range.map_or(1, |(a, _, _)| a);
+            loop {
+                if let Some((_, h, b)) = range {
+                    if (h > 0 && k > b) || (h < 0 && k < b) {
+                        break;
+                    }
+                }
+                c.parts[j].subscripts = vec![Subscript::Expr(Expr {
+                    kind: ExprKind::Integer(k),
+                    span: r.span,
+                })];
+                let mut path = unimo_flat::eval::var_key_parts(&c.parts[..=j]);
+                path.push_str(&unimo_syntax::print::subscripts(&c.parts[j].subscripts));
+                if !self.instance_exists(&path) {
+                    if range.is_some() {
+                        return Err(DaeError::new(
+                            DaeCode::NoSuchScalar,
+                            format!("`{path}` is not an instance of the flat model"),
+                            r.span,
+                        ));
+                    }
+                    break;
+                }
+                elements.push(self.reference(&c)?);
+                k += range.map_or(1, |(_, h, _)| h);
+            }
+            let Some(first) = elements.first() else {
+                continue;
+            };
+            let inner = first.dims.clone();
+            if elements.iter().any(|e| e.dims != inner) {
+                return Err(unsupported(
+                    "a reference through an array of components of different sizes",
+                    r.span,
+                ));
+            }
+            let mut dims = vec![elements.len()];
+            dims.extend_from_slice(&inner);
+            let data = elements.into_iter().flat_map(|e| e.data).collect();
+            return Ok(Some(Tensor { dims, data }));
+        }
+        Ok(None)
+    }
+
+    /// Whether some variable of the flat model is inside the instance `path`.
+    fn instance_exists(&mut self, path: &str) -> bool {
+        let model = self.model;
+        self.instances
+            .get_or_insert_with(|| {
+                let mut set = rustc_hash::FxHashSet::default();
+                for v in &model.vars {
+                    for (i, ch) in v.name.char_indices() {
+                        if ch == '.' {
+                            set.insert(v.name[..i].to_string());
+                        }
+                    }
+                }
+                set
+            })
+            .contains(path)
+    }
+
     /// `r` with the subscripts of its inner parts folded to Integer literals, or `None`
     /// when only its last part has subscripts.
     fn fold_inner_subscripts(&mut self, r: &ComponentRef) -> DaeResult<Option<ComponentRef>> {
@@ -132,7 +243,7 @@ impl Lowerer<'_> {
 
     /// The value of the model scalar `s`: what the algorithm being lowered assigned to
     /// it so far, else the variable.
-    fn current_value(&mut self, s: ScalarId) -> ExprId {
+    pub(crate) fn current_value(&mut self, s: ScalarId) -> ExprId {
         match self.assigned.as_ref().and_then(|m| m.get(&s)) {
             Some(&e) => e,
             None => self.var_value(s),

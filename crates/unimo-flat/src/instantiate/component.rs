@@ -145,7 +145,11 @@ impl Instantiator<'_, '_> {
         if self.tree.get(c).def.prefixes.expandable {
             self.expandable.push(key.clone());
         }
-        let top = top && self.tree.get(c).def.kind == ClassKind::Connector;
+        let connector = self.tree.get(c).def.kind == ClassKind::Connector;
+        if connector {
+            self.connector_keys.insert(key.clone());
+        }
+        let top = top && connector;
         if dims.is_empty() {
             if !record {
                 self.note_visual(c, super::instance_key(&path));

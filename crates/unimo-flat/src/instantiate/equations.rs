@@ -8,6 +8,29 @@ use crate::modif::Scope;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
+    /// Whether `r`, an argument of a `connect` in the instance `scope`, is an outside
+    /// connector (spec 9.1.2): a connector of the instance itself, or an element of one
+    /// (`c.p` where the instance declares the connector `c`); `a.p` of a component `a`
+    /// that is not a connector is inside.
+    fn outside_connector(&self, r: &ComponentRef, scope: &Scope) -> bool {
+        let Some(first) = r.parts.first() else {
+            return false;
+        };
+        // In the simulated model itself, `p.a` of its own connector `p` stays an inside
+        // connector (as before this rule): its flows are then set by the connection
+        // and not also zeroed as an unconnected inside connector's.
+        if r.parts.len() == 1 || scope.prefix.is_empty() {
+            return r.parts.len() == 1;
+        }
+        let mut path = scope.prefix.to_vec();
+        path.push(RefPart {
+            name: first.name.clone(),
+            subscripts: Vec::new(),
+        });
+        self.connector_keys
+            .contains(&super::instance_key_no_subs(&path))
+    }
+
     pub(super) fn equation(
         &mut self,
         eq: &Equation,
@@ -29,8 +52,8 @@ impl Instantiator<'_, '_> {
                 self.connects.push(Connect {
                     a: fa,
                     b: fb,
-                    a_outside: a.parts.len() == 1,
-                    b_outside: b.parts.len() == 1,
+                    a_outside: self.outside_connector(a, scope),
+                    b_outside: self.outside_connector(b, scope),
                     span: eq.span,
                 });
                 return;

@@ -81,6 +81,9 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// Instance keys of the expandable connectors (their declared members are only
     /// potentially present, see `expandable.rs`).
     pub expandable: Vec<String>,
+    /// Instance keys of the components whose class is a connector: `c.p` in a
+    /// `connect` is an outside connector when `c` is one (spec 9.1.2).
+    connector_keys: HashSet<String>,
     /// Element names declared so far in the instances being instantiated (one level
     /// per [`Self::class_body`], shared with its bases), with where; innermost last.
     /// `None`: the class is known to declare no name twice (checked at its first
@@ -199,7 +202,7 @@ fn annotation_is_true(annotation: Option<&ClassModification>, flag: &str) -> boo
 }
 
 /// The instance key of a path, without the last part's subscripts.
-fn instance_key_no_subs(path: &[RefPart]) -> String {
+pub(super) fn instance_key_no_subs(path: &[RefPart]) -> String {
     eval::var_key_parts(path)
 }
 
@@ -249,6 +252,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             ancestors: Vec::new(),
             absent: Vec::new(),
             expandable: Vec::new(),
+            connector_keys: HashSet::default(),
             declared: Vec::new(),
             declared_pool: Vec::new(),
             duplicate_found: Vec::new(),
