@@ -190,6 +190,8 @@ fn simulate_flat(
     };
     let start = options.start;
     let sim_started = Instant::now();
+    // --stats splits the run's time into evaluation and linear algebra.
+    unimo_solve::set_fine_timing(a.stats);
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
     let result = run(&compiled, &options, sim_started, profile.clone());

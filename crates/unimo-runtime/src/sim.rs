@@ -283,9 +283,9 @@ impl Ode<'_> {
             self.regs[reg as usize] = x[k];
         }
         self.evaluations += 1;
-        let started = Instant::now();
+        let started = unimo_solve::fine_timing().then(Instant::now);
         let evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
-        self.eval_seconds += started.elapsed().as_secs_f64();
+        self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
         evaluated.map_err(|f| {
             let msg = format!("{} in the loop of {}", f.reason, f.variables.join(", "));
             self.last_failure = Some(f);
@@ -314,7 +314,9 @@ impl System for Ode<'_> {
                     && native.fits(self.m.single_step_ops(), n, &self.regs, &self.ev) =>
             {
                 self.evaluations += 1;
+                let started = unimo_solve::fine_timing().then(Instant::now);
                 native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
+                self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
             }
             _ => self.load(t, x)?,
         }
@@ -344,9 +346,9 @@ impl System for Ode<'_> {
             return Ok(false);
         };
         self.load(t, x)?;
-        let started = Instant::now();
+        let started = unimo_solve::fine_timing().then(Instant::now);
         tape.run(&mut self.regs, &mut self.ev);
-        self.eval_seconds += started.elapsed().as_secs_f64();
+        self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
         for &(i, j, r) in entries {
             let v = self.regs[r as usize];
             if !v.is_finite() {

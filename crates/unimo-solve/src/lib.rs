@@ -96,7 +96,7 @@ pub use dense_output::DenseOutput;
 pub use dopri5::{Dopri5, Dopri5DenseOutput};
 pub use error::{EvalError, SolveError, WorstComponents};
 pub use integrator::Integrator;
-pub use linear::linear_algebra_seconds;
+pub use linear::{fine_timing, linear_algebra_seconds, set_fine_timing};
 pub use newton::{NewtonError, NewtonProblem, NewtonTolerance, NewtonWork};
 pub use options::{LinearSolverChoice, Method, Options, Tolerance, SPARSE_AUTO_THRESHOLD};
 pub use radau5::{Radau5, Radau5DenseOutput};

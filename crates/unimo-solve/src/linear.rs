@@ -19,6 +19,22 @@ use std::time::Instant;
 thread_local! {
     /// Seconds this thread spent factoring and solving iteration matrices.
     static LINEAR_ALGEBRA_SECONDS: Cell<f64> = const { Cell::new(0.0) };
+    /// Whether the hot path's fine timers run (see [`set_fine_timing`]).
+    static FINE_TIMING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Turns the fine timers on or off for the calling thread: the time spent in LU
+/// factorizations and solves here, and in the model's evaluations in the runtime. Off by
+/// default: two clock readings per call cost as much as a small model's evaluation or a
+/// 2 x 2 solve, so only runs that report the split (`unimo simulate --stats`) pay them.
+pub fn set_fine_timing(on: bool) {
+    FINE_TIMING.with(|c| c.set(on));
+}
+
+/// Whether the fine timers run on this thread.
+#[inline]
+pub fn fine_timing() -> bool {
+    FINE_TIMING.with(Cell::get)
 }
 
 /// Seconds the calling thread has spent in LU factorizations and solves so far (all
@@ -27,7 +43,10 @@ pub fn linear_algebra_seconds() -> f64 {
     LINEAR_ALGEBRA_SECONDS.with(Cell::get)
 }
 
-fn add_linear_algebra_time(started: Instant) {
+fn add_linear_algebra_time(started: Option<Instant>) {
+    let Some(started) = started else {
+        return;
+    };
     let seconds = started.elapsed().as_secs_f64();
     LINEAR_ALGEBRA_SECONDS.with(|c| c.set(c.get() + seconds));
 }
@@ -128,7 +147,7 @@ impl<T: LuScalar> ShiftedLu<T> {
         differential: &[bool],
         shift: T,
     ) -> Result<(), SingularMatrix> {
-        let started = Instant::now();
+        let started = fine_timing().then(Instant::now);
         let factored = self.factor_untimed(jacobian, differential, shift);
         add_linear_algebra_time(started);
         factored
@@ -175,7 +194,7 @@ impl<T: LuScalar> ShiftedLu<T> {
 
     /// Solves in place with the last factorization.
     pub fn solve(&mut self, rhs: &mut [T]) {
-        let started = Instant::now();
+        let started = fine_timing().then(Instant::now);
         self.solve_untimed(rhs);
         add_linear_algebra_time(started);
     }
