@@ -124,6 +124,7 @@ impl Instantiator<'_, '_> {
                 for d in &cc.components {
                     let mut path = prefix.to_vec();
                     path.push(part(&d.name.text, d.name.span));
+                    self.note_inner_type(&scope, cc, d, m, &path);
                     self.inners.push((d.name.text.clone(), path));
                 }
             }
@@ -134,7 +135,7 @@ impl Instantiator<'_, '_> {
                 (e.outer, e.inner, e.redeclare, &e.kind)
             {
                 for d in &cc.components {
-                    self.outer_component(&scope, d);
+                    self.outer_component(&scope, cc, d);
                 }
             }
         }
@@ -288,36 +289,6 @@ impl Instantiator<'_, '_> {
                     }
                 }
             }
-        }
-    }
-
-    /// An `outer` component: no variables of its own; its references go to the nearest
-    /// `inner` component of the same name in an enclosing instance (spec 5.4).
-    fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
-        let name = d.name.text.as_str();
-        // Inners declared in this very instance do not count: they are siblings.
-        let own = scope.prefix.len();
-        let found = self
-            .inners
-            .iter()
-            .rev()
-            .find(|(n, path)| n == name && path.len() <= own)
-            .map(|(_, p)| p.clone());
-        let mut key_path = scope.prefix.to_vec();
-        key_path.push(part(name, d.name.span));
-        let key = instance_key(&key_path);
-        match found {
-            Some(inner) => {
-                self.outer_alias.insert(key, inner);
-            }
-            None => self.diags.push(
-                Diagnostic::error(
-                    FlatCode::MissingInner,
-                    format!("`outer {name}` has no matching `inner` declaration"),
-                )
-                .at(d.name.span, "declared `outer` here")
-                .with_help(format!("declare `inner ... {name}` in an enclosing model")),
-            ),
         }
     }
 
