@@ -80,6 +80,8 @@ pub enum FlatCode {
     DefaultInner,
     /// E2036: an overconstrained-connection operator misused.
     Overconstrained,
+    /// E2037: a connector whose flow and potential variable counts differ.
+    UnbalancedConnector,
 }
 
 impl FlatCode {
@@ -122,6 +124,7 @@ impl FlatCode {
         FlatCode::InnerOuterMismatch,
         FlatCode::DefaultInner,
         FlatCode::Overconstrained,
+        FlatCode::UnbalancedConnector,
     ];
 
     /// The code as printed (`E2001`).
@@ -164,6 +167,7 @@ impl FlatCode {
             FlatCode::InnerOuterMismatch => "E2035",
             FlatCode::DefaultInner => "W2002",
             FlatCode::Overconstrained => "E2036",
+            FlatCode::UnbalancedConnector => "E2037",
         }
     }
 }

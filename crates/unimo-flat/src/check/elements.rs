@@ -24,6 +24,7 @@ pub(crate) struct ComponentInfo {
     pub name_span: Span,
     /// Declared `final`.
     pub is_final: bool,
+    pub name: smol_str::SmolStr,
     /// The dimensions of the declaration, then those written on its type.
     pub dims: Vec<Subscript>,
 }
@@ -39,6 +40,7 @@ impl ComponentInfo {
             n_dims: d.dims.len() + cc.type_dims.len(),
             name_span: d.name.span,
             is_final: e.is_final,
+            name: d.name.text.clone(),
             dims: d.dims.iter().chain(&cc.type_dims).cloned().collect(),
         }
     }

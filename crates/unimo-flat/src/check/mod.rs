@@ -13,6 +13,7 @@ mod connects;
 mod discrete;
 mod elements;
 mod flat;
+mod predefined;
 mod redeclares;
 mod overconstrained;
 mod restrictions;
@@ -99,8 +100,10 @@ impl Ctx<'_, '_> {
         self.redeclarations(id);
         self.connections(id);
         self.stream_connector(id);
+        self.connector_balance(id);
         self.constant_connectors(id);
         self.overconstrained(id);
+        self.predefined_members(id);
         self.algorithms(id);
         self.purity(id);
     }
