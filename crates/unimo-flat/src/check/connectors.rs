@@ -4,8 +4,8 @@
 //! of a connector type is neither a parameter nor a constant (`E2028`, spec 9.3).
 
 use super::elements::{
-    all_components, base_of, class_kind, component_class, component_type, is_array,
-    type_is_array, Base, ComponentInfo,
+    all_components, base_of, class_kind, component_class, component_type, is_array, type_is_array,
+    Base, ComponentInfo,
 };
 use super::Ctx;
 use crate::error::FlatCode;
@@ -55,8 +55,10 @@ impl Ctx<'_, '_> {
             d = d.with_label(f.name_span, "a flow variable");
         }
         self.out.push(
-            d.with_help("the stream variables are carried by the one flow (e.g. `flow Real m_flow;`)")
-                .with_note("Modelica specification, section 15.1"),
+            d.with_help(
+                "the stream variables are carried by the one flow (e.g. `flow Real m_flow;`)",
+            )
+            .with_note("Modelica specification, section 15.1"),
         );
     }
 
@@ -98,7 +100,11 @@ impl Ctx<'_, '_> {
             if c.protected {
                 continue;
             }
-            let counted = match (c.prefix.connection, c.prefix.variability, c.prefix.causality) {
+            let counted = match (
+                c.prefix.connection,
+                c.prefix.variability,
+                c.prefix.causality,
+            ) {
                 (Some(Connection::Flow), ..) => {
                     let real = component_type(self.tree, &c)
                         .is_some_and(|t| base_of(self.tree, t) == Some(Base::Real));

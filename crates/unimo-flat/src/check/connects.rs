@@ -2,7 +2,9 @@
 //! (`E2030`), a connector is not connected to itself (`E2031`), and the parameters and
 //! constants of two connected connectors match (`E2006`, spec 9.3).
 
-use super::elements::{all_components, class_kind, component_class, component_type, find_component};
+use super::elements::{
+    all_components, class_kind, component_class, component_type, find_component,
+};
 use super::walk::for_each_equation;
 use super::Ctx;
 use crate::error::FlatCode;
@@ -64,8 +66,15 @@ impl Ctx<'_, '_> {
     /// `E2006` when `connect(a, b)` matches a parameter or constant of one connector
     /// with an element of the other of another variability (spec 9.3: parameters
     /// connect to parameters only, constants to constants).
-    fn connected_variabilities(&mut self, id: ClassId, a: &ComponentRef, b: &ComponentRef, span: unimo_source::Span) {
-        let (Some(ca), Some(cb)) = (self.referenced_class(id, a), self.referenced_class(id, b)) else {
+    fn connected_variabilities(
+        &mut self,
+        id: ClassId,
+        a: &ComponentRef,
+        b: &ComponentRef,
+        span: unimo_source::Span,
+    ) {
+        let (Some(ca), Some(cb)) = (self.referenced_class(id, a), self.referenced_class(id, b))
+        else {
             return;
         };
         if ca == cb

@@ -21,18 +21,78 @@ use unimo_syntax::ast::{
 
 /// Built-in operators whose result is discrete-time whatever their arguments.
 const DISCRETE_CALLS: &[&str] = &[
-    "pre", "edge", "change", "initial", "terminal", "sample", "integer", "floor", "ceil",
-    "div", "size", "ndims", "cardinality", "hold", "previous", "interval", "Clock",
-    "subSample", "superSample", "shiftSample", "backSample", "noClock", "firstTick",
+    "pre",
+    "edge",
+    "change",
+    "initial",
+    "terminal",
+    "sample",
+    "integer",
+    "floor",
+    "ceil",
+    "div",
+    "size",
+    "ndims",
+    "cardinality",
+    "hold",
+    "previous",
+    "interval",
+    "Clock",
+    "subSample",
+    "superSample",
+    "shiftSample",
+    "backSample",
+    "noClock",
+    "firstTick",
 ];
 
 /// Built-in functions whose result varies as their arguments do.
 const PROPAGATING_CALLS: &[&str] = &[
-    "abs", "sign", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh",
-    "cosh", "tanh", "exp", "log", "log10", "max", "min", "sum", "product", "mod", "rem",
-    "semiLinear", "homotopy", "delay", "transpose", "fill", "zeros", "ones", "cat",
-    "vector", "matrix", "scalar", "identity", "cross", "skew", "outerProduct", "linspace",
-    "array", "symmetric", "diagonal", "smooth", "Integer", "String", "noEvent",
+    "abs",
+    "sign",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "exp",
+    "log",
+    "log10",
+    "max",
+    "min",
+    "sum",
+    "product",
+    "mod",
+    "rem",
+    "semiLinear",
+    "homotopy",
+    "delay",
+    "transpose",
+    "fill",
+    "zeros",
+    "ones",
+    "cat",
+    "vector",
+    "matrix",
+    "scalar",
+    "identity",
+    "cross",
+    "skew",
+    "outerProduct",
+    "linspace",
+    "array",
+    "symmetric",
+    "diagonal",
+    "smooth",
+    "Integer",
+    "String",
+    "noEvent",
 ];
 
 /// The variables of a flat model by name, and which Reals `when` clauses assign.
@@ -128,9 +188,7 @@ impl Vars<'_> {
                 .flat_map(|(c, v)| [c, v])
                 .find_map(|x| self.continuous_part(x, no_event))
                 .or_else(|| self.continuous_part(otherwise, no_event)),
-            ExprKind::Array(items) => items
-                .iter()
-                .find_map(|x| self.continuous_part(x, no_event)),
+            ExprKind::Array(items) => items.iter().find_map(|x| self.continuous_part(x, no_event)),
             ExprKind::Matrix(rows) => rows
                 .iter()
                 .flatten()

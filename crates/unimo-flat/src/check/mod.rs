@@ -13,9 +13,9 @@ mod connects;
 mod discrete;
 mod elements;
 mod flat;
+mod overconstrained;
 mod predefined;
 mod redeclares;
-mod overconstrained;
 mod restrictions;
 mod walk;
 

@@ -83,7 +83,10 @@ impl Ctx<'_, '_> {
                 if self.has_equality_constraint(c, 0) {
                     return;
                 }
-                format!("of type `{}`, which declares no `equalityConstraint`", self.tree.full_name(c))
+                format!(
+                    "of type `{}`, which declares no `equalityConstraint`",
+                    self.tree.full_name(c)
+                )
             }
             _ => return,
         };

@@ -31,15 +31,14 @@ fn dims_differ(old: &[Subscript], new: &[Subscript]) -> Option<String> {
             old.len()
         ));
     }
-    old.iter()
-        .zip(new)
-        .enumerate()
-        .find_map(|(k, (o, n))| match (literal_size(o), literal_size(n)) {
+    old.iter().zip(new).enumerate().find_map(|(k, (o, n))| {
+        match (literal_size(o), literal_size(n)) {
             (Some(a), Some(b)) if a != b => {
                 Some(format!("size {b} instead of {a} in dimension {}", k + 1))
             }
             _ => None,
-        })
+        }
+    })
 }
 
 /// The class element `name` of `class` or of a base, as declared.
@@ -79,7 +78,9 @@ fn final_redeclared(name: &str, at: Span, declared: Span) -> Diagnostic {
     )
     .at(at, "redeclared here")
     .with_label(declared, "declared `final` here")
-    .with_note("Modelica specification, section 7.2.6: a final element cannot be modified or redeclared")
+    .with_note(
+        "Modelica specification, section 7.2.6: a final element cannot be modified or redeclared",
+    )
 }
 
 impl Ctx<'_, '_> {
@@ -112,8 +113,7 @@ impl Ctx<'_, '_> {
                 ElementKind::Extends(x) => {
                     let Some(cm) = &x.modification else { continue };
                     let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
-                    if let Some(Found::Class(b)) = self.tree.lookup_dotted(Some(id), &parts, true)
-                    {
+                    if let Some(Found::Class(b)) = self.tree.lookup_dotted(Some(id), &parts, true) {
                         if b != id {
                             self.redeclare_args(b, cm, 0);
                         }

@@ -44,7 +44,11 @@ impl Instantiator<'_, '_> {
         let level = check.then(|| self.declared_pool.pop().unwrap_or_default());
         self.declared.push(level);
         self.duplicate_found.push(false);
+        // The `inner` components of the instance, those of its bases included, are
+        // visible to the `outer` ones below it until the instance is done.
+        let inners_before = self.inners.len();
         self.class_body_inner(class, prefix, m, variability, top, true);
+        self.inners.truncate(inners_before);
         self.ancestors.pop();
         let found = self.duplicate_found.pop().unwrap_or(true);
         if let Some(Some(mut level)) = self.declared.pop() {
@@ -118,7 +122,6 @@ impl Instantiator<'_, '_> {
             self.check_modified_names(class, composition, m);
         }
         // `inner` components of this instance are visible to `outer` ones below it.
-        let inners_before = self.inners.len();
         for e in &composition.elements {
             if let (true, ElementKind::Component(cc)) = (e.inner, &e.kind) {
                 for d in &cc.components {
@@ -144,7 +147,6 @@ impl Instantiator<'_, '_> {
             self.components(composition, &scope, m, (pass == 0, variability), top);
         }
         self.sections(composition, &scope);
-        self.inners.truncate(inners_before);
         self.depth -= 1;
     }
 

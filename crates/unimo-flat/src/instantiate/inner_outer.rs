@@ -23,9 +23,7 @@ impl Instantiator<'_, '_> {
         path: &[RefPart],
     ) {
         // A redeclared inner has another type than written: not checked.
-        let redeclared = m
-            .child(&d.name.text)
-            .is_some_and(|c| c.redeclare.is_some());
+        let redeclared = m.child(&d.name.text).is_some_and(|c| c.redeclare.is_some());
         let parts: Vec<&str> = cc.type_name.parts.iter().map(|p| p.text.as_str()).collect();
         let found = if redeclared {
             None
@@ -37,7 +35,12 @@ impl Instantiator<'_, '_> {
 
     /// An `outer` component: no variables of its own; its references go to the nearest
     /// `inner` component of the same name in an enclosing instance (spec 5.4).
-    pub(super) fn outer_component(&mut self, scope: &Scope, cc: &ComponentClause, d: &ComponentDecl) {
+    pub(super) fn outer_component(
+        &mut self,
+        scope: &Scope,
+        cc: &ComponentClause,
+        d: &ComponentDecl,
+    ) {
         let name = d.name.text.as_str();
         // Inners declared in this very instance do not count: they are siblings.
         let own = scope.prefix.len();
@@ -78,7 +81,13 @@ impl Instantiator<'_, '_> {
     }
 
     /// `E2035` when the inner's type `inner` lacks an element of the outer's `outer`.
-    fn check_inner_subtype(&mut self, inner: Found, outer: Found, path: &[RefPart], d: &ComponentDecl) {
+    fn check_inner_subtype(
+        &mut self,
+        inner: Found,
+        outer: Found,
+        path: &[RefPart],
+        d: &ComponentDecl,
+    ) {
         let why = match (inner, outer) {
             (Found::Builtin(i), Found::Builtin(o)) if i != o => format!("`{i}` is not `{o}`"),
             (Found::Class(i), Found::Class(o)) if i != o => {
@@ -139,7 +148,8 @@ impl Instantiator<'_, '_> {
             }
         }
         let path = vec![part(name, d.name.span)];
-        self.default_inners.push((d.name.text.clone(), ty, path.clone()));
+        self.default_inners
+            .push((d.name.text.clone(), ty, path.clone()));
         let type_name = match ty {
             Found::Class(c) => self.tree.full_name(c),
             Found::Builtin(b) => b.to_owned(),
