@@ -142,6 +142,14 @@ impl Instantiator<'_, '_> {
                 Err("other `outer` declarations of that name have another class".to_owned())
             };
         }
+        // An element of that name at the top (not this outer itself) leaves no room.
+        if let Some(&top) = self.ancestors.first() {
+            if !scope.prefix.is_empty() && self.tree.has_component(top, name) {
+                return Err(format!(
+                    "the model has an element `{name}` that is not `inner`"
+                ));
+            }
+        }
         if let Found::Class(c) = ty {
             if self.tree.get(c).def.partial {
                 return Err(format!("`{}` is partial", self.tree.full_name(c)));
