@@ -116,3 +116,26 @@ fn a_parameter_without_any_value_is_a_warning() {
     assert_eq!(stderr.matches("warning[W2001]").count(), 2, "{stderr}");
     assert!(stderr.contains("no errors, 2 warnings"), "{stderr}");
 }
+
+/// `W2002`: an `outer` component without `inner` whose class is not partial gets an
+/// inner of that class at the top of the model, with a warning (spec 5.4); both outers
+/// refer to the one created inner.
+#[test]
+fn a_missing_inner_is_created_by_default_with_a_warning() {
+    let f = Path::new("tests/semantic/warn/default_inner.mo");
+    let (code, stderr) = check(f);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_eq!(stderr.matches("warning[W2002]").count(), 1, "{stderr}");
+    assert!(stderr.contains("default_inner.mo:5:15"), "{stderr}");
+    assert!(stderr.contains("no errors, 1 warning"), "{stderr}");
+    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["flatten", "--color", "never"])
+        .arg(f)
+        .current_dir(common::root())
+        .output()
+        .unwrap();
+    let flat = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{flat}");
+    assert!(flat.contains("parameter Real 'world.g' = 9.81;"), "{flat}");
+    assert_eq!(flat.matches("'world.g'").count(), 3, "{flat}");
+}

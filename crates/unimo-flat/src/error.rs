@@ -70,6 +70,18 @@ pub enum FlatCode {
     PreOfContinuous,
     /// W2001 (a warning): a parameter with neither a binding nor a start value.
     UnboundParameter,
+    /// E2033: a discrete-time variable given a continuous-time value outside `when`.
+    DiscreteGivenContinuous,
+    /// E2034: a stream connector without exactly one flow variable.
+    StreamFlowCount,
+    /// E2035: an `inner` component whose type is not a subtype of the `outer` one's.
+    InnerOuterMismatch,
+    /// W2002 (a warning): an `outer` component without `inner`, created by default.
+    DefaultInner,
+    /// E2036: an overconstrained-connection operator misused.
+    Overconstrained,
+    /// E2037: a connector whose flow and potential variable counts differ.
+    UnbalancedConnector,
 }
 
 impl FlatCode {
@@ -107,6 +119,12 @@ impl FlatCode {
         FlatCode::ConnectToItself,
         FlatCode::PreOfContinuous,
         FlatCode::UnboundParameter,
+        FlatCode::DiscreteGivenContinuous,
+        FlatCode::StreamFlowCount,
+        FlatCode::InnerOuterMismatch,
+        FlatCode::DefaultInner,
+        FlatCode::Overconstrained,
+        FlatCode::UnbalancedConnector,
     ];
 
     /// The code as printed (`E2001`).
@@ -144,6 +162,12 @@ impl FlatCode {
             FlatCode::ConnectToItself => "E2031",
             FlatCode::PreOfContinuous => "E2032",
             FlatCode::UnboundParameter => "W2001",
+            FlatCode::DiscreteGivenContinuous => "E2033",
+            FlatCode::StreamFlowCount => "E2034",
+            FlatCode::InnerOuterMismatch => "E2035",
+            FlatCode::DefaultInner => "W2002",
+            FlatCode::Overconstrained => "E2036",
+            FlatCode::UnbalancedConnector => "E2037",
         }
     }
 }

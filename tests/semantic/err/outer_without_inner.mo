@@ -1,5 +1,5 @@
 // expect: E2013 @6:15
-model World
+partial model World
   parameter Real g = 9.81;
 end World;
 model M

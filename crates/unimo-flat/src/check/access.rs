@@ -149,14 +149,7 @@ impl Ctx<'_, '_> {
                 let Some(cm) = d.modification.as_ref().and_then(|m| m.class_mod.as_ref()) else {
                     continue;
                 };
-                let info = ComponentInfo {
-                    owner: id,
-                    protected: false,
-                    prefix: cc.prefix,
-                    type_name: cc.type_name.clone(),
-                    n_dims: d.dims.len() + cc.type_dims.len(),
-                    name_span: d.name.span,
-                };
+                let info = ComponentInfo::new(id, e, cc, d);
                 let array = is_array(self.tree, &info);
                 let target = component_type(self.tree, &info);
                 self.class_mod(cm, target, array);

@@ -1,7 +1,10 @@
 //! Connections as written (spec 9.1): both sides of a `connect` are connectors
-//! (`E2030`), and a connector is not connected to itself (`E2031`).
+//! (`E2030`), a connector is not connected to itself (`E2031`), and the parameters and
+//! constants of two connected connectors match (`E2006`, spec 9.3).
 
-use super::elements::{class_kind, component_type, find_component};
+use super::elements::{
+    all_components, class_kind, component_class, component_type, find_component,
+};
 use super::walk::for_each_equation;
 use super::Ctx;
 use crate::error::FlatCode;
@@ -46,6 +49,69 @@ impl Ctx<'_, '_> {
             for side in [a, b] {
                 self.connector_side(id, side);
             }
+            self.connected_variabilities(id, a, b, *span);
+        }
+    }
+
+    /// The class of the component `r` denotes from class `id`, when it resolves.
+    fn referenced_class(&mut self, id: ClassId, r: &ComponentRef) -> Option<ClassId> {
+        let mut cur = find_component(self.tree, id, &r.parts[0].name.text)?;
+        for p in &r.parts[1..] {
+            let c = component_class(self.tree, &cur)?;
+            cur = find_component(self.tree, c, &p.name.text)?;
+        }
+        component_class(self.tree, &cur)
+    }
+
+    /// `E2006` when `connect(a, b)` matches a parameter or constant of one connector
+    /// with an element of the other of another variability (spec 9.3: parameters
+    /// connect to parameters only, constants to constants).
+    fn connected_variabilities(
+        &mut self,
+        id: ClassId,
+        a: &ComponentRef,
+        b: &ComponentRef,
+        span: unimo_source::Span,
+    ) {
+        let (Some(ca), Some(cb)) = (self.referenced_class(id, a), self.referenced_class(id, b))
+        else {
+            return;
+        };
+        if ca == cb
+            || class_kind(self.tree, ca) != (ClassKind::Connector, false)
+            || class_kind(self.tree, cb) != (ClassKind::Connector, false)
+        {
+            return;
+        }
+        let fixed = |v: Option<Variability>| match v {
+            Some(Variability::Parameter) => "a parameter",
+            Some(Variability::Constant) => "a constant",
+            _ => "a variable",
+        };
+        for x in all_components(self.tree, ca) {
+            let name = x.name.clone();
+            let Some(y) = find_component(self.tree, cb, &name) else {
+                continue;
+            };
+            let (vx, vy) = (fixed(x.prefix.variability), fixed(y.prefix.variability));
+            if vx == vy {
+                continue;
+            }
+            self.out.push(
+                Diagnostic::error(
+                    FlatCode::ConnectorMismatch,
+                    format!(
+                        "`{}.{name}` and `{}.{name}` cannot be connected: {vx} and {vy}",
+                        unimo_syntax::print::cref(a),
+                        unimo_syntax::print::cref(b)
+                    ),
+                )
+                .at(span, "in this connect")
+                .with_label(x.name_span, format!("{vx} here"))
+                .with_label(y.name_span, format!("{vy} here"))
+                .with_note("Modelica specification, section 9.3: a connect equation matches parameters with parameters and constants with constants"),
+            );
+            return;
         }
     }
 

@@ -22,6 +22,28 @@ pub(crate) struct ComponentInfo {
     /// Dimensions written on the declaration and on its type (`Real[2] x[3]`: 2).
     pub n_dims: usize,
     pub name_span: Span,
+    /// Declared `final`.
+    pub is_final: bool,
+    pub name: smol_str::SmolStr,
+    /// The dimensions of the declaration, then those written on its type.
+    pub dims: Vec<Subscript>,
+}
+
+impl ComponentInfo {
+    /// Declaration `d` of clause `cc`, element `e` of class `owner`.
+    pub fn new(owner: ClassId, e: &Element, cc: &ComponentClause, d: &ComponentDecl) -> Self {
+        ComponentInfo {
+            owner,
+            protected: e.visibility == Visibility::Protected,
+            prefix: cc.prefix,
+            type_name: cc.type_name.clone(),
+            n_dims: d.dims.len() + cc.type_dims.len(),
+            name_span: d.name.span,
+            is_final: e.is_final,
+            name: d.name.text.clone(),
+            dims: d.dims.iter().chain(&cc.type_dims).cloned().collect(),
+        }
+    }
 }
 
 /// The predefined type a type derives from.
@@ -89,14 +111,7 @@ fn find_depth(
             continue;
         };
         if let Some(d) = cc.components.iter().find(|d| d.name.text == name) {
-            return Some(ComponentInfo {
-                owner: class,
-                protected: e.visibility == Visibility::Protected,
-                prefix: cc.prefix,
-                type_name: cc.type_name.clone(),
-                n_dims: d.dims.len() + cc.type_dims.len(),
-                name_span: d.name.span,
-            });
+            return Some(ComponentInfo::new(class, e, cc, d));
         }
     }
     for e in &composition.elements {
@@ -321,14 +336,7 @@ fn collect_components(
         match &e.kind {
             ElementKind::Component(cc) => {
                 for d in &cc.components {
-                    out.push(ComponentInfo {
-                        owner: class,
-                        protected: e.visibility == Visibility::Protected,
-                        prefix: cc.prefix,
-                        type_name: cc.type_name.clone(),
-                        n_dims: d.dims.len() + cc.type_dims.len(),
-                        name_span: d.name.span,
-                    });
+                    out.push(ComponentInfo::new(class, e, cc, d));
                 }
             }
             ElementKind::Extends(x) => {

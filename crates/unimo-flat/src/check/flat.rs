@@ -63,7 +63,7 @@ pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
 
 /// The names of the variables `when` clauses assign (equations' left sides and
 /// algorithms' targets inside `when`): the Real ones are discrete-time.
-fn assigned_in_when(model: &FlatModel) -> HashSet<String> {
+pub(super) fn assigned_in_when(model: &FlatModel) -> HashSet<String> {
     let mut out = HashSet::default();
     let mut note = |e: &Expr| {
         let refs: Vec<&ComponentRef> = match &e.kind {

@@ -8,9 +8,14 @@
 
 mod access;
 mod algorithms;
+mod connectors;
 mod connects;
+mod discrete;
 mod elements;
 mod flat;
+mod overconstrained;
+mod predefined;
+mod redeclares;
 mod restrictions;
 mod walk;
 
@@ -64,10 +69,12 @@ pub(crate) fn check_file_siblings(tree: &mut ClassTree<'_>, class: ClassId) -> V
 }
 
 /// The semantic diagnostics of a flat model: constants bound to parameters (`E2019`),
-/// `pre` of continuous-time variables outside `when` (`E2032`).
+/// `pre` of continuous-time variables outside `when` (`E2032`), discrete-time variables
+/// given continuous-time values (`E2033`).
 pub(crate) fn flat_model(model: &crate::FlatModel) -> Vec<Diagnostic> {
     let mut out = flat::constant_bindings(model);
     out.extend(flat::pre_of_continuous(model));
+    out.extend(discrete::discrete_equations(model));
     out
 }
 
@@ -90,7 +97,13 @@ impl Ctx<'_, '_> {
         self.prefixes(id);
         self.visibility(id);
         self.modifications(id);
+        self.redeclarations(id);
         self.connections(id);
+        self.stream_connector(id);
+        self.connector_balance(id);
+        self.constant_connectors(id);
+        self.overconstrained(id);
+        self.predefined_members(id);
         self.algorithms(id);
         self.purity(id);
     }

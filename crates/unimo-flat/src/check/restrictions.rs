@@ -39,14 +39,7 @@ fn declared(composition: &Composition) -> Vec<Declared<'_>> {
 }
 
 fn info_of(owner: ClassId, d: &Declared<'_>) -> ComponentInfo {
-    ComponentInfo {
-        owner,
-        protected: d.element.visibility == Visibility::Protected,
-        prefix: d.clause.prefix,
-        type_name: d.clause.type_name.clone(),
-        n_dims: d.decl.dims.len() + d.clause.type_dims.len(),
-        name_span: d.decl.name.span,
-    }
+    ComponentInfo::new(owner, d.element, d.clause, d.decl)
 }
 
 fn restriction(message: String, span: Span, label: &str, section: &str) -> Diagnostic {

@@ -44,7 +44,11 @@ impl Instantiator<'_, '_> {
         let level = check.then(|| self.declared_pool.pop().unwrap_or_default());
         self.declared.push(level);
         self.duplicate_found.push(false);
+        // The `inner` components of the instance, those of its bases included, are
+        // visible to the `outer` ones below it until the instance is done.
+        let inners_before = self.inners.len();
         self.class_body_inner(class, prefix, m, variability, top, true);
+        self.inners.truncate(inners_before);
         self.ancestors.pop();
         let found = self.duplicate_found.pop().unwrap_or(true);
         if let Some(Some(mut level)) = self.declared.pop() {
@@ -118,12 +122,12 @@ impl Instantiator<'_, '_> {
             self.check_modified_names(class, composition, m);
         }
         // `inner` components of this instance are visible to `outer` ones below it.
-        let inners_before = self.inners.len();
         for e in &composition.elements {
             if let (true, ElementKind::Component(cc)) = (e.inner, &e.kind) {
                 for d in &cc.components {
                     let mut path = prefix.to_vec();
                     path.push(part(&d.name.text, d.name.span));
+                    self.note_inner_type(&scope, cc, d, m, &path);
                     self.inners.push((d.name.text.clone(), path));
                 }
             }
@@ -134,7 +138,7 @@ impl Instantiator<'_, '_> {
                 (e.outer, e.inner, e.redeclare, &e.kind)
             {
                 for d in &cc.components {
-                    self.outer_component(&scope, d);
+                    self.outer_component(&scope, cc, d);
                 }
             }
         }
@@ -143,7 +147,6 @@ impl Instantiator<'_, '_> {
             self.components(composition, &scope, m, (pass == 0, variability), top);
         }
         self.sections(composition, &scope);
-        self.inners.truncate(inners_before);
         self.depth -= 1;
     }
 
@@ -288,36 +291,6 @@ impl Instantiator<'_, '_> {
                     }
                 }
             }
-        }
-    }
-
-    /// An `outer` component: no variables of its own; its references go to the nearest
-    /// `inner` component of the same name in an enclosing instance (spec 5.4).
-    fn outer_component(&mut self, scope: &Scope, d: &ComponentDecl) {
-        let name = d.name.text.as_str();
-        // Inners declared in this very instance do not count: they are siblings.
-        let own = scope.prefix.len();
-        let found = self
-            .inners
-            .iter()
-            .rev()
-            .find(|(n, path)| n == name && path.len() <= own)
-            .map(|(_, p)| p.clone());
-        let mut key_path = scope.prefix.to_vec();
-        key_path.push(part(name, d.name.span));
-        let key = instance_key(&key_path);
-        match found {
-            Some(inner) => {
-                self.outer_alias.insert(key, inner);
-            }
-            None => self.diags.push(
-                Diagnostic::error(
-                    FlatCode::MissingInner,
-                    format!("`outer {name}` has no matching `inner` declaration"),
-                )
-                .at(d.name.span, "declared `outer` here")
-                .with_help(format!("declare `inner ... {name}` in an enclosing model")),
-            ),
         }
     }
 

@@ -19,6 +19,7 @@ mod constants;
 mod elements;
 mod equations;
 mod exprs;
+mod inner_outer;
 
 /// Attributes a variable of a predefined type may be modified with.
 const ATTRIBUTES: &[&str] = &[
@@ -113,6 +114,11 @@ pub(crate) struct Instantiator<'t, 'p> {
     stopped: bool,
     /// Instance keys of `outer` components, with the path of the `inner` they stand for.
     outer_alias: HashMap<String, Vec<RefPart>>,
+    /// The types of `inner` components by instance key (None: not known).
+    inner_types: HashMap<String, Option<Found>>,
+    /// Inner components added at the top for `outer` ones without inner: (name, type,
+    /// path).
+    default_inners: Vec<(SmolStr, Found, Vec<RefPart>)>,
     depth: usize,
     /// Record classes the model uses, in the order first seen.
     pub(crate) records_used: Vec<ClassId>,
@@ -264,6 +270,8 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             budget_used: 0,
             stopped: false,
             outer_alias: HashMap::default(),
+            inner_types: HashMap::default(),
+            default_inners: Vec::new(),
             records_used: Vec::new(),
             class_redeclares: HashMap::default(),
             type_cache: HashMap::default(),
