@@ -1,7 +1,7 @@
 //! The Cranelift side: one JIT module per model, one function per part of a tape,
 //! linked once; the module's memory lives as long as a tape refers to it.
 
-use cranelift_codegen::ir::{types, AbiParam, InstBuilder, UserFuncName};
+use cranelift_codegen::ir::{types, AbiParam, InstBuilder, UserFuncName, Value};
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
@@ -221,16 +221,8 @@ fn compile_error(tape: &str, e: impl std::fmt::Display) -> CodegenError {
     }
 }
 
-/// Builds one function from `ops`.
-fn build(
-    func: &mut cranelift_codegen::ir::Function,
-    builder_ctx: &mut FunctionBuilderContext,
-    ops: &[Op],
-    interpreted_ops: &mut Vec<PinnedOp>,
-    target: TargetFrontendConfig,
-) -> Counts {
-    let call_conv = func.signature.call_conv;
-    let mut b = FunctionBuilder::new(func, builder_ctx);
+/// The entry block with the function's parameters: the common ones, and the rest.
+fn entry(b: &mut FunctionBuilder<'_>) -> (Params, Vec<Value>) {
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
@@ -243,6 +235,20 @@ fn build(
         relations: p[3],
         event_mode: p[4],
     };
+    (params, p[5..].to_vec())
+}
+
+/// Builds one function from `ops`.
+fn build(
+    func: &mut cranelift_codegen::ir::Function,
+    builder_ctx: &mut FunctionBuilderContext,
+    ops: &[Op],
+    interpreted_ops: &mut Vec<PinnedOp>,
+    target: TargetFrontendConfig,
+) -> Counts {
+    let call_conv = func.signature.call_conv;
+    let mut b = FunctionBuilder::new(func, builder_ctx);
+    let (params, _) = entry(&mut b);
     let sigs = Signatures::import(&mut b, call_conv);
     let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
     for &op in ops {
@@ -265,19 +271,8 @@ fn build_rhs(
 ) {
     let call_conv = func.signature.call_conv;
     let mut b = FunctionBuilder::new(func, builder_ctx);
-    let entry = b.create_block();
-    b.append_block_params_for_function_params(entry);
-    b.switch_to_block(entry);
-    b.seal_block(entry);
-    let p = b.block_params(entry).to_vec();
-    let params = Params {
-        registers: p[0],
-        n_registers: p[1],
-        events: p[2],
-        relations: p[3],
-        event_mode: p[4],
-    };
-    let (time, states, derivatives) = (p[5], p[6], p[7]);
+    let (params, rest) = entry(&mut b);
+    let (time, states, derivatives) = (rest[0], rest[1], rest[2]);
     let sigs = Signatures::import(&mut b, call_conv);
     let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
     t.set(spec.time, time);

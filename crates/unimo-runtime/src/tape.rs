@@ -674,26 +674,21 @@ pub fn held_rounding(node: Node) -> Option<Rounding> {
 }
 
 /// Whether `op` is a pure arithmetic or logical instruction writing `r` alone (one
-/// [`with_dst`] may point elsewhere without changing what else it does).
+/// [`with_dst`] may point elsewhere without changing what else it does): not a copy,
+/// constant, relation with events, sample, external call or held rounding.
 fn retargetable(op: Op, r: Reg) -> bool {
-    matches!(
+    let pure = !matches!(
         op,
-        Op::Add(d, ..)
-            | Op::Sub(d, ..)
-            | Op::Mul(d, ..)
-            | Op::Div(d, ..)
-            | Op::Pow(d, ..)
-            | Op::Powi(d, ..)
-            | Op::Neg(d, _)
-            | Op::Fn1(_, d, _)
-            | Op::Fn2(_, d, ..)
-            | Op::Rel(_, d, ..)
-            | Op::And(d, ..)
-            | Op::Or(d, ..)
-            | Op::Not(d, _)
-            | Op::Select(d, ..)
-            if d == r
-    )
+        Op::Const(..)
+            | Op::Copy(..)
+            | Op::RelEvent(..)
+            | Op::Sample(..)
+            | Op::Ext(..)
+            | Op::Held(..)
+            | Op::HeldBounds(..)
+    );
+    let mut written = op.written();
+    pure && written.next() == Some(r) && written.next().is_none()
 }
 
 fn with_dst(op: Op, d: Reg) -> Op {
