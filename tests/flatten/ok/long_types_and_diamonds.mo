@@ -4,7 +4,8 @@
 // types built on it by the short form keep their dimensions and modifiers. A nested
 // function does not make it a structured class. A base met along two inheritance paths
 // (a diamond, as `MultiBody.Visualizers.Advanced.Shape` extends `PartialShape` directly and
-// through `ModelicaServices.Animation.Shape`) contributes its elements once.
+// through `ModelicaServices.Animation.Shape`) contributes its elements once, in every
+// instance of the class (`b2`: the second instance once created them twice).
 model LongTypesAndDiamonds
   type TypeReal "a Real with an icon"
     extends Real;
@@ -43,6 +44,7 @@ model LongTypesAndDiamonds
   parameter Color c = {255, 0, 0};
   Orientation q(start = {1, 0, 0, 0});
   Both b;
+  Both b2;
   Real s;
 equation
   q = {cos(phi * time), sin(phi * time) * n[1], 0, 0};

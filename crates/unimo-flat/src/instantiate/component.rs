@@ -245,7 +245,12 @@ impl Instantiator<'_, '_> {
                 if first == d.name.span {
                     // The same declaration inherited along two paths (a base extended
                     // twice, as the MSL's `Visualizers.Advanced.Shape` does): one
-                    // element (spec 7.1.4: identical inherited elements are one).
+                    // element (spec 7.1.4: identical inherited elements are one). The
+                    // class keeps this check on its later instances (it is not
+                    // "duplicate-free"): without it they would create the element twice.
+                    if let Some(f) = self.duplicate_found.last_mut() {
+                        *f = true;
+                    }
                     return false;
                 }
                 let owner = if scope.prefix.is_empty() {
