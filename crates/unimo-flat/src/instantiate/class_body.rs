@@ -142,9 +142,12 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
-        // Parameters and constants first: sizes and conditions of the others use them.
-        for pass in 0..2 {
-            self.components(composition, &scope, m, (pass == 0, variability), top);
+        // Parameters and constants first: sizes and conditions of the others use them;
+        // then `inner` components, whose parameters the conditions and sizes of the
+        // others may read through their `outer`s (an MSL example declares `inner World
+        // world` after the joints whose animation depends on `world.enableAnimation`).
+        for pass in [Pass::Parameters, Pass::Inners, Pass::Others] {
+            self.components(composition, &scope, m, (pass, variability), top);
         }
         self.sections(composition, &scope);
         self.depth -= 1;
@@ -211,7 +214,7 @@ impl Instantiator<'_, '_> {
         composition: &Composition,
         scope: &Scope,
         m: &Mod,
-        (parameters, variability): (bool, Option<Variability>),
+        (pass, variability): (Pass, Option<Variability>),
         top: bool,
     ) {
         let prefix_key = &if scope.prefix.is_empty() {
@@ -230,7 +233,12 @@ impl Instantiator<'_, '_> {
                         | unimo_syntax::ast::Variability::Constant
                 )
             );
-            if parameters != is_param {
+            let this_pass = match (is_param, e.inner) {
+                (true, _) => Pass::Parameters,
+                (false, true) => Pass::Inners,
+                (false, false) => Pass::Others,
+            };
+            if pass != this_pass {
                 continue;
             }
             if e.redeclare {
@@ -332,4 +340,15 @@ fn own_redeclares(composition: &Composition, scope: &Scope) -> Mod {
         }
     }
     own_redeclares
+}
+
+/// The order in which a class's own components are instantiated.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Pass {
+    /// Parameters and constants.
+    Parameters,
+    /// The other `inner` components.
+    Inners,
+    /// Everything else.
+    Others,
 }
