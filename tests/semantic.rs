@@ -33,6 +33,16 @@ fn files(dir: &str) -> Vec<PathBuf> {
 }
 
 /// The `CODE @line:col` list of a file's first line, sorted.
+/// `unimo flatten` of one file.
+fn flatten(path: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(["flatten", "--color", "never"])
+        .arg(path)
+        .current_dir(common::root())
+        .output()
+        .unwrap()
+}
+
 fn expected(path: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(common::root().join(path)).unwrap();
     let first = text.lines().next().unwrap_or_default();
@@ -87,12 +97,7 @@ fn legal_models_at_the_edge_of_each_rule_check_cleanly() {
 #[test]
 fn flattening_checks_the_other_classes_of_the_file() {
     let f = Path::new("tests/semantic/err/assign_function_input_of_used_function.mo");
-    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
-        .args(["flatten", "--color", "never"])
-        .arg(f)
-        .current_dir(common::root())
-        .output()
-        .unwrap();
+    let out = flatten(f);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert_eq!(common::rendered_codes(&stderr), expected(f), "{stderr}");
@@ -128,12 +133,7 @@ fn a_missing_inner_is_created_by_default_with_a_warning() {
     assert_eq!(stderr.matches("warning[W2002]").count(), 1, "{stderr}");
     assert!(stderr.contains("default_inner.mo:5:15"), "{stderr}");
     assert!(stderr.contains("no errors, 1 warning"), "{stderr}");
-    let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
-        .args(["flatten", "--color", "never"])
-        .arg(f)
-        .current_dir(common::root())
-        .output()
-        .unwrap();
+    let out = flatten(f);
     let flat = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{flat}");
     assert!(flat.contains("parameter Real 'world.g' = 9.81;"), "{flat}");

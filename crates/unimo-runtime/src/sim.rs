@@ -318,17 +318,20 @@ impl System for Ode<'_> {
                 native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
                 self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
             }
-            _ => self.load(t, x)?,
+            _ => {
+                self.load(t, x)?;
+                for (k, &reg) in self.m.derivatives.iter().enumerate() {
+                    out[k] = self.regs[reg as usize];
+                }
+            }
         }
-        for (k, &reg) in self.m.derivatives.iter().enumerate() {
-            let v = self.regs[reg as usize];
+        for (k, &v) in out[..n].iter().enumerate() {
             if !v.is_finite() {
                 return Err(EvalError::domain(format!(
                     "der({}) is {v}",
                     self.m.state_names[k]
                 )));
             }
-            out[k] = v;
         }
         if self.clock {
             out[self.m.states.len()] = 0.0;

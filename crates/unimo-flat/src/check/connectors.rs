@@ -18,11 +18,7 @@ impl Ctx<'_, '_> {
     /// one scalar flow variable (inherited elements count).
     pub(super) fn stream_connector(&mut self, id: ClassId) {
         let def = self.tree.get(id).def.clone();
-        if def.kind != ClassKind::Connector
-            || def.partial
-            || def.prefixes.expandable
-            || !matches!(def.body, ClassBody::Long { .. })
-        {
+        if !concrete_connector(&def) {
             return;
         }
         let components = all_components(self.tree, id);
@@ -86,11 +82,7 @@ impl Ctx<'_, '_> {
     /// `parameter`, `constant`, `input`, `output`, `flow` nor `stream`).
     pub(super) fn connector_balance(&mut self, id: ClassId) {
         let def = self.tree.get(id).def.clone();
-        if def.kind != ClassKind::Connector
-            || def.partial
-            || def.prefixes.expandable
-            || !matches!(def.body, ClassBody::Long { .. })
-        {
+        if !concrete_connector(&def) {
             return;
         }
         let (mut flows, mut potentials, mut stream) = (0i64, 0i64, false);
@@ -183,4 +175,13 @@ impl Ctx<'_, '_> {
             }
         }
     }
+}
+
+/// A connector class whose own elements are its interface: not partial, not
+/// expandable, written in the long form.
+fn concrete_connector(def: &ClassDef) -> bool {
+    def.kind == ClassKind::Connector
+        && !def.partial
+        && !def.prefixes.expandable
+        && matches!(def.body, ClassBody::Long { .. })
 }
