@@ -887,3 +887,21 @@ fn a_parameter_computed_at_initialization_is_not_its_start_value() {
     }
     assert_eq!(r.times.len(), 5);
 }
+
+/// A loop that is linear in each mode of its relations is solved by one Newton step
+/// (the plan marks it "switched linear"); the same loop under `noEvent` iterates as a
+/// general switched block. Both give `x = w = exp(-t/3)` (y = x/3 in the mode y > 0).
+#[test]
+fn switched_linear_loops_are_solved_in_one_step() {
+    let m = load("tests/structure/ok/SwitchedLinearLoop.mo");
+    let dump = &m.analysis.dump;
+    assert!(dump.contains("switched linear block of 2"), "{dump}");
+    assert!(dump.contains("  b2: switched block of 2"), "{dump}");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 3.0, 30);
+    for name in ["x", "w"] {
+        for (v, &t) in common::column(&r, name).iter().zip(&r.times) {
+            let exact = (-t / 3.0).exp();
+            assert!((v - exact).abs() <= 1e-8, "{name} at t = {t}: {v} against {exact}");
+        }
+    }
+}

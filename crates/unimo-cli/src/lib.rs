@@ -9,6 +9,7 @@ pub mod api;
 mod bench;
 mod check;
 pub mod fmu;
+mod numfmt;
 mod params;
 pub mod plot;
 mod provider;

@@ -82,13 +82,17 @@ pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io:
         }
     }
     writeln!(out)?;
+    let mut line = Vec::with_capacity(24 * (cols.len() + 1));
     for (t, row) in r.times.iter().zip(&r.rows) {
-        write!(out, "{t:e}")?;
+        line.clear();
+        crate::numfmt::push_exp(&mut line, *t);
         for &c in cols {
+            line.push(b',');
             // -0 is written as 0.
-            write!(out, ",{:e}", row[c] + 0.0)?;
+            crate::numfmt::push_exp(&mut line, row[c] + 0.0);
         }
-        writeln!(out)?;
+        line.push(b'\n');
+        out.write_all(&line)?;
     }
     Ok(())
 }

@@ -288,10 +288,11 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     plan.state_sets = state_sets;
     let mut torn_count = 0;
     let mut largest = 0;
+    let frozen = frozen_between_events(sys.dae);
     for b in &blocks {
         largest = largest.max(b.size());
         if b.size() == 1 {
-            let step = single_step(&mut sys, b.eqs[0], b.vars[0], &selectors);
+            let step = single_step(&mut sys, b.eqs[0], b.vars[0], &selectors, &frozen);
             plan.steps.push(step);
             continue;
         }
@@ -311,7 +312,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
             .map(|&e| sys.dae.residual(EqId(e.0)))
             .collect();
         let eqs: Vec<EqId> = b.eqs.iter().map(|e| EqId(e.0)).collect();
-        let block = newton_block(sys.dae, &eqs, &iteration, &inner, &residuals);
+        let block = newton_block(sys.dae, &eqs, &iteration, &inner, &residuals, &frozen);
         plan.steps.push(PlanStep::Block(block));
     }
     let n_unknowns = dummies.is_unknown.iter().filter(|&&u| u).count();
@@ -414,6 +415,7 @@ fn single_step(
     e: st::EqId,
     v: st::VarId,
     selectors: &HashSet<ScalarId>,
+    frozen: &HashSet<ExprId>,
 ) -> PlanStep {
     let eq = EqId(e.0);
     let s = sys.scalar(v);
@@ -422,7 +424,7 @@ fn single_step(
         Some((value, coef)) if !has_if(sys.dae, coef) && !mentions(sys.dae, coef, selectors) => {
             PlanStep::Assign { var: s, value, eq }
         }
-        _ => PlanStep::Block(newton_block(sys.dae, &[eq], &[s], &[], &[r])),
+        _ => PlanStep::Block(newton_block(sys.dae, &[eq], &[s], &[], &[r], frozen)),
     }
 }
 
@@ -604,6 +606,7 @@ fn newton_block(
     iteration: &[ScalarId],
     inner: &[(ScalarId, ExprId)],
     residuals: &[ExprId],
+    frozen: &HashSet<ExprId>,
 ) -> Block {
     let mut full: HashMap<ScalarId, ExprId> = HashMap::default();
     for &(v, e) in inner {
@@ -621,26 +624,134 @@ fn newton_block(
         })
         .collect();
     let mut jacobian = Vec::with_capacity(residuals.len() * iteration.len());
-    let mut linear = true;
     for &r in &substituted {
         for &v in iteration {
-            let j = partial(&mut dae.arena, r, v);
-            if dae.arena.vars(j).iter().any(|x| iteration.contains(x)) || has_if(dae, j) {
-                linear = false;
-            }
-            jacobian.push(j);
+            jacobian.push(partial(&mut dae.arena, r, v));
         }
     }
     let switched = substituted.iter().any(|&r| has_if(dae, r));
+    // One step solves the block when its residual is affine and its Jacobian, as the
+    // Jacobian tape evaluates it, constant in each frozen mode (a condition rebuilt by
+    // the substitution is no zero crossing: evaluated live, it could pick another
+    // mode's Jacobian than the residual's).
+    let mut memo = HashMap::default();
+    let of_iteration: HashMap<ScalarId, Degree> =
+        iteration.iter().map(|&v| (v, Degree::Affine)).collect();
+    let linear = affine_while_frozen(dae, iteration, inner, residuals, frozen)
+        && jacobian.iter().all(|&j| {
+            degree(dae, j, false, &of_iteration, frozen, &mut memo) == Degree::Constant
+        });
     Block {
         iteration_vars: iteration.to_vec(),
         residuals: residuals.to_vec(),
         inner: inner.to_vec(),
         jacobian,
-        linear: linear && !switched,
+        linear,
         switched,
         equations: eqs.to_vec(),
     }
+}
+
+/// The relations and held roundings of the model's equations (the runtime's zero
+/// crossings): between events, and inside each round of a block's mode iteration at an
+/// event, they keep their outcome whatever their operands.
+fn frozen_between_events(dae: &Dae) -> HashSet<ExprId> {
+    let c = crate::events::zero_crossings(dae);
+    c.relations.into_iter().chain(c.held).collect()
+}
+
+/// How an expression depends on a block's iteration variables: not at all, affinely,
+/// or otherwise.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Degree {
+    Constant,
+    Affine,
+    Nonlinear,
+}
+
+/// Whether the block's residuals, computed as its residual tape computes them (inner
+/// assignments in order, then the residual expressions), are affine in the iteration
+/// variables while its relations are frozen: then one Newton step solves each mode.
+/// A relation or held rounding counts as constant only if it is one of the model's
+/// zero crossings and not inside `noEvent` (the tape evaluates exactly those from the
+/// stored outcome); `abs`, `min`, `max` and relations under `noEvent` are kinks.
+fn affine_while_frozen(
+    dae: &Dae,
+    iteration: &[ScalarId],
+    inner: &[(ScalarId, ExprId)],
+    residuals: &[ExprId],
+    frozen: &HashSet<ExprId>,
+) -> bool {
+    let mut of_var: HashMap<ScalarId, Degree> =
+        iteration.iter().map(|&v| (v, Degree::Affine)).collect();
+    let mut memo = HashMap::default();
+    for &(v, e) in inner {
+        let d = degree(dae, e, false, &of_var, frozen, &mut memo);
+        // Memoized degrees may depend on this variable's: start afresh per inner.
+        memo.clear();
+        of_var.insert(v, d);
+    }
+    residuals
+        .iter()
+        .all(|&r| degree(dae, r, false, &of_var, frozen, &mut memo) != Degree::Nonlinear)
+}
+
+fn degree(
+    dae: &Dae,
+    e: ExprId,
+    no_event: bool,
+    of_var: &HashMap<ScalarId, Degree>,
+    frozen: &HashSet<ExprId>,
+    memo: &mut HashMap<(ExprId, bool), Degree>,
+) -> Degree {
+    use Degree::*;
+    if let Some(&d) = memo.get(&(e, no_event)) {
+        return d;
+    }
+    let mut of = |x: ExprId, ne: bool| degree(dae, x, ne, of_var, frozen, memo);
+    let node = dae.arena.node(e);
+    let d = match node {
+        Node::Var(v) => of_var.get(&v).copied().unwrap_or(Constant),
+        Node::Const(_)
+        | Node::Pre(_)
+        | Node::Time
+        | Node::Initial
+        | Node::Terminal
+        | Node::Sample(..)
+        | Node::External(..) => Constant,
+        Node::Add(a, b) => of(a, no_event).max(of(b, no_event)),
+        Node::Neg(a) => of(a, no_event),
+        Node::Mul(a, b) => match (of(a, no_event), of(b, no_event)) {
+            (Constant, d) | (d, Constant) => d,
+            _ => Nonlinear,
+        },
+        Node::Div(a, b) => match (of(a, no_event), of(b, no_event)) {
+            (d, Constant) => d,
+            _ => Nonlinear,
+        },
+        Node::NoEvent(a) => of(a, true),
+        Node::If(c, a, b) => match of(c, no_event) {
+            Constant => of(a, no_event).max(of(b, no_event)),
+            _ => Nonlinear,
+        },
+        Node::Rel(..) | Node::Fn1(..) | Node::Fn2(..) if !no_event && frozen.contains(&e) => {
+            Constant
+        }
+        _ => {
+            let moving = dae
+                .arena
+                .children(e)
+                .into_iter()
+                .any(|c| of(c, no_event) != Constant);
+            if moving {
+                Nonlinear
+            } else {
+                Constant
+            }
+        }
+    };
+    memo.insert((e, no_event), d);
+    d
 }
 
 fn has_if(dae: &Dae, e: ExprId) -> bool {
@@ -881,12 +992,11 @@ fn write_blocks(o: &mut String, dae: &Dae, blocks: &[st::Block], plan: &Plan) {
                 );
             }
             PlanStep::Block(bl) => {
-                let kind = if bl.linear {
-                    "linear"
-                } else if bl.switched {
-                    "switched"
-                } else {
-                    "nonlinear"
+                let kind = match (bl.linear, bl.switched) {
+                    (true, false) => "linear",
+                    (true, true) => "switched linear",
+                    (false, true) => "switched",
+                    (false, false) => "nonlinear",
                 };
                 let eqs: Vec<String> = b.eqs.iter().map(|e| format!("e{}", e.0)).collect();
                 let _ = writeln!(

@@ -28,7 +28,8 @@ pub struct Block {
     pub residuals: Vec<ExprId>,
     pub inner: Vec<(ScalarId, ExprId)>,
     pub jacobian: Vec<ExprId>,
-    /// Residuals are linear in the iteration variables (one Newton step solves it).
+    /// Residuals are affine in the iteration variables once the block's relations are
+    /// frozen (each mode of a switched block is linear): one Newton step solves it.
     pub linear: bool,
     /// Residuals switch with a condition (`if`-equations solving different variables).
     pub switched: bool,

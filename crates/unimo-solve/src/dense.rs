@@ -8,11 +8,12 @@ pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> b
     for (i, p) in perm.iter_mut().enumerate().take(n) {
         *p = i;
     }
+    let (a, b) = (&mut a[..n * n], &mut b[..n]);
     for k in 0..n {
         let mut piv = k;
         let mut best = a[k * n + k].abs();
-        for i in k + 1..n {
-            let v = a[i * n + k].abs();
+        for (i, row) in a.chunks_exact(n).enumerate().skip(k + 1) {
+            let v = row[k].abs();
             if v > best {
                 best = v;
                 piv = i;
@@ -22,30 +23,33 @@ pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> b
             return false;
         }
         if piv != k {
-            for j in 0..n {
-                a.swap(k * n + j, piv * n + j);
-            }
+            let (upper, lower) = a.split_at_mut(piv * n);
+            upper[k * n..(k + 1) * n].swap_with_slice(&mut lower[..n]);
             b.swap(k, piv);
             perm.swap(k, piv);
         }
-        let d = a[k * n + k];
-        for i in k + 1..n {
-            let f = a[i * n + k] / d;
+        // Rows below k minus multiples of row k (slices: no index checks inside).
+        let (upper, lower) = a.split_at_mut((k + 1) * n);
+        let pivot_row = &upper[k * n + k..];
+        let (d, bk) = (pivot_row[0], b[k]);
+        for (row, bi) in lower.chunks_exact_mut(n).zip(&mut b[k + 1..]) {
+            let f = row[k] / d;
             if f != 0.0 {
-                a[i * n + k] = f;
-                for j in k + 1..n {
-                    a[i * n + j] -= f * a[k * n + j];
+                row[k] = f;
+                for (x, &y) in row[k + 1..].iter_mut().zip(&pivot_row[1..]) {
+                    *x -= f * y;
                 }
-                b[i] -= f * b[k];
+                *bi -= f * bk;
             }
         }
     }
     for k in (0..n).rev() {
-        let mut s = b[k];
-        for j in k + 1..n {
-            s -= a[k * n + j] * b[j];
-        }
-        b[k] = s / a[k * n + k];
+        let row = &a[k * n..(k + 1) * n];
+        let s = row[k + 1..]
+            .iter()
+            .zip(&b[k + 1..])
+            .fold(b[k], |s, (&x, &y)| s - x * y);
+        b[k] = s / row[k];
     }
     true
 }

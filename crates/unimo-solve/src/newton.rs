@@ -24,6 +24,10 @@ pub const MAX_ITERATIONS: usize = 50;
 /// iterate is accepted.
 pub const ACCEPT_FRACTION: f64 = 1e-3;
 
+/// A linear block's residual after its step, relative to before: below this the step
+/// solved it (one LU solve leaves a residual at rounding, ~1e-16 of the system's scale).
+const LINEAR_DROP: f64 = 1e-3;
+
 /// A step below this (relative to `1 + |x|`) is rounding.
 const ROUNDING: f64 = 1e-13;
 
@@ -153,8 +157,7 @@ pub fn solve(
     w.step.resize(n, 0.0);
     w.residual.resize(n, 0.0);
     w.perm.resize(n, 0);
-    let linear = p.is_linear();
-    let mut last_norm = f64::INFINITY;
+    let mut linear = p.is_linear();
     // Whether `w.residual` already holds f(x) (the line search's last trial).
     let mut evaluated = false;
     let mut accepted = false;
@@ -193,14 +196,32 @@ pub fn solve(
             accepted &= tol.accepts(w.saved[k], dx);
             x[k] = w.saved[k] + dx;
         }
-        if (linear && it >= 1 && norm >= last_norm) || converged {
-            // A linear block is solved by its first step; more is rounding.
+        if linear && !converged {
+            // A linear block is solved by one step: its residual, evaluated at the new
+            // iterate (torn variables up to date), has dropped to rounding. Only a start
+            // already at rounding (the ratio cannot show it) or a block that is not
+            // linear after all iterates on.
+            p.residual(x, &mut w.residual);
+            evaluated = true;
+            let after = max_abs(&w.residual);
+            if after.is_finite() && (after <= LINEAR_DROP * norm || (it >= 1 && after >= norm)) {
+                return Ok(it + 1);
+            }
+            if !after.is_finite() {
+                // The full step left the residual's domain (a near-singular pivot): back
+                // to the start, on as a general block with its damped steps.
+                x.copy_from_slice(&w.saved);
+                linear = false;
+                evaluated = false;
+                continue;
+            }
+        }
+        if converged {
             if !evaluated {
                 p.residual(x, &mut w.residual);
             }
             return Ok(it + 1);
         }
-        last_norm = norm;
     }
     if !evaluated {
         p.residual(x, &mut w.residual);
@@ -354,6 +375,56 @@ mod tests {
         fn jacobian(&mut self, j: &mut [f64]) {
             j.copy_from_slice(&[1.0, 1.0, 1.0, 1.0]);
         }
+    }
+
+    /// `2x + y = 3`, `x - y = 0` (solution (1, 1)), declared linear or not.
+    struct Affine {
+        linear: bool,
+        residuals: usize,
+        jacobians: usize,
+    }
+
+    impl NewtonProblem for Affine {
+        fn size(&self) -> usize {
+            2
+        }
+        fn is_linear(&self) -> bool {
+            self.linear
+        }
+        fn residual(&mut self, x: &[f64], f: &mut [f64]) {
+            self.residuals += 1;
+            f[0] = 2.0 * x[0] + x[1] - 3.0;
+            f[1] = x[0] - x[1];
+        }
+        fn jacobian(&mut self, j: &mut [f64]) {
+            self.jacobians += 1;
+            j.copy_from_slice(&[2.0, 1.0, 1.0, -1.0]);
+        }
+    }
+
+    #[test]
+    fn a_linear_block_takes_one_step() {
+        let tol = NewtonTolerance::default();
+        let mut w = NewtonWork::default();
+        let mut linear = Affine {
+            linear: true,
+            residuals: 0,
+            jacobians: 0,
+        };
+        let mut x = [10.0, -7.0];
+        assert_eq!(solve(&mut linear, &mut x, &tol, &mut w), Ok(1));
+        assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15, "{x:?}");
+        // The start, then the solution (torn variables up to date): one Jacobian, one LU.
+        assert_eq!((linear.residuals, linear.jacobians), (2, 1));
+        // Not declared linear, the same system is solved by the general iteration.
+        let mut general = Affine {
+            linear: false,
+            residuals: 0,
+            jacobians: 0,
+        };
+        let mut x = [10.0, -7.0];
+        assert!(solve(&mut general, &mut x, &tol, &mut w).is_ok());
+        assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15, "{x:?}");
     }
 
     #[test]
