@@ -154,6 +154,8 @@ pub struct Workspace {
     relations: Vec<f64>,
     /// A block's iteration variables.
     x: Vec<f64>,
+    /// Their values before the solve (restored when it fails).
+    start: Vec<f64>,
     newton: NewtonWork,
     /// Time per plan step, when profiling.
     pub profile: Option<StepProfile>,
@@ -261,13 +263,22 @@ fn newton_smooth(
 ) -> Result<(), BlockFailure> {
     w.x.clear();
     w.x.extend(b.iteration.iter().map(|&g| r[g as usize]));
+    w.start.clear();
+    w.start.extend_from_slice(&w.x);
     let mut problem = BlockProblem { b, r, ev };
     match newton::solve(&mut problem, &mut w.x, &w.tolerance, &mut w.newton) {
         Ok(_) => Ok(()),
-        Err(e) => Err(BlockFailure {
-            variables: b.names.clone(),
-            residual: e.residual(),
-            reason: e.reason(),
+        Err(e) => Err({
+            // The failed iterate (NaN, or far off) must not be the next solve's start:
+            // the integrator retries with a smaller step from the registers.
+            for (k, &g) in b.iteration.iter().enumerate() {
+                r[g as usize] = w.start[k];
+            }
+            BlockFailure {
+                variables: b.names.clone(),
+                residual: e.residual(),
+                reason: e.reason(),
+            }
         }),
     }
 }

@@ -174,6 +174,10 @@ impl Simulator<'_> {
         if let Some(e) = self.take_non_finite(Some(now - prev)) {
             return Err(e);
         }
+        if matches!(reason, StopReason::InternalStep) {
+            // The loops' fallback starts: the last evaluation of the accepted step.
+            self.ode.loop_starts.accept_latest();
+        }
         if run.o.every_step && matches!(reason, StopReason::InternalStep) {
             let x = solver.state().to_vec();
             self.load_state(now, &x)?;
