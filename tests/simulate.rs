@@ -901,7 +901,10 @@ fn switched_linear_loops_are_solved_in_one_step() {
     for name in ["x", "w"] {
         for (v, &t) in common::column(&r, name).iter().zip(&r.times) {
             let exact = (-t / 3.0).exp();
-            assert!((v - exact).abs() <= 1e-8, "{name} at t = {t}: {v} against {exact}");
+            assert!(
+                (v - exact).abs() <= 1e-8,
+                "{name} at t = {t}: {v} against {exact}"
+            );
         }
     }
 }

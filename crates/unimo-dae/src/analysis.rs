@@ -638,9 +638,9 @@ fn newton_block(
     let of_iteration: HashMap<ScalarId, Degree> =
         iteration.iter().map(|&v| (v, Degree::Affine)).collect();
     let linear = affine_while_frozen(dae, iteration, inner, residuals, frozen)
-        && jacobian.iter().all(|&j| {
-            degree(dae, j, false, &of_iteration, frozen, &mut memo) == Degree::Constant
-        });
+        && jacobian
+            .iter()
+            .all(|&j| degree(dae, j, false, &of_iteration, frozen, &mut memo) == Degree::Constant);
     Block {
         iteration_vars: iteration.to_vec(),
         residuals: residuals.to_vec(),

@@ -413,7 +413,10 @@ mod tests {
         };
         let mut x = [10.0, -7.0];
         assert_eq!(solve(&mut linear, &mut x, &tol, &mut w), Ok(1));
-        assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15, "{x:?}");
+        assert!(
+            (x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15,
+            "{x:?}"
+        );
         // The start, then the solution (torn variables up to date): one Jacobian, one LU.
         assert_eq!((linear.residuals, linear.jacobians), (2, 1));
         // Not declared linear, the same system is solved by the general iteration.
@@ -424,7 +427,10 @@ mod tests {
         };
         let mut x = [10.0, -7.0];
         assert!(solve(&mut general, &mut x, &tol, &mut w).is_ok());
-        assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15, "{x:?}");
+        assert!(
+            (x[0] - 1.0).abs() < 1e-15 && (x[1] - 1.0).abs() < 1e-15,
+            "{x:?}"
+        );
     }
 
     #[test]

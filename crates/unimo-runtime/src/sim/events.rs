@@ -347,7 +347,9 @@ impl Simulator<'_> {
         crossing: Option<usize>,
         solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
-        self.event_iteration(t, false)?;
+        if let Err(e) = self.event_iteration(t, false) {
+            return Err(self.assertion_first(t, e));
+        }
         self.result.stats.events += 1;
         self.result.events.push(EventRecord { time: t, what });
         // Chattering: many events in a row at (almost) the same time.
@@ -376,10 +378,25 @@ impl Simulator<'_> {
         // Without a solver (an FMU's Model Exchange: the importer integrates), the
         // importer restarts its own after the event.
         match solver {
-            Some(solver) => solver
-                .reset(&mut self.ode, t, &x)
-                .map_err(|e| self.solver_error(e)),
+            Some(solver) => solver.reset(&mut self.ode, t, &x).map_err(|e| {
+                let e = self.solver_error(e);
+                self.assertion_first(t, e)
+            }),
             None => Ok(()),
+        }
+    }
+
+    /// An evaluation that failed right after an event's `reinit`s: when one of the
+    /// model's own assertions fails on the new values, it says why (a time scale
+    /// reinitialised to 1e-17 fails its assertion before the loops it scales fail),
+    /// so it is reported, with the failure it explains after it.
+    fn assertion_first(&mut self, t: f64, failure: SimError) -> SimError {
+        match self.check_assertions(t) {
+            Err(SimError::Assert { time, message }) => SimError::Assert {
+                time,
+                message: format!("{message} (then: {})", failure.message()),
+            },
+            _ => failure,
         }
     }
 }
