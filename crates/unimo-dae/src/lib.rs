@@ -18,6 +18,7 @@ pub mod events;
 pub mod expr;
 pub mod external;
 pub mod fold;
+mod linearity;
 pub mod lower;
 pub mod params;
 pub mod plan;
