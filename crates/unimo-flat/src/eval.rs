@@ -461,7 +461,10 @@ fn binary(e: &Expr, op: BinaryOp, a: &Value, b: &Value) -> Result<Value, EvalErr
                 return matrix_product(e, a, b);
             }
             if x.len() != y.len() {
-                return Err(unsupported(e, "a scalar product of vectors of different sizes"));
+                return Err(unsupported(
+                    e,
+                    "a scalar product of vectors of different sizes",
+                ));
             }
             let mut acc = 0.0;
             for (p, q) in x.iter().zip(y) {

@@ -128,7 +128,12 @@ impl Instantiator<'_, '_> {
     /// Adds the functions named in `pending` (full names), the functions they call and
     /// the records they use, to those the model has already.
     pub(crate) fn add_functions(&mut self, mut pending: Vec<String>) {
-        let mut done: Vec<String> = self.model.functions.iter().map(|f| f.name.clone()).collect();
+        let mut done: Vec<String> = self
+            .model
+            .functions
+            .iter()
+            .map(|f| f.name.clone())
+            .collect();
         while let Some(name) = pending.pop() {
             if done.contains(&name) {
                 continue;

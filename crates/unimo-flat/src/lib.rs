@@ -128,7 +128,7 @@ pub fn flatten_with(
         })
     };
     let mut conn_eqs = conn_eqs;
-    let called = inst.overconstrained(&mut model, &mut conn_eqs);
+    let called = inst.overconstrained(&mut model, &mut conn_eqs, (&connects, &absent));
     model.equations.extend(conn_eqs);
     if !called.is_empty() {
         // The `equalityConstraint` functions of broken loops, and what they call.

@@ -4,12 +4,13 @@
 //! closes a loop gives `zeros(n) = R.equalityConstraint(a, b)` instead of the
 //! equalities of its fields; the roots (`Connections.root`, else the
 //! `potentialRoot` of lowest priority of each connected part); and the values of
-//! `Connections.isRoot` and `Connections.rooted` in the equations, whose `if`s
+//! `Connections.isRoot` and `Connections.rooted` in the equations, with those of
+//! `cardinality(c)` (the number of `connect`s naming `c`, spec 3.7.2.3), whose `if`s
 //! are then resolved.
 
 use crate::eval::{self, Env, EvalError, Value};
 use crate::flat::FlatModel;
-use crate::instantiate::Instantiator;
+use crate::instantiate::{Connect, Instantiator};
 use crate::lookup::Found;
 use rustc_hash::FxHashMap as HashMap;
 use std::collections::VecDeque;
@@ -107,6 +108,7 @@ impl Instantiator<'_, '_> {
         &mut self,
         model: &mut FlatModel,
         conn_eqs: &mut Vec<Equation>,
+        (connects, absent): (&[Connect], &[String]),
     ) -> Vec<String> {
         let mut graph = Graph::default();
         let mut operators = false;
@@ -122,30 +124,7 @@ impl Instantiator<'_, '_> {
             model.record_instances = records;
             return Vec::new();
         }
-        // Optional edges: the connection equations between fields of two nodes.
-        let mut overdetermined: HashMap<String, bool> = HashMap::default();
-        let mut edge_of_eq: Vec<Option<(usize, usize)>> = Vec::with_capacity(conn_eqs.len());
-        for eq in conn_eqs.iter() {
-            let edge = match &eq.kind {
-                EquationKind::Simple { lhs, rhs } => {
-                    let mut side = |e: &Expr| -> Option<usize> {
-                        let ExprKind::Ref(r) = &e.kind else {
-                            return None;
-                        };
-                        let field = eval::var_key(r);
-                        let (key, _) = field.rsplit_once('.')?;
-                        let ty = *types.get(key)?;
-                        let od = *overdetermined
-                            .entry(ty.to_owned())
-                            .or_insert_with(|| self.declares_equality_constraint(ty));
-                        od.then(|| graph.node(key, ty))
-                    };
-                    side(lhs).zip(side(rhs))
-                }
-                _ => None,
-            };
-            edge_of_eq.push(edge);
-        }
+        let edge_of_eq = self.optional_edges(conn_eqs, &types, &mut graph);
         let n = graph.keys.len();
         let mut parent: Vec<usize> = (0..n).collect();
         let mut tree: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -176,35 +155,35 @@ impl Instantiator<'_, '_> {
         }
         let mut k = 0;
         conn_eqs.retain(|_| {
-            let keep = edge_of_eq[k].is_none_or(|(a, b)| {
-                decided
-                    .get(&(a.min(b), a.max(b)))
-                    .copied()
-                    .unwrap_or(true)
-            });
+            let keep = edge_of_eq[k]
+                .is_none_or(|(a, b)| decided.get(&(a.min(b), a.max(b))).copied().unwrap_or(true));
             k += 1;
             keep
         });
         let mut called = Vec::new();
-        for (a, b) in broken {
-            if let Some((eq, f)) = self.loop_equation(&graph, (a, b)) {
+        for edge in broken {
+            if let Some((eq, f)) = self.loop_equation(&graph, edge) {
                 conn_eqs.push(eq);
-                if !called.contains(&f) {
-                    called.push(f);
-                }
+                called.push(f);
             }
         }
+        called.sort();
+        called.dedup();
         let depth = root_depths(&graph, &mut parent, &tree);
         let branches = graph.required.clone();
-        let values = |key: &str, op: &str| -> Option<bool> {
+        let cardinality = connection_counts(connects, absent);
+        let values = |key: &str, op: &str| -> Option<Value> {
+            if op == "cardinality" {
+                return Some(Value::Int(cardinality.get(key).copied().unwrap_or(0)));
+            }
             let node = *graph.index.get(key)?;
             match op {
-                "isRoot" => Some(depth[node] == Some(0)),
+                "isRoot" => Some(Value::Bool(depth[node] == Some(0))),
                 "rooted" => {
                     let other = branches.iter().find_map(|&(a, b)| {
                         (a == node).then_some(b).or((b == node).then_some(a))
                     })?;
-                    Some(depth[node]? < depth[other]?)
+                    Some(Value::Bool(depth[node]? < depth[other]?))
                 }
                 _ => None,
             }
@@ -218,6 +197,40 @@ impl Instantiator<'_, '_> {
         drop(types);
         model.record_instances = records;
         called
+    }
+
+    /// The optional edge each connection equation belongs to: an equation between
+    /// fields of two overdetermined record instances.
+    fn optional_edges(
+        &mut self,
+        conn_eqs: &[Equation],
+        types: &Instances,
+        graph: &mut Graph,
+    ) -> Vec<Option<(usize, usize)>> {
+        let mut overdetermined: HashMap<String, bool> = HashMap::default();
+        let mut edge_of_eq: Vec<Option<(usize, usize)>> = Vec::with_capacity(conn_eqs.len());
+        for eq in conn_eqs.iter() {
+            let edge = match &eq.kind {
+                EquationKind::Simple { lhs, rhs } => {
+                    let mut side = |e: &Expr| -> Option<usize> {
+                        let ExprKind::Ref(r) = &e.kind else {
+                            return None;
+                        };
+                        let field = eval::var_key(r);
+                        let (key, _) = field.rsplit_once('.')?;
+                        let ty = *types.get(key)?;
+                        let od = *overdetermined
+                            .entry(ty.to_owned())
+                            .or_insert_with(|| self.declares_equality_constraint(ty));
+                        od.then(|| graph.node(key, ty))
+                    };
+                    side(lhs).zip(side(rhs))
+                }
+                _ => None,
+            };
+            edge_of_eq.push(edge);
+        }
+        edge_of_eq
     }
 
     /// Whether record type `ty` (full name) declares `equalityConstraint`.
@@ -269,9 +282,10 @@ impl Instantiator<'_, '_> {
     }
 }
 
+/// A function's full name, as flattened calls spell it.
 fn dotted_name(name: &str, span: Span) -> Name {
     Name {
-        global: false,
+        global: true,
         parts: crate::flat::split_name(name)
             .into_iter()
             .map(|p| Ident {
@@ -298,6 +312,37 @@ fn ref_expr(name: &str, span: Span) -> Expr {
         }),
         span,
     }
+}
+
+/// The key of a connector reference with all its subscripts (`a.p[2]`).
+fn key_with_subscripts(r: &ComponentRef) -> String {
+    let mut s = eval::var_key(r);
+    if let Some(last) = r.parts.last() {
+        s.push_str(&unimo_syntax::print::subscripts(&last.subscripts));
+    }
+    s
+}
+
+/// How many `connect`s name each connector (spec 3.7.2.3, `cardinality`), those to
+/// absent conditional components left out.
+fn connection_counts(connects: &[Connect], absent: &[String]) -> HashMap<String, i64> {
+    let inside = |k: &str| {
+        absent.iter().any(|a| {
+            k == a
+                || k.strip_prefix(a.as_str())
+                    .is_some_and(|r| r.starts_with(['.', '[']))
+        })
+    };
+    let mut out: HashMap<String, i64> = HashMap::default();
+    for c in connects {
+        let (a, b) = (key_with_subscripts(&c.a), key_with_subscripts(&c.b));
+        if inside(&a) || inside(&b) {
+            continue;
+        }
+        *out.entry(a).or_default() += 1;
+        *out.entry(b).or_default() += 1;
+    }
+    out
 }
 
 /// Notes the roots, potential roots and branches the equations declare (also inside
@@ -335,35 +380,38 @@ fn note_operators(eq: &Equation, types: &Instances, graph: &mut Graph, operators
 /// Notes the `Connections` operators called in `e`.
 fn note_calls(e: &Expr, types: &Instances, graph: &mut Graph, operators: &mut bool) {
     crate::flat::for_each_call(e, &mut |_| {}, &mut |func, args| {
-            let Some(op) = operator(func) else {
-                return;
-            };
-            *operators = true;
-            let mut nodes = args.positional.iter().filter_map(|a| argument_node(a, types));
-            let Some((key, ty)) = nodes.next() else {
-                return;
-            };
-            let a = graph.node(&key, &ty);
-            match op {
-                "root" => graph.roots.push(a),
-                "potentialRoot" => {
-                    let priority = args
-                        .positional
-                        .get(1)
-                        .or(args.named.first().map(|n| &n.value))
-                        .and_then(|p| eval::eval(p, &mut NoVariables, &mut Vec::new()).ok())
-                        .and_then(|v| v.as_int())
-                        .unwrap_or(0);
-                    graph.potential.push((a, priority));
-                }
-                "branch" => {
-                    if let Some((key, ty)) = nodes.next() {
-                        let b = graph.node(&key, &ty);
-                        graph.required.push((a, b));
-                    }
-                }
-                _ => {}
+        let Some(op) = operator(func) else {
+            return;
+        };
+        *operators = true;
+        let mut nodes = args
+            .positional
+            .iter()
+            .filter_map(|a| argument_node(a, types));
+        let Some((key, ty)) = nodes.next() else {
+            return;
+        };
+        let a = graph.node(&key, &ty);
+        match op {
+            "root" => graph.roots.push(a),
+            "potentialRoot" => {
+                let priority = args
+                    .positional
+                    .get(1)
+                    .or(args.named.first().map(|n| &n.value))
+                    .and_then(|p| eval::eval(p, &mut NoVariables, &mut Vec::new()).ok())
+                    .and_then(|v| v.as_int())
+                    .unwrap_or(0);
+                graph.potential.push((a, priority));
             }
+            "branch" => {
+                if let Some((key, ty)) = nodes.next() {
+                    let b = graph.node(&key, &ty);
+                    graph.required.push((a, b));
+                }
+            }
+            _ => {}
+        }
     });
 }
 
@@ -408,7 +456,7 @@ fn root_depths(graph: &Graph, parent: &mut [usize], tree: &[Vec<usize>]) -> Vec<
 fn resolve_equations(
     eqs: Vec<Equation>,
     types: &Instances,
-    values: &dyn Fn(&str, &str) -> Option<bool>,
+    values: &dyn Fn(&str, &str) -> Option<Value>,
 ) -> Vec<Equation> {
     let mut out = Vec::with_capacity(eqs.len());
     for mut eq in eqs {
@@ -416,9 +464,7 @@ fn resolve_equations(
             EquationKind::Call(Expr {
                 kind: ExprKind::Call { func, .. },
                 ..
-            }) if matches!(operator(func), Some("root" | "potentialRoot" | "branch")) => {
-                continue
-            }
+            }) if matches!(operator(func), Some("root" | "potentialRoot" | "branch")) => continue,
             EquationKind::If {
                 branches,
                 otherwise,
@@ -461,6 +507,7 @@ fn resolve_equations(
                 replace_values(lhs, types, values);
                 replace_values(rhs, types, values);
             }
+            EquationKind::Call(e) => replace_values(e, types, values),
             EquationKind::For { body, .. } => {
                 *body = resolve_equations(std::mem::take(body), types, values);
             }
@@ -472,16 +519,31 @@ fn resolve_equations(
 }
 
 /// `e` with `Connections.isRoot(x)` and `rooted(x)` replaced by their values.
-fn replace_values(e: &mut Expr, types: &Instances, values: &dyn Fn(&str, &str) -> Option<bool>) {
+fn replace_values(e: &mut Expr, types: &Instances, values: &dyn Fn(&str, &str) -> Option<Value>) {
     if let ExprKind::Call { func, args } = &e.kind {
+        if let (
+            true,
+            [Expr {
+                kind: ExprKind::Ref(r),
+                ..
+            }],
+        ) = (
+            func.to_dotted() == "cardinality",
+            args.positional.as_slice(),
+        ) {
+            if let Some(v) = values(&key_with_subscripts(r), "cardinality") {
+                *e = v.to_expr(e.span);
+                return;
+            }
+        }
         if let Some(op @ ("isRoot" | "rooted")) = operator(func) {
             let value = args
                 .positional
                 .first()
                 .and_then(|a| argument_node(a, types))
                 .and_then(|(key, _)| values(&key, op));
-            if let Some(b) = value {
-                e.kind = ExprKind::Bool(b);
+            if let Some(v) = value {
+                *e = v.to_expr(e.span);
                 return;
             }
         }

@@ -217,11 +217,11 @@ impl Instantiator<'_, '_> {
             Diagnostic::error(
                 FlatCode::NotKnownAtCompileTime,
                 format!(
-                    "the binding of record parameter `{name}` must be a record constructor or another record"
+                    "the binding of record parameter `{name}` is no record constructor, no other record and no value known at translation"
                 ),
             )
             .at(span, "this binding")
-            .with_help("write the constructor call (`Complex(1, 2)`) or bind the fields one by one"),
+            .with_help("write a constructor call (`Complex(1, 2)`), a function call whose arguments are known at translation, or bind the fields one by one"),
         );
     }
 }

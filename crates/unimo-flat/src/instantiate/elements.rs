@@ -179,7 +179,9 @@ impl Instantiator<'_, '_> {
         let Ok(Value::Array(values)) = eval::eval(&flat, self, &mut Vec::new()) else {
             return None;
         };
-        let value = values.get(usize::try_from(first - 1).ok()?)?.to_expr(body.span);
+        let value = values
+            .get(usize::try_from(first - 1).ok()?)?
+            .to_expr(body.span);
         let mut item = body.clone();
         replace_iterator(&mut item, &iterator.name.text, &value);
         self.pick_element(&item, scope, rest)
@@ -213,9 +215,7 @@ fn replace_iterator(e: &mut Expr, name: &str, value: &Expr) {
         ExprKind::Comprehension { indices, .. } if indices.iter().any(|i| i.name.text == name) => {
             return
         }
-        ExprKind::Call { args, .. } if args.iterators.iter().any(|i| i.name.text == name) => {
-            return
-        }
+        ExprKind::Call { args, .. } if args.iterators.iter().any(|i| i.name.text == name) => return,
         _ => {}
     }
     e.for_each_child_mut(&mut |c| replace_iterator(c, name, value));
