@@ -13,6 +13,9 @@ pub enum Value {
     /// An enumeration literal: its 1-based index and its full name.
     Enum(i64, String),
     Array(Vec<Value>),
+    /// A record value: its class's full name and its fields in declaration order
+    /// (a field that is a record is a `Record` itself).
+    Record(String, Vec<(String, Value)>),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -111,6 +114,35 @@ impl Value {
                 span,
             }),
             Value::Array(items) => ExprKind::Array(items.iter().map(|v| v.to_expr(span)).collect()),
+            // The record constructor with every field named.
+            Value::Record(class, fields) => ExprKind::Call {
+                func: unimo_syntax::ast::Name {
+                    global: true,
+                    parts: crate::flat::split_name(class)
+                        .into_iter()
+                        .map(|p| unimo_syntax::ast::Ident {
+                            text: p.into(),
+                            span,
+                        })
+                        .collect(),
+                    span,
+                },
+                args: Box::new(unimo_syntax::ast::CallArgs {
+                    positional: Vec::new(),
+                    named: fields
+                        .iter()
+                        .map(|(n, v)| unimo_syntax::ast::NamedArg {
+                            name: unimo_syntax::ast::Ident {
+                                text: n.as_str().into(),
+                                span,
+                            },
+                            value: v.to_expr(span),
+                        })
+                        .collect(),
+                    iterators: Vec::new(),
+                    span,
+                }),
+            },
         };
         Expr { kind, span }
     }
@@ -425,9 +457,14 @@ fn binary(e: &Expr, op: BinaryOp, a: &Value, b: &Value) -> Result<Value, EvalErr
             ));
         }
         (Value::Array(x), Value::Array(y)) if op == Mul => {
-            // Scalar product of vectors; matrix products are left to later stages.
-            if x.len() != y.len() || x.iter().any(|v| matches!(v, Value::Array(_))) {
-                return Err(unsupported(e, "matrix product in a constant expression"));
+            if x.iter().chain(y).any(|v| matches!(v, Value::Array(_))) {
+                return matrix_product(e, a, b);
+            }
+            if x.len() != y.len() {
+                return Err(unsupported(
+                    e,
+                    "a scalar product of vectors of different sizes",
+                ));
             }
             let mut acc = 0.0;
             for (p, q) in x.iter().zip(y) {
@@ -498,6 +535,138 @@ fn binary(e: &Expr, op: BinaryOp, a: &Value, b: &Value) -> Result<Value, EvalErr
             })
         }
     }
+}
+
+/// The vector and matrix built-ins (`transpose`, `outerProduct`, `skew`, `cross`, `identity`,
+/// spec 10.3.6); `None` when `name` is none of them.
+fn matrix_builtin(e: &Expr, name: &str, vals: &[Value]) -> Result<Option<Value>, EvalError> {
+    let arg = |k: usize| {
+        vals.get(k)
+            .ok_or_else(|| unsupported(e, "missing argument"))
+    };
+    let v = match name {
+        "transpose" => transpose(e, arg(0)?),
+        "outerProduct" => {
+            let (x, y) = (arg(0)?, arg(1)?);
+            let column = Value::Array(vec![x.clone()]);
+            matrix_product(e, &transpose(e, &column)?, &Value::Array(vec![y.clone()]))
+        }
+        "skew" => {
+            let c = |k: usize| match arg(0)? {
+                Value::Array(items) if items.len() == 3 => num(e, &items[k]),
+                _ => Err(unsupported(e, "skew() needs a 3-vector")),
+            };
+            let (x, y, z) = (c(0)?, c(1)?, c(2)?);
+            let row = |a: f64, b: f64, c: f64| {
+                Value::Array(vec![Value::Real(a), Value::Real(b), Value::Real(c)])
+            };
+            Ok(Value::Array(vec![
+                row(0.0, -z, y),
+                row(z, 0.0, -x),
+                row(-y, x, 0.0),
+            ]))
+        }
+        "cross" => {
+            let (x, y) = (arg(0)?, arg(1)?);
+            let c = |v: &Value, k: usize| match v {
+                Value::Array(items) if items.len() == 3 => num(e, &items[k]),
+                _ => Err(unsupported(e, "cross() needs two 3-vectors")),
+            };
+            Ok(Value::Array(vec![
+                Value::Real(c(x, 1)? * c(y, 2)? - c(x, 2)? * c(y, 1)?),
+                Value::Real(c(x, 2)? * c(y, 0)? - c(x, 0)? * c(y, 2)?),
+                Value::Real(c(x, 0)? * c(y, 1)? - c(x, 1)? * c(y, 0)?),
+            ]))
+        }
+        "identity"
+            if arg(0)?
+                .as_int()
+                .is_some_and(|n| n.saturating_mul(n) > MAX_ELEMENTS) =>
+        {
+            Err(unsupported(e, "an array of more than 10^7 elements"))
+        }
+        "identity" => {
+            let n = arg(0)?
+                .as_int()
+                .ok_or_else(|| unsupported(e, "identity(n) needs an Integer"))?
+                .max(0);
+            Ok(Value::Array(
+                (0..n)
+                    .map(|i| Value::Array((0..n).map(|j| Value::Int((i == j) as i64)).collect()))
+                    .collect(),
+            ))
+        }
+        _ => return Ok(None),
+    };
+    v.map(Some)
+}
+
+/// `transpose(m)` of a matrix (of any element values).
+fn transpose(e: &Expr, m: &Value) -> Result<Value, EvalError> {
+    let Value::Array(rows) = m else {
+        return Err(unsupported(e, "transpose() needs a matrix"));
+    };
+    let rows: Vec<&Vec<Value>> = rows
+        .iter()
+        .map(|r| match r {
+            Value::Array(c) => Ok(c),
+            _ => Err(unsupported(e, "transpose() needs a matrix")),
+        })
+        .collect::<Result<_, _>>()?;
+    let cols = rows.first().map_or(0, |r| r.len());
+    if rows.iter().any(|r| r.len() != cols) {
+        return Err(unsupported(e, "transpose() of a ragged array"));
+    }
+    Ok(Value::Array(
+        (0..cols)
+            .map(|j| Value::Array(rows.iter().map(|r| r[j].clone()).collect()))
+            .collect(),
+    ))
+}
+
+/// `a * b` with a matrix operand: matrix times matrix, matrix times vector, vector
+/// times matrix (spec 10.6.4).
+fn matrix_product(e: &Expr, a: &Value, b: &Value) -> Result<Value, EvalError> {
+    let rows = |v: &Value| -> Result<Vec<Vec<f64>>, EvalError> {
+        let Value::Array(items) = v else {
+            return Err(unsupported(e, "a matrix is needed here"));
+        };
+        items
+            .iter()
+            .map(|r| match r {
+                Value::Array(c) => c.iter().map(|x| num(e, x)).collect(),
+                x => Ok(vec![num(e, x)?]),
+            })
+            .collect()
+    };
+    let (ma, mb) = (rows(a)?, rows(b)?);
+    let a_is_vector = a.dims().len() == 1;
+    let b_is_vector = b.dims().len() == 1;
+    // A vector on the left is a row, on the right a column.
+    let left: Vec<Vec<f64>> = if a_is_vector {
+        vec![ma.iter().map(|r| r[0]).collect()]
+    } else {
+        ma
+    };
+    let right = mb;
+    let inner = right.len();
+    if left.iter().any(|r| r.len() != inner) {
+        return Err(unsupported(e, "a matrix product of mismatched sizes"));
+    }
+    let cols = right.first().map_or(0, |r| r.len());
+    let product: Vec<Vec<Value>> = left
+        .iter()
+        .map(|r| {
+            (0..cols)
+                .map(|j| Value::Real((0..inner).map(|k| r[k] * right[k][j]).sum()))
+                .collect()
+        })
+        .collect();
+    Ok(match (a_is_vector, b_is_vector) {
+        (true, _) => Value::Array(product.into_iter().next().unwrap_or_default()),
+        (false, true) => Value::Array(product.into_iter().map(|mut r| r.remove(0)).collect()),
+        (false, false) => Value::Array(product.into_iter().map(Value::Array).collect()),
+    })
 }
 
 fn range(e: &Expr, a: &Value, step: Option<&Value>, b: &Value) -> Result<Value, EvalError> {
@@ -590,6 +759,9 @@ fn call(
     if let Some(v) = scalar_builtin(e, &name, &vals)? {
         return Ok(v);
     }
+    if let Some(v) = matrix_builtin(e, &name, &vals)? {
+        return Ok(v);
+    }
     match name.as_str() {
         "Integer" => {
             Ok(Value::Int(arg(0)?.as_int().ok_or_else(|| {
@@ -609,24 +781,6 @@ fn call(
         "fill" => filled(e, arg(0)?.clone(), &vals[1..]),
         // `array(a, b, c)` is `{a, b, c}` (spec 10.4).
         "array" => Ok(Value::Array(vals.clone())),
-        "identity"
-            if arg(0)?
-                .as_int()
-                .is_some_and(|n| n.saturating_mul(n) > MAX_ELEMENTS) =>
-        {
-            Err(unsupported(e, "an array of more than 10^7 elements"))
-        }
-        "identity" => {
-            let n = arg(0)?
-                .as_int()
-                .ok_or_else(|| unsupported(e, "identity(n) needs an Integer"))?
-                .max(0);
-            Ok(Value::Array(
-                (0..n)
-                    .map(|i| Value::Array((0..n).map(|j| Value::Int((i == j) as i64)).collect()))
-                    .collect(),
-            ))
-        }
         "noEvent" | "smooth" => vals
             .last()
             .cloned()

@@ -122,7 +122,18 @@ impl Instantiator<'_, '_> {
                 called_functions(b, &mut pending);
             }
         }
-        let mut done: Vec<String> = Vec::new();
+        self.add_functions(pending);
+    }
+
+    /// Adds the functions named in `pending` (full names), the functions they call and
+    /// the records they use, to those the model has already.
+    pub(crate) fn add_functions(&mut self, mut pending: Vec<String>) {
+        let mut done: Vec<String> = self
+            .model
+            .functions
+            .iter()
+            .map(|f| f.name.clone())
+            .collect();
         while let Some(name) = pending.pop() {
             if done.contains(&name) {
                 continue;
@@ -173,7 +184,9 @@ impl Instantiator<'_, '_> {
                     }
                 }
             }
-            self.model.records.push(r);
+            if !self.model.records.iter().any(|x| x.name == r.name) {
+                self.model.records.push(r);
+            }
         }
         self.model.records.sort_by(|a, b| a.name.cmp(&b.name));
     }

@@ -24,7 +24,10 @@ impl Env for Frame<'_, '_, '_> {
     fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError> {
         match self.locals.get(key) {
             Some(v) => Ok(v.clone()),
-            None => self.inst.var(key, span),
+            None => match record_field_slot(&mut self.locals, key) {
+                Some(v) => Ok(v.clone()),
+                None => self.inst.var(key, span),
+            },
         }
     }
 
@@ -67,6 +70,9 @@ impl Instantiator<'_, '_> {
         let Some(Found::Class(f)) = self.tree.lookup_dotted(None, &parts, false) else {
             return Err(not_constant(span, format!("a call of `{name}`")));
         };
+        if self.is_record(f) {
+            return self.construct_record(f, positional, named, span);
+        }
         let def = self.tree.get(f).def.clone();
         let ClassBody::Long { composition, .. } = &def.body else {
             return Err(not_constant(span, format!("a call of `{name}`")));
@@ -125,6 +131,62 @@ impl Instantiator<'_, '_> {
             span,
             what: format!("`{name}` did not assign its output `{out}`"),
         })
+    }
+
+    /// A record constructor call (spec 12.6): the arguments in the order of the
+    /// constructor's inputs, the other fields from their bindings.
+    fn construct_record(
+        &mut self,
+        class: crate::tree::ClassId,
+        positional: Vec<Value>,
+        named: Vec<(String, Value)>,
+        span: Span,
+    ) -> Result<Value, EvalError> {
+        let fields = self.record_fields(class);
+        let record = self.tree.full_name(class);
+        let inputs: Vec<&crate::records::Field> = fields.iter().filter(|f| f.input).collect();
+        if positional.len() > inputs.len() {
+            return Err(EvalError::Unsupported {
+                span,
+                what: format!("too many arguments for record `{record}`"),
+            });
+        }
+        let mut locals: HashMap<String, Value> = HashMap::default();
+        for (f, v) in inputs.iter().zip(positional) {
+            locals.insert(f.name.to_string(), v);
+        }
+        for (n, v) in named {
+            if !inputs.iter().any(|f| f.name == n.as_str()) {
+                return Err(EvalError::Unsupported {
+                    span,
+                    what: format!("record `{record}` has no field `{n}` to construct"),
+                });
+            }
+            locals.insert(n, v);
+        }
+        let mut out = Vec::with_capacity(fields.len());
+        for f in &fields {
+            let v = match (locals.get(f.name.as_str()), &f.default) {
+                (Some(v), _) if f.input => v.clone(),
+                (_, Some(b)) => {
+                    let scope = Scope {
+                        class: f.owner,
+                        prefix: std::sync::Arc::from([]),
+                    };
+                    let v = self.eval_local(b, &scope, &mut locals)?;
+                    locals.insert(f.name.to_string(), v.clone());
+                    v
+                }
+                _ => {
+                    return Err(not_constant(
+                        span,
+                        format!("field `{}` of record `{record}`, not given", f.name),
+                    ))
+                }
+            };
+            out.push((f.name.to_string(), v));
+        }
+        Ok(Value::Record(record, out))
     }
 
     fn run_body(
@@ -344,6 +406,12 @@ impl Instantiator<'_, '_> {
             .map(|p| p.subscripts.clone())
             .unwrap_or_default();
         if subs.is_empty() {
+            if !locals.contains_key(&name) {
+                if let Some(slot) = record_field_slot(locals, &name) {
+                    *slot = v;
+                    return Ok(());
+                }
+            }
             locals.insert(name, v);
         } else {
             let mut idx = Vec::new();
@@ -362,8 +430,7 @@ impl Instantiator<'_, '_> {
                 })?;
                 idx.push(i);
             }
-            let slot = locals
-                .get_mut(&name)
+            let slot = record_field_slot(locals, &name)
                 .ok_or_else(|| not_constant(st.span, format!("`{name}` before it has a value")))?;
             set_element(slot, &idx, v).ok_or_else(|| EvalError::Unsupported {
                 span: st.span,
@@ -372,6 +439,25 @@ impl Instantiator<'_, '_> {
         }
         Ok(())
     }
+}
+
+/// The local `key` names, or the field of a record local it names (`R.T`).
+fn record_field_slot<'l>(
+    locals: &'l mut HashMap<String, Value>,
+    key: &str,
+) -> Option<&'l mut Value> {
+    if locals.contains_key(key) {
+        return locals.get_mut(key);
+    }
+    let mut parts = key.split('.');
+    let mut v = locals.get_mut(parts.next()?)?;
+    for p in parts {
+        let Value::Record(_, fields) = v else {
+            return None;
+        };
+        v = &mut fields.iter_mut().find(|(n, _)| n == p)?.1;
+    }
+    Some(v)
 }
 
 fn set_element(v: &mut Value, idx: &[i64], x: Value) -> Option<()> {

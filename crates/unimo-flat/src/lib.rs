@@ -23,6 +23,7 @@ pub mod instantiate;
 mod interp;
 pub mod lookup;
 pub mod modif;
+mod overconstrained;
 pub mod provider;
 pub(crate) mod records;
 pub(crate) mod redeclare;
@@ -126,7 +127,15 @@ pub fn flatten_with(
             (eqs, d, types)
         })
     };
+    let mut conn_eqs = conn_eqs;
+    let called = inst.overconstrained(&mut model, &mut conn_eqs, (&connects, &absent));
     model.equations.extend(conn_eqs);
+    if !called.is_empty() {
+        // The `equalityConstraint` functions of broken loops, and what they call.
+        inst.model = model;
+        inst.add_functions(called);
+        model = std::mem::take(&mut inst.model);
+    }
     expandable::remove_unused_members(&mut model, &buses);
     let connect_failed = !conn_diags.is_empty();
     diags.extend(conn_diags);

@@ -17,6 +17,10 @@ pub(crate) struct Field {
     pub name: SmolStr,
     /// Constants and `final` fields with a binding are not constructor inputs.
     pub input: bool,
+    /// The field's binding in its declaration (its default in the constructor).
+    pub default: Option<Expr>,
+    /// The class that declares the field (the scope of its default).
+    pub owner: ClassId,
 }
 
 impl Instantiator<'_, '_> {
@@ -55,6 +59,8 @@ impl Instantiator<'_, '_> {
                 out.push(Field {
                     name: d.name.text.clone(),
                     input,
+                    default: d.modification.as_ref().and_then(|m| m.binding.clone()),
+                    owner: class,
                 });
             }
         }
@@ -82,7 +88,10 @@ impl Instantiator<'_, '_> {
         let values: Vec<(SmolStr, Expr)> = match &b.expr.kind {
             ExprKind::Call { func, args } if args.iterators.is_empty() => {
                 let Some(rc) = self.constructor_class(func, b.scope.class) else {
-                    return m;
+                    return match self.evaluated_record(&b, &fields) {
+                        Some(values) => self.bind_fields(m, &b, values),
+                        None => m,
+                    };
                 };
                 let fields = self.record_fields(rc);
                 let inputs: Vec<&Field> = fields.iter().filter(|f| f.input).collect();
@@ -153,8 +162,36 @@ impl Instantiator<'_, '_> {
                     )
                 })
                 .collect(),
-            _ => return m,
+            _ => match self.evaluated_record(&b, &fields) {
+                Some(values) => values,
+                None => return m,
+            },
         };
+        self.bind_fields(m, &b, values)
+    }
+
+    /// The fields of a record binding that is not a constructor (a call of a function
+    /// returning a record, a conditional expression), evaluated at translation when
+    /// every value it reads is known: the input fields' values as literals.
+    fn evaluated_record(&mut self, b: &Bound, fields: &[Field]) -> Option<Vec<(SmolStr, Expr)>> {
+        let flat = self.flat_expr(&b.expr, &b.scope);
+        let Ok(crate::eval::Value::Record(_, values)) =
+            crate::eval::eval(&flat, self, &mut Vec::new())
+        else {
+            return None;
+        };
+        Some(
+            values
+                .into_iter()
+                .filter(|(n, _)| fields.iter().any(|f| f.input && f.name == n.as_str()))
+                .map(|(n, v)| (SmolStr::from(n), v.to_expr(b.expr.span)))
+                .collect(),
+        )
+    }
+
+    /// `m` without its binding, each of `values` bound to its field instead (a
+    /// modifier of the field itself wins).
+    fn bind_fields(&mut self, m: Mod, b: &Bound, values: Vec<(SmolStr, Expr)>) -> Mod {
         let mut out = Mod { binding: None, ..m };
         for (name, value) in values {
             let child = Mod {
@@ -180,11 +217,11 @@ impl Instantiator<'_, '_> {
             Diagnostic::error(
                 FlatCode::NotKnownAtCompileTime,
                 format!(
-                    "the binding of record parameter `{name}` must be a record constructor or another record"
+                    "the binding of record parameter `{name}` is no record constructor, no other record and no value known at translation"
                 ),
             )
             .at(span, "this binding")
-            .with_help("write the constructor call (`Complex(1, 2)`) or bind the fields one by one"),
+            .with_help("write a constructor call (`Complex(1, 2)`), a function call whose arguments are known at translation, or bind the fields one by one"),
         );
     }
 }

@@ -141,6 +141,9 @@ impl Env for Instantiator<'_, '_> {
             if let Some(v) = self.enum_literal(key) {
                 return Ok(v);
             }
+            if let Some(r) = self.record_instance_value(key, span) {
+                return r;
+            }
             if let Some(r) = self.pending_own_value(key, span) {
                 return r;
             }
@@ -197,6 +200,29 @@ impl Env for Instantiator<'_, '_> {
 }
 
 impl Instantiator<'_, '_> {
+    /// The value of the record instance `key` (its fields' values), `None` when `key`
+    /// is no record instance.
+    fn record_instance_value(&mut self, key: &str, span: Span) -> Option<Result<Value, EvalError>> {
+        let (_, class_name) = self
+            .model
+            .record_instances
+            .iter()
+            .find(|(k, _)| k == key)?
+            .clone();
+        let parts = crate::flat::split_name(&class_name);
+        let Some(Found::Class(class)) = self.tree.lookup_dotted(None, &parts, false) else {
+            return None;
+        };
+        let mut fields = Vec::new();
+        for f in self.record_fields(class) {
+            match self.var(&format!("{key}.{}", f.name), span) {
+                Ok(v) => fields.push((f.name.to_string(), v)),
+                Err(e) => return Some(Err(e)),
+            }
+        }
+        Some(Ok(Value::Record(class_name, fields)))
+    }
+
     /// Whether a variable's `fixed` attribute is the literal or evaluated `false`.
     fn fixed_false(&mut self, var: &crate::flat::FlatVar) -> bool {
         let Some((_, e)) = var.attributes.iter().find(|(n, _)| n == "fixed") else {

@@ -104,6 +104,9 @@ impl Instantiator<'_, '_> {
                 if let Ok(v) = eval::eval(&flat, self, &mut Vec::new()) {
                     return self.pick_value(v, index, e.span);
                 }
+                if let ExprKind::Comprehension { body, indices } = &e.kind {
+                    return self.pick_iteration(body, indices, scope, index);
+                }
                 // An element-wise expression of arrays that are not constant
                 // (`u = us + ones(n)`): the element of each operand.
                 let picked = |this: &mut Self, x: &Expr| this.pick_element(x, scope, index);
@@ -160,6 +163,30 @@ impl Instantiator<'_, '_> {
         }
     }
 
+    /// Element `index` of `{body for i in range}` whose range is known: the body with
+    /// `i` replaced by the range's value at the first index, then the rest picked.
+    fn pick_iteration(
+        &mut self,
+        body: &Expr,
+        indices: &[ForIndex],
+        scope: &Scope,
+        index: &[i64],
+    ) -> Option<Expr> {
+        let ([iterator], Some((&first, rest))) = (indices, index.split_first()) else {
+            return None;
+        };
+        let flat = self.flat_expr(iterator.range.as_ref()?, scope);
+        let Ok(Value::Array(values)) = eval::eval(&flat, self, &mut Vec::new()) else {
+            return None;
+        };
+        let value = values
+            .get(usize::try_from(first - 1).ok()?)?
+            .to_expr(body.span);
+        let mut item = body.clone();
+        replace_iterator(&mut item, &iterator.name.text, &value);
+        self.pick_element(&item, scope, rest)
+    }
+
     /// Element `index` of an array value; `None` for a scalar (left to broadcast).
     fn pick_value(&self, mut v: Value, index: &[i64], span: Span) -> Option<Expr> {
         for &i in index {
@@ -170,4 +197,26 @@ impl Instantiator<'_, '_> {
         }
         Some(v.to_expr(span))
     }
+}
+
+/// `e` with each use of the iterator `name` replaced by `value` (a nested reduction or
+/// comprehension that binds `name` again is left alone).
+fn replace_iterator(e: &mut Expr, name: &str, value: &Expr) {
+    match &e.kind {
+        ExprKind::Ref(r)
+            if !r.global
+                && r.parts.len() == 1
+                && r.parts[0].name.text == name
+                && r.parts[0].subscripts.is_empty() =>
+        {
+            *e = value.clone();
+            return;
+        }
+        ExprKind::Comprehension { indices, .. } if indices.iter().any(|i| i.name.text == name) => {
+            return
+        }
+        ExprKind::Call { args, .. } if args.iterators.iter().any(|i| i.name.text == name) => return,
+        _ => {}
+    }
+    e.for_each_child_mut(&mut |c| replace_iterator(c, name, value));
 }
