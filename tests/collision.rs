@@ -11,14 +11,8 @@ use common::load;
 
 fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64, stop: f64) -> SimResult {
     let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        // The command line's default.
-        atol: rtol / 100.0,
-        method,
-        interval: stop / 100.0,
         every_step: true,
+        ..common::sim_options(method, rtol, 0.0, stop, stop / 100.0)
     };
     let r = simulate(&m.compiled, &o);
     assert!(

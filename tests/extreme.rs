@@ -8,18 +8,6 @@ mod common;
 use unimo_runtime::sim::{simulate, SimError, SimOptions, SimResult};
 use unimo_solve::Method;
 
-fn options(method: Method, rtol: f64, start: f64, stop: f64, interval: f64) -> SimOptions {
-    SimOptions {
-        start,
-        stop,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval,
-        every_step: false,
-    }
-}
-
 fn run(file: &str, o: &SimOptions) -> SimResult {
     let m = common::load(file, None);
     simulate(&m.compiled, o)
@@ -70,7 +58,7 @@ fn roundings_of_time_are_held_and_fire_at_their_instants() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/HeldTimeEvents.mo",
-            &options(method, 1e-6, 0.0, 0.95, 0.01),
+            &common::sim_options(method, 1e-6, 0.0, 0.95, 0.01),
         );
         let ticks = changes(&r, "tick");
         assert_eq!(ticks.len(), 9, "{method:?}: {ticks:?}");
@@ -142,7 +130,7 @@ fn floor_of_a_state_changes_at_the_crossings() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/HeldStateEvents.mo",
-            &options(method, 1e-10, 0.0, 6.0, 0.1),
+            &common::sim_options(method, 1e-10, 0.0, 6.0, 0.1),
         );
         let got = changes(&r, "n");
         assert_eq!(got.len(), want.len(), "{method:?}: {got:?} vs {want:?}");
@@ -181,7 +169,10 @@ fn resting_ball_rests_instead_of_collapsing_the_step() {
         let m = common::load("tests/extreme/RestingBall.mo", Some(model));
         for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
             for rtol in [1e-6, 1e-8] {
-                let r = simulate(&m.compiled, &options(method, rtol, 0.0, 20.0, 0.05));
+                let r = simulate(
+                    &m.compiled,
+                    &common::sim_options(method, rtol, 0.0, 20.0, 0.05),
+                );
                 let case = format!("{model} {method:?} {rtol:e}");
                 assert!(
                     r.error.is_none(),
@@ -218,7 +209,7 @@ fn chattering_stops_with_a_coded_error_naming_the_relation() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = run(
             "tests/extreme/Chattering.mo",
-            &options(method, 1e-6, 0.0, 2.0, 0.01),
+            &common::sim_options(method, 1e-6, 0.0, 2.0, 0.01),
         );
         let e = r
             .error
@@ -256,7 +247,10 @@ fn chattering_stops_with_a_coded_error_naming_the_relation() {
 fn nan_names_the_variable_and_equation() {
     let m = common::load("tests/extreme/SqrtOfNegative.mo", None);
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
-        let r = simulate(&m.compiled, &options(method, 1e-6, 0.0, 2.0, 0.004));
+        let r = simulate(
+            &m.compiled,
+            &common::sim_options(method, 1e-6, 0.0, 2.0, 0.004),
+        );
         let e = r.error.as_ref().expect("NaN is an error");
         assert_eq!(e.code(), "E4007", "{}", e.message());
         let SimError::NonFinite {
@@ -295,7 +289,7 @@ fn overflow_is_an_error_not_an_inf_in_the_result() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = run(
             "tests/extreme/Overflow.mo",
-            &options(method, 1e-6, 0.0, 1.0, 0.002),
+            &common::sim_options(method, 1e-6, 0.0, 1.0, 0.002),
         );
         let e = r.error.as_ref().expect("overflow is an error");
         let SimError::NonFinite {
@@ -322,7 +316,7 @@ fn overflow_is_an_error_not_an_inf_in_the_result() {
 fn zero_length_interval_gives_the_initial_values() {
     let r = ok(
         "tests/extreme/ZeroLength.mo",
-        &options(Method::Bdf, 1e-6, 1.0, 1.0, 1.0),
+        &common::sim_options(Method::Bdf, 1e-6, 1.0, 1.0, 1.0),
     );
     assert_eq!(r.times, vec![1.0]);
     assert_eq!(last(&r, "x"), 1.0);
@@ -338,7 +332,7 @@ fn stiffness_ratio_1e9_matches_the_closed_form() {
     for method in [Method::Bdf, Method::Radau5] {
         let r = ok(
             "tests/extreme/Stiff1e9.mo",
-            &options(method, 1e-8, 0.0, 1.0, 0.5),
+            &common::sim_options(method, 1e-8, 0.0, 1.0, 0.5),
         );
         let x = last(&r, "x");
         let y = last(&r, "y");
@@ -361,7 +355,7 @@ fn stiffness_ratio_1e9_matches_the_closed_form() {
 fn ten_thousand_events() {
     let r = ok(
         "tests/extreme/TenThousandEvents.mo",
-        &options(Method::Auto, 1e-8, 0.0, 10.0005, 0.5),
+        &common::sim_options(Method::Auto, 1e-8, 0.0, 10.0005, 0.5),
     );
     assert_eq!(last(&r, "resets"), 10_000.0);
     let resets = changes(&r, "resets");
@@ -379,7 +373,7 @@ fn start_values_of_1e300() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/HugeStart.mo",
-            &options(method, 1e-8, 0.0, 1.0, 0.1),
+            &common::sim_options(method, 1e-8, 0.0, 1.0, 0.1),
         );
         let want = 1e300 * (-1f64).exp();
         let x = last(&r, "x");
@@ -399,7 +393,7 @@ fn events_at_the_start_and_at_the_stop_time() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/StartStopEvents.mo",
-            &options(method, 1e-6, 0.0, 1.0, 0.1),
+            &common::sim_options(method, 1e-6, 0.0, 1.0, 0.1),
         );
         assert_eq!(last(&r, "n"), 5.0, "{method:?}");
         assert_eq!(last(&r, "inits"), 1.0, "{method:?}");
@@ -415,7 +409,7 @@ fn events_at_the_start_and_at_the_stop_time() {
 fn a_body_1e300_long_is_an_error_not_a_panic() {
     let r = run(
         "tests/extreme/HugeBody.mo",
-        &options(Method::Bdf, 1e-6, 0.0, 1.0, 0.01),
+        &common::sim_options(Method::Bdf, 1e-6, 0.0, 1.0, 0.01),
     );
     let e = r.error.as_ref().expect("the shape is refused");
     assert!(
@@ -435,7 +429,7 @@ fn change_of_integer_time_fires_without_states() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/TickWithoutStates.mo",
-            &options(method, 1e-6, 0.0, 0.95, 0.01),
+            &common::sim_options(method, 1e-6, 0.0, 0.95, 0.01),
         );
         let fired = changes(&r, "count");
         assert_eq!(fired.len(), 9, "{method:?}: {fired:?}");
@@ -458,7 +452,7 @@ fn edge_and_change_fire_at_the_switches() {
     for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
         let r = ok(
             "tests/extreme/EdgeAndChange.mo",
-            &options(method, 1e-6, 0.0, 2.0, 0.01),
+            &common::sim_options(method, 1e-6, 0.0, 2.0, 0.01),
         );
         let close = |got: Vec<f64>, want: &[f64]| {
             assert_eq!(got.len(), want.len(), "{method:?}: {got:?} vs {want:?}");

@@ -5,13 +5,10 @@
 
 mod common;
 
+use common::root;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn flatten(args: &[&Path]) -> (Option<i32>, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
@@ -20,21 +17,7 @@ fn flatten(args: &[&Path]) -> (Option<i32>, String, String) {
         .current_dir(root())
         .output()
         .unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn files(dir: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "mo"))
-        .collect();
-    v.sort();
-    v
+    common::code_and_text(out)
 }
 
 #[test]
@@ -43,7 +26,10 @@ fn flatten_suite_round_trips() {
     std::fs::create_dir_all(&tmp).unwrap();
     let mut n = 0;
     // The flatten suite and every bundled model.
-    for f in files("tests/flatten/ok").into_iter().chain(files("models")) {
+    for f in common::mo_files("tests/flatten/ok")
+        .into_iter()
+        .chain(common::mo_files("models"))
+    {
         let rel = f.strip_prefix(root()).unwrap().to_path_buf();
         let (code, first, stderr) = flatten(&[&rel]);
         assert_eq!(code, Some(0), "{}: {stderr}", rel.display());
@@ -74,7 +60,7 @@ fn expected() -> BTreeMap<String, Vec<String>> {
 #[test]
 fn flatten_errors_name_the_problem() {
     let manifest = expected();
-    assert_eq!(manifest.len(), files("tests/flatten/err").len());
+    assert_eq!(manifest.len(), common::mo_files("tests/flatten/err").len());
     for (file, want) in &manifest {
         let rel = PathBuf::from(format!("tests/flatten/err/{file}"));
         let (code, _, stderr) = flatten(&[&rel]);

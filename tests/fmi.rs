@@ -9,23 +9,12 @@
 
 mod common;
 
-use common::root;
+use common::{root, unimo};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn unimo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_unimo"))
-        .args(args)
-        .args(["--color", "never"])
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
-
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("unimo-fmi-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    common::temp("fmi", name)
 }
 
 fn ok(o: &Output) {

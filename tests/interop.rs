@@ -3,24 +3,13 @@
 
 mod common;
 
-use common::root;
+use common::{root, unimo};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use unimo_cli::results::mat;
 
-fn unimo(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_unimo"))
-        .args(args)
-        .args(["--color", "never"])
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
-
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("unimo-interop-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+fn temp_file(name: &str) -> PathBuf {
+    common::temp("interop", name)
 }
 
 fn simulate_to(model: &str, out: &Path, extra: &[&str]) {
@@ -61,7 +50,10 @@ fn csv_against_mat(
     stem: &str,
     args: &[&str],
 ) -> (f64, mat::MatFile, Vec<(String, Vec<f64>)>) {
-    let (csv, mat_path) = (temp(&format!("{stem}.csv")), temp(&format!("{stem}.mat")));
+    let (csv, mat_path) = (
+        temp_file(&format!("{stem}.csv")),
+        temp_file(&format!("{stem}.mat")),
+    );
     simulate_to(model, &csv, args);
     simulate_to(model, &mat_path, args);
     let file = mat::read(&std::fs::read(&mat_path).unwrap()).unwrap();
@@ -149,7 +141,10 @@ fn python_readers_agree_with_the_csv() {
         ("models/BouncingBall.mo", "py_ball"),
         ("tests/interop/AliasesAndUnits.mo", "py_aliases"),
     ] {
-        let (csv, mat_path) = (temp(&format!("{stem}.csv")), temp(&format!("{stem}.mat")));
+        let (csv, mat_path) = (
+            temp_file(&format!("{stem}.csv")),
+            temp_file(&format!("{stem}.mat")),
+        );
         simulate_to(model, &csv, &[]);
         simulate_to(model, &mat_path, &[]);
         let script = root().join("tests/python/check_mat.py");
@@ -192,7 +187,7 @@ fn require_python() -> Option<std::ffi::OsString> {
 
 /// The largest height between the first and the second impact of the bouncing ball.
 fn first_rebound_height(extra: &[&str]) -> f64 {
-    let csv = temp(&format!(
+    let csv = temp_file(&format!(
         "rebound{}.csv",
         extra.join("_").replace(['=', '/'], "_")
     ));
@@ -220,7 +215,7 @@ fn param_override_changes_the_rebound_as_the_closed_form_says() {
     assert!((default - 6.4).abs() < 1e-3, "e = 0.8: {default}");
     assert!((changed - 2.5).abs() < 1e-3, "e = 0.5: {changed}");
     // Two at once, one from a file (the flag wins over the file).
-    let file = temp("overrides.txt");
+    let file = temp_file("overrides.txt");
     std::fs::write(&file, "# restitution and height\ne = 0.9\nh0=5 # metres\n").unwrap();
     let file_s = file.to_string_lossy().into_owned();
     let both = first_rebound_height(&["--override-file", &file_s, "-p", "e=0.5"]);
@@ -229,7 +224,7 @@ fn param_override_changes_the_rebound_as_the_closed_form_says() {
 
 #[test]
 fn structural_parameters_take_effect_and_are_reported() {
-    let csv = temp("structural.csv");
+    let csv = temp_file("structural.csv");
     simulate_to(
         "tests/interop/AliasesAndUnits.mo",
         &csv,

@@ -6,7 +6,7 @@
 
 mod common;
 
-use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_runtime::sim::{simulate, SimResult};
 use unimo_solve::Method;
 
 use common::load;
@@ -14,16 +14,10 @@ use common::load;
 /// Runs in the regularising time `time` up to `stop`; the models end themselves with
 /// `terminate` when their physical time `t` reaches `tStop`.
 fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64, stop: f64) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval: stop / 200.0,
-        every_step: false,
-    };
-    simulate(&m.compiled, &o)
+    simulate(
+        &m.compiled,
+        &common::sim_options(method, rtol, 0.0, stop, stop / 200.0),
+    )
 }
 
 fn col(r: &SimResult, name: &str) -> usize {

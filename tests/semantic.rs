@@ -22,14 +22,8 @@ fn check(path: &Path) -> (Option<i32>, String) {
 }
 
 fn files(dir: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(common::root().join(dir))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "mo"))
-        .map(|p| p.strip_prefix(common::root()).unwrap().to_path_buf())
-        .collect();
-    v.sort();
-    v
+    let relative = |p: PathBuf| p.strip_prefix(common::root()).unwrap().to_path_buf();
+    common::mo_files(dir).into_iter().map(relative).collect()
 }
 
 /// The `CODE @line:col` list of a file's first line, sorted.

@@ -13,26 +13,12 @@ fn emit(stage: &str, file: &Path) -> (Option<i32>, String, String) {
         .arg(file)
         .output()
         .expect("run unimo");
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn files(dir: &str) -> Vec<std::path::PathBuf> {
-    let mut v: Vec<_> = std::fs::read_dir(common::root().join(dir))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "mo"))
-        .collect();
-    v.sort();
-    v
+    common::code_and_text(out)
 }
 
 #[test]
 fn structure_dumps() {
-    let all = files("tests/structure/ok");
+    let all = common::mo_files("tests/structure/ok");
     assert!(all.len() >= 6);
     for f in all {
         let name = f.file_stem().unwrap().to_string_lossy().into_owned();
@@ -107,7 +93,7 @@ fn rlc_alias_sets_are_eliminated() {
 
 #[test]
 fn structurally_singular_models_are_explained() {
-    for f in files("tests/structure/err") {
+    for f in common::mo_files("tests/structure/err") {
         let name = f.file_stem().unwrap().to_string_lossy().into_owned();
         let rel = f.strip_prefix(common::root()).unwrap().to_path_buf();
         let (code, _, err) = emit("structure", &rel);

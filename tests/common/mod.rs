@@ -4,9 +4,48 @@
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::process::{Command, Output};
 
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the `unimo` binary with `args` then `--color never`, in the repository.
+pub fn unimo(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .args(args)
+        .args(["--color", "never"])
+        .current_dir(root())
+        .output()
+        .unwrap()
+}
+
+/// The exit code, stdout and stderr of a finished command.
+pub fn code_and_text(out: Output) -> (Option<i32>, String, String) {
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// `name` in this test process's own folder `unimo-<suite>-<pid>` of the system's
+/// temporary folder (made when missing).
+pub fn temp(suite: &str, name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("unimo-{suite}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// The `.mo` files of the repository folder `dir`, sorted, as absolute paths.
+pub fn mo_files(dir: &str) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "mo"))
+        .collect();
+    v.sort();
+    v
 }
 
 /// Loads and compiles a model of the repository (`model`: its name when the file holds
@@ -46,6 +85,26 @@ pub fn rendered_codes(stderr: &str) -> Vec<String> {
         .collect()
 }
 
+/// The options of a simulation from `start` to `stop` at `rtol` (atol = rtol / 100,
+/// the command line's default) with output every `interval`.
+pub fn sim_options(
+    method: unimo_solve::Method,
+    rtol: f64,
+    start: f64,
+    stop: f64,
+    interval: f64,
+) -> unimo_runtime::sim::SimOptions {
+    unimo_runtime::sim::SimOptions {
+        start,
+        stop,
+        rtol,
+        atol: rtol / 100.0,
+        method,
+        interval,
+        every_step: false,
+    }
+}
+
 /// Simulates `m` from 0 to `stop` at `rtol` (atol = rtol / 100, the command line's
 /// default) with output every `interval`; panics with the error message on failure.
 pub fn run_ok(
@@ -55,15 +114,7 @@ pub fn run_ok(
     stop: f64,
     interval: f64,
 ) -> unimo_runtime::sim::SimResult {
-    let o = unimo_runtime::sim::SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval,
-        every_step: false,
-    };
+    let o = sim_options(method, rtol, 0.0, stop, interval);
     let r = unimo_runtime::sim::simulate(&m.compiled, &o);
     assert!(
         r.error.is_none(),

@@ -250,20 +250,7 @@ fn write_fmi2_variables(x: &mut String, c: &Compiled) {
             ScalarType::Integer | ScalarType::Enumeration(_) => "Integer",
         };
         let _ = write!(x, "><{element}");
-        if let (Some(s), true) = (v.start, has_start(v)) {
-            let start = match v.ty {
-                ScalarType::Boolean => (s != 0.0).to_string(),
-                ScalarType::Integer | ScalarType::Enumeration(_) => (s as i64).to_string(),
-                ScalarType::Real => number(s),
-            };
-            let _ = write!(x, r#" start="{start}""#);
-        }
-        if let Some(u) = &v.unit {
-            let _ = write!(x, r#" unit="{}""#, escape(u));
-        }
-        if let Some(state) = v.derivative_of {
-            let _ = write!(x, r#" derivative="{}""#, state + 1);
-        }
+        start_unit_derivative(x, v, 1);
         let _ = writeln!(x, "/></ScalarVariable>");
     }
     let _ = writeln!(x, "  </ModelVariables>");
@@ -283,6 +270,26 @@ fn write_fmi2_variables(x: &mut String, c: &Compiled) {
     unknowns(x, "Derivatives", &derivatives);
     unknowns(x, "InitialUnknowns", &initial_unknowns(c));
     let _ = writeln!(x, "  </ModelStructure>");
+}
+
+/// The `start`, `unit` and `derivative` attributes of a variable's element, both
+/// versions: the derivative names its state's value reference plus `offset` (FMI 2.0
+/// counts variables from 1, FMI 3.0 names the value reference).
+fn start_unit_derivative(x: &mut String, v: &Variable, offset: u32) {
+    if let (Some(s), true) = (v.start, has_start(v)) {
+        let start = match v.ty {
+            ScalarType::Boolean => (s != 0.0).to_string(),
+            ScalarType::Integer | ScalarType::Enumeration(_) => (s as i64).to_string(),
+            ScalarType::Real => number(s),
+        };
+        let _ = write!(x, r#" start="{start}""#);
+    }
+    if let Some(u) = &v.unit {
+        let _ = write!(x, r#" unit="{}""#, escape(u));
+    }
+    if let Some(state) = v.derivative_of {
+        let _ = write!(x, r#" derivative="{}""#, state + offset);
+    }
 }
 
 fn outputs(c: &Compiled) -> Vec<u32> {
@@ -321,20 +328,7 @@ fn write_fmi3_variables(x: &mut String, c: &Compiled) {
         if !v.description.is_empty() {
             let _ = write!(x, r#" description="{}""#, escape(&v.description));
         }
-        if let (Some(s), true) = (v.start, has_start(v)) {
-            let start = match v.ty {
-                ScalarType::Boolean => (s != 0.0).to_string(),
-                ScalarType::Integer | ScalarType::Enumeration(_) => (s as i64).to_string(),
-                ScalarType::Real => number(s),
-            };
-            let _ = write!(x, r#" start="{start}""#);
-        }
-        if let Some(u) = &v.unit {
-            let _ = write!(x, r#" unit="{}""#, escape(u));
-        }
-        if let Some(state) = v.derivative_of {
-            let _ = write!(x, r#" derivative="{state}""#);
-        }
+        start_unit_derivative(x, v, 0);
         let _ = writeln!(x, "/>");
     }
     for k in 0..c.model.roots.len() {

@@ -171,6 +171,111 @@ pub fn expect_size(
     }
 }
 
+/// A get of `n` values of type `want` into the C array `values` of `n_values`
+/// elements, each converted by `convert` (FMI 2.0 passes `n` for `n_values`).
+///
+/// # Safety
+/// `refs` holds `n` references and `values` `n_values` writable values (FMI contract).
+#[allow(clippy::too_many_arguments)] // the C arguments, then what the type decides
+pub unsafe fn get_typed<T>(
+    ptr: *mut c_void,
+    function: &'static str,
+    refs: *const u32,
+    n: usize,
+    values: *mut T,
+    n_values: usize,
+    want: Type,
+    convert: fn(f64) -> T,
+) -> i32 {
+    // SAFETY: the caller's contract; checked for null.
+    let Ok(out) = (unsafe { slice_mut(values, n_values, function) }) else {
+        return ERROR;
+    };
+    call(ptr, function, ANY, |i| {
+        expect_size(function, "values", n_values, n)?;
+        // SAFETY: `refs` holds `n` references (the caller's contract).
+        let refs = unsafe { slice(refs, n, function)? };
+        check_types(i, function, refs, want)?;
+        for (k, v) in i.get(function, refs)?.into_iter().enumerate() {
+            out[k] = convert(v);
+        }
+        Ok(OK)
+    })
+}
+
+/// A set of `n` values of type `want` from the C array `values` of `n_values`
+/// elements, each converted by `convert`.
+///
+/// # Safety
+/// `refs` holds `n` references and `values` `n_values` values (FMI contract).
+#[allow(clippy::too_many_arguments)] // as `get_typed`
+pub unsafe fn set_typed<T: Copy>(
+    ptr: *mut c_void,
+    function: &'static str,
+    refs: *const u32,
+    n: usize,
+    values: *const T,
+    n_values: usize,
+    want: Type,
+    convert: fn(T) -> f64,
+) -> i32 {
+    // SAFETY: the caller's contract; checked for null.
+    let Ok(given) = (unsafe { slice(values, n_values, function) }) else {
+        return ERROR;
+    };
+    call(ptr, function, ANY, |i| {
+        expect_size(function, "values", n_values, n)?;
+        // SAFETY: as in `get_typed`.
+        let refs = unsafe { slice(refs, n, function)? };
+        check_types(i, function, refs, want)?;
+        let values: Vec<f64> = given.iter().map(|&v| convert(v)).collect();
+        i.set(function, refs, &values)?;
+        Ok(OK)
+    })
+}
+
+/// The exported typed get and set functions of both versions, one line each:
+/// `typed_access!(get fmi2GetReal, f64, Type::Real, |v| v)`; an FMI 3.0 function
+/// names its extra array length after the conversion: `..., |v| v, n_values)`.
+macro_rules! typed_access {
+    (get $name:ident, $t:ty, $want:expr, $convert:expr $(, $n_values:ident)?) => {
+        $crate::ffi::typed_access!(@fn $name, *mut $t, get_typed, $want, $convert $(, $n_values)?);
+    };
+    (set $name:ident, $t:ty, $want:expr, $convert:expr $(, $n_values:ident)?) => {
+        $crate::ffi::typed_access!(@fn $name, *const $t, set_typed, $want, $convert $(, $n_values)?);
+    };
+    (@fn $name:ident, $ptr:ty, $helper:ident, $want:expr, $convert:expr $(, $n_values:ident)?) => {
+        /// # Safety
+        /// `vr` holds `n` references, `values` `n` values (FMI 3.0: `n_values`).
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            instance: *mut std::ffi::c_void,
+            vr: *const u32,
+            n: usize,
+            values: $ptr,
+            $($n_values: usize,)?
+        ) -> i32 {
+            let n_values = [n $(, $n_values)?].into_iter().last().unwrap_or(n);
+            // SAFETY: the FMI contract, forwarded.
+            unsafe {
+                $crate::ffi::$helper(instance, stringify!($name), vr, n, values, n_values, $want, $convert)
+            }
+        }
+    };
+}
+pub(crate) use typed_access;
+
+/// `fmi2FreeInstance` / `fmi3FreeInstance`: drops an instance `Box::into_raw` made.
+pub fn free_instance(ptr: *mut c_void) {
+    if ptr.is_null() {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: made by an instantiate function with `Box::into_raw`, freed once.
+        drop(unsafe { Box::from_raw(ptr as *mut Instance) });
+    }));
+}
+
 /// The instance state guard of the functions an FMU does not provide.
 pub fn unsupported(ptr: *mut c_void, function: &'static str) -> i32 {
     call(ptr, function, ANY, |_| {

@@ -3,7 +3,7 @@
 //! C boundary, wrong calls are `fmi2Error` with a message to the logger).
 
 use crate::description::{Kind, Version};
-use crate::ffi::{self, call, check_types, slice, slice_mut, text, Type, ANY, DISCARD, ERROR, OK};
+use crate::ffi::{self, call, slice, slice_mut, text, typed_access, Type, ANY, DISCARD, ERROR, OK};
 use crate::instance::{resource_folder, Instance, State};
 use std::ffi::{c_char, c_int, c_uint, c_void, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -129,13 +129,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
 
 #[no_mangle]
 pub extern "C" fn fmi2FreeInstance(c: Component) {
-    if c.is_null() {
-        return;
-    }
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: made by `fmi2Instantiate` with `Box::into_raw`, freed once.
-        drop(unsafe { Box::from_raw(c as *mut Instance) });
-    }));
+    ffi::free_instance(c);
 }
 
 #[no_mangle]
@@ -212,94 +206,12 @@ pub extern "C" fn fmi2Reset(c: Component) -> Status {
     })
 }
 
-fn get_values(
-    c: Component,
-    function: &'static str,
-    refs: *const Vr,
-    n: usize,
-    want: Type,
-    out: &mut dyn FnMut(usize, f64),
-) -> Status {
-    call(c, function, ANY, |i| {
-        // SAFETY: `refs` holds `n` references (FMI contract).
-        let refs = unsafe { slice(refs, n, function)? };
-        check_types(i, function, refs, want)?;
-        for (k, v) in i.get(function, refs)?.into_iter().enumerate() {
-            out(k, v);
-        }
-        Ok(OK)
-    })
-}
-
-fn set_values(
-    c: Component,
-    function: &'static str,
-    refs: *const Vr,
-    n: usize,
-    want: Type,
-    values: &dyn Fn(usize) -> f64,
-) -> Status {
-    call(c, function, ANY, |i| {
-        // SAFETY: as in `get_values`.
-        let refs = unsafe { slice(refs, n, function)? };
-        check_types(i, function, refs, want)?;
-        let values: Vec<f64> = (0..n).map(values).collect();
-        i.set(function, refs, &values)?;
-        Ok(OK)
-    })
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetReal(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *mut f64,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetReal") }) else {
-        return ERROR;
-    };
-    get_values(c, "fmi2GetReal", vr, n, Type::Real, &mut |k, v| out[k] = v)
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetInteger(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *mut c_int,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetInteger") }) else {
-        return ERROR;
-    };
-    get_values(c, "fmi2GetInteger", vr, n, Type::Integer, &mut |k, v| {
-        out[k] = v as c_int
-    })
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetBoolean(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *mut Bool,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(value, n, "fmi2GetBoolean") }) else {
-        return ERROR;
-    };
-    get_values(c, "fmi2GetBoolean", vr, n, Type::Boolean, &mut |k, v| {
-        out[k] = Bool::from(v != 0.0)
-    })
-}
+typed_access!(get fmi2GetReal, f64, Type::Real, |v| v);
+typed_access!(get fmi2GetInteger, c_int, Type::Integer, |v| v as c_int);
+typed_access!(get fmi2GetBoolean, Bool, Type::Boolean, |v| Bool::from(v != 0.0));
+typed_access!(set fmi2SetReal, f64, Type::Real, |v| v);
+typed_access!(set fmi2SetInteger, c_int, Type::Integer, f64::from);
+typed_access!(set fmi2SetBoolean, Bool, Type::Boolean, |v| f64::from(u8::from(v != 0)));
 
 #[no_mangle]
 pub extern "C" fn fmi2GetString(
@@ -309,58 +221,6 @@ pub extern "C" fn fmi2GetString(
     _value: *mut *const c_char,
 ) -> Status {
     ffi::unsupported(c, "fmi2GetString")
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetReal(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *const f64,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetReal") }) else {
-        return ERROR;
-    };
-    set_values(c, "fmi2SetReal", vr, n, Type::Real, &|k| values[k])
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetInteger(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *const c_int,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetInteger") }) else {
-        return ERROR;
-    };
-    set_values(c, "fmi2SetInteger", vr, n, Type::Integer, &|k| {
-        f64::from(values[k])
-    })
-}
-
-/// # Safety
-/// `vr` and `value` hold `n` elements.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetBoolean(
-    c: Component,
-    vr: *const Vr,
-    n: usize,
-    value: *const Bool,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(values) = (unsafe { slice(value, n, "fmi2SetBoolean") }) else {
-        return ERROR;
-    };
-    set_values(c, "fmi2SetBoolean", vr, n, Type::Boolean, &|k| {
-        f64::from(u8::from(values[k] != 0))
-    })
 }
 
 #[no_mangle]

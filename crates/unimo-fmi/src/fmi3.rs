@@ -5,7 +5,7 @@
 
 use crate::description::{Kind, Version};
 use crate::error::FmiError;
-use crate::ffi::{self, call, check_types, slice, slice_mut, text, Type, ANY, ERROR, OK};
+use crate::ffi::{self, call, slice, slice_mut, text, typed_access, Type, ANY, ERROR, OK};
 use crate::instance::{resource_folder, Instance, State};
 use std::ffi::{c_char, c_int, c_void, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -85,23 +85,14 @@ unsafe fn instantiate(
 pub unsafe extern "C" fn fmi3InstantiateModelExchange(
     name: *const c_char,
     token: *const c_char,
-    resource_path: *const c_char,
+    path: *const c_char,
     _visible: bool,
     _logging_on: bool,
-    environment: *mut c_void,
+    env: *mut c_void,
     log: Option<LogFn>,
 ) -> Inst {
     // SAFETY: forwarded contract.
-    unsafe {
-        instantiate(
-            Kind::ModelExchange,
-            name,
-            token,
-            resource_path,
-            environment,
-            log,
-        )
-    }
+    unsafe { instantiate(Kind::ModelExchange, name, token, path, env, log) }
 }
 
 /// # Safety
@@ -111,28 +102,19 @@ pub unsafe extern "C" fn fmi3InstantiateModelExchange(
 pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
     name: *const c_char,
     token: *const c_char,
-    resource_path: *const c_char,
+    path: *const c_char,
     _visible: bool,
     _logging_on: bool,
     _event_mode_used: bool,
     _early_return_allowed: bool,
     _required_intermediate: *const Vr,
     _n_required_intermediate: usize,
-    environment: *mut c_void,
+    env: *mut c_void,
     log: Option<LogFn>,
     _intermediate_update: *const c_void,
 ) -> Inst {
     // SAFETY: forwarded contract.
-    unsafe {
-        instantiate(
-            Kind::CoSimulation,
-            name,
-            token,
-            resource_path,
-            environment,
-            log,
-        )
-    }
+    unsafe { instantiate(Kind::CoSimulation, name, token, path, env, log) }
 }
 
 #[no_mangle]
@@ -142,13 +124,7 @@ pub extern "C" fn fmi3InstantiateScheduledExecution() -> Inst {
 
 #[no_mangle]
 pub extern "C" fn fmi3FreeInstance(instance: Inst) {
-    if instance.is_null() {
-        return;
-    }
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: made by `instantiate` with `Box::into_raw`, freed once.
-        drop(unsafe { Box::from_raw(instance as *mut Instance) });
-    }));
+    ffi::free_instance(instance);
 }
 
 #[no_mangle]
@@ -221,197 +197,12 @@ pub extern "C" fn fmi3Reset(instance: Inst) -> Status {
     })
 }
 
-/// A get of `n` values of type `want` into `out`.
-fn get_values(
-    instance: Inst,
-    function: &'static str,
-    refs: *const Vr,
-    n: usize,
-    n_values: usize,
-    want: Type,
-    out: &mut dyn FnMut(usize, f64),
-) -> Status {
-    call(instance, function, ANY, |i| {
-        ffi::expect_size(function, "values", n_values, n)?;
-        // SAFETY: `refs` holds `n` references (FMI contract).
-        let refs = unsafe { slice(refs, n, function)? };
-        check_types(i, function, refs, want)?;
-        for (k, v) in i.get(function, refs)?.into_iter().enumerate() {
-            out(k, v);
-        }
-        Ok(OK)
-    })
-}
-
-fn set_values(
-    instance: Inst,
-    function: &'static str,
-    refs: *const Vr,
-    n: usize,
-    n_values: usize,
-    want: Type,
-    values: &dyn Fn(usize) -> f64,
-) -> Status {
-    call(instance, function, ANY, |i| {
-        ffi::expect_size(function, "values", n_values, n)?;
-        // SAFETY: as in `get_values`.
-        let refs = unsafe { slice(refs, n, function)? };
-        check_types(i, function, refs, want)?;
-        let values: Vec<f64> = (0..n).map(values).collect();
-        i.set(function, refs, &values)?;
-        Ok(OK)
-    })
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3GetFloat64(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *mut f64,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetFloat64") }) else {
-        return ERROR;
-    };
-    get_values(
-        instance,
-        "fmi3GetFloat64",
-        vr,
-        n,
-        out.len(),
-        Type::Real,
-        &mut |k, v| out[k] = v,
-    )
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3GetInt32(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *mut i32,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetInt32") }) else {
-        return ERROR;
-    };
-    get_values(
-        instance,
-        "fmi3GetInt32",
-        vr,
-        n,
-        out.len(),
-        Type::Integer,
-        &mut |k, v| out[k] = v as i32,
-    )
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3GetBoolean(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *mut bool,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(out) = (unsafe { slice_mut(values, n_values, "fmi3GetBoolean") }) else {
-        return ERROR;
-    };
-    get_values(
-        instance,
-        "fmi3GetBoolean",
-        vr,
-        n,
-        out.len(),
-        Type::Boolean,
-        &mut |k, v| out[k] = v != 0.0,
-    )
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3SetFloat64(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *const f64,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetFloat64") }) else {
-        return ERROR;
-    };
-    set_values(
-        instance,
-        "fmi3SetFloat64",
-        vr,
-        n,
-        v.len(),
-        Type::Real,
-        &|k| v[k],
-    )
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3SetInt32(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *const i32,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetInt32") }) else {
-        return ERROR;
-    };
-    set_values(
-        instance,
-        "fmi3SetInt32",
-        vr,
-        n,
-        v.len(),
-        Type::Integer,
-        &|k| f64::from(v[k]),
-    )
-}
-
-/// # Safety
-/// `vr` holds `n` references, `values` `n_values` values.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3SetBoolean(
-    instance: Inst,
-    vr: *const Vr,
-    n: usize,
-    values: *const bool,
-    n_values: usize,
-) -> Status {
-    // SAFETY: FMI contract; checked for null.
-    let Ok(v) = (unsafe { slice(values, n_values, "fmi3SetBoolean") }) else {
-        return ERROR;
-    };
-    set_values(
-        instance,
-        "fmi3SetBoolean",
-        vr,
-        n,
-        v.len(),
-        Type::Boolean,
-        &|k| f64::from(u8::from(v[k])),
-    )
-}
+typed_access!(get fmi3GetFloat64, f64, Type::Real, |v| v, n_values);
+typed_access!(get fmi3GetInt32, i32, Type::Integer, |v| v as i32, n_values);
+typed_access!(get fmi3GetBoolean, bool, Type::Boolean, |v| v != 0.0, n_values);
+typed_access!(set fmi3SetFloat64, f64, Type::Real, |v| v, n_values);
+typed_access!(set fmi3SetInt32, i32, Type::Integer, f64::from, n_values);
+typed_access!(set fmi3SetBoolean, bool, Type::Boolean, |v| f64::from(u8::from(v)), n_values);
 
 #[no_mangle]
 pub extern "C" fn fmi3EnterEventMode(instance: Inst) -> Status {

@@ -49,16 +49,14 @@
 use crate::dense_output::DenseOutput;
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{eval_failure, Integrator, ProblemSetup};
+use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup};
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, weighted_rms_masked, worst_components, Tolerances};
 use crate::options::{Method, Options};
 use crate::radau5::use_sparse;
 use crate::stats::Stats;
-use crate::step_control::{
-    clip_to_limit, initial_step, minimum_step, step_above_floor, InitialStepProblem,
-};
+use crate::step_control::{clip_to_limit, initial_step, minimum_step, step_above_floor};
 use crate::system::System;
 
 const MAX_ORDER: usize = 5;
@@ -254,16 +252,9 @@ impl Bdf {
         let mut h = match self.setup.options.initial_step {
             Some(step) => step,
             None => {
-                let problem = InitialStepProblem {
-                    t0: t,
-                    x0: &x,
-                    f0: &self.f_value,
-                    differential: &self.setup.differential,
-                    tolerances: &self.setup.tolerances,
-                    order: 1,
-                    max_step: self.setup.options.max_step,
-                    span: t_limit - t,
-                };
+                let problem = self
+                    .setup
+                    .initial_step_problem(t, &x, &self.f_value, 1, t_limit);
                 initial_step(&problem, system, &mut self.stats)?
             }
         };
@@ -750,30 +741,7 @@ impl Bdf {
 }
 
 impl Integrator for Bdf {
-    fn method(&self) -> Method {
-        Method::Bdf
-    }
-
-    fn current_time(&self) -> f64 {
-        self.t
-    }
-
-    fn state(&self) -> &[f64] {
-        &self.phi[0]
-    }
-
-    fn dense_output(&self) -> &dyn DenseOutput {
-        &self.dense
-    }
-
-    fn stats(&self) -> &Stats {
-        &self.stats
-    }
-
-    fn set_max_step(&mut self, h: f64) {
-        self.setup.options.max_step = h;
-        self.h = self.h.min(h);
-    }
+    common_accessors!(Method::Bdf, |s| &s.phi[0]);
 
     fn reset(&mut self, _system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size || !t.is_finite() {
@@ -801,14 +769,7 @@ impl Integrator for Bdf {
         let (mut error_failures, mut newton_failures) = (0usize, 0usize);
         loop {
             let failed = error_failures + newton_failures > 0;
-            let Some(h) = step_above_floor(self.h, self.t, failed) else {
-                return Err(SolveError::StepSizeTooSmall {
-                    time: self.t,
-                    step: self.h,
-                    worst: worst_components(&self.correction, &self.scale),
-                });
-            };
-            self.h = h;
+            self.h = step_above_floor(self.h, self.t, failed, &self.correction, &self.scale)?;
             let (h_try, hits_limit) = clip_to_limit(self.t, self.h, t_limit);
             self.h = h_try;
             let t_new = if hits_limit { t_limit } else { self.t + h_try };

@@ -12,3 +12,10 @@ pub trait DenseOutput {
     /// outside it the polynomial is extrapolated.
     fn evaluate(&self, t: f64, out: &mut [f64]);
 }
+
+/// A one-step method's interpolant at `t` on `[start, end]`: `None` at the step's end or
+/// on an empty step, where the stored end state is exact; else `(t - origin) / (end - start)`.
+pub(crate) fn step_fraction(start: f64, end: f64, t: f64, origin: f64) -> Option<f64> {
+    let step = end - start;
+    (t != end && step != 0.0).then(|| (t - origin) / step)
+}

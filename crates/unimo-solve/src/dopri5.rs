@@ -11,14 +11,14 @@
 //!   polynomial solutions up to degree 4.
 //! * Systems with algebraic rows are refused ([`SolveError::AlgebraicRowsNotSupported`]).
 
-use crate::dense_output::DenseOutput;
+use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{eval_failure, Integrator, ProblemSetup};
-use crate::norm::{weighted_rms, worst_components, Tolerances};
+use crate::integrator::{common_accessors, eval_failure, restart_point, Integrator, ProblemSetup};
+use crate::norm::{weighted_rms, Tolerances};
 use crate::options::{Method, Options};
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, step_above_floor, InitialStepProblem};
+use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
 use crate::system::System;
 
 const C2: f64 = 0.2;
@@ -79,12 +79,10 @@ impl DenseOutput for Dopri5DenseOutput {
     }
 
     fn evaluate(&self, t: f64, out: &mut [f64]) {
-        let step = self.end - self.start;
-        if t == self.end || step == 0.0 {
+        let Some(theta) = step_fraction(self.start, self.end, t, self.start) else {
             out.copy_from_slice(&self.end_state);
             return;
-        }
-        let theta = (t - self.start) / step;
+        };
         let theta1 = 1.0 - theta;
         let [r1, r2, r3, r4, r5] = &self.coefficients;
         for i in 0..out.len() {
@@ -157,9 +155,13 @@ impl Dopri5 {
 
     fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.t = t;
-        self.x.copy_from_slice(x);
-        rhs_checked(system, t, x, &mut self.f_current, &mut self.stats)
-            .map_err(|error| eval_failure(t, error))?;
+        restart_point(
+            system,
+            (t, x),
+            &mut self.x,
+            &mut self.f_current,
+            &mut self.stats,
+        )?;
         self.step_size = self.setup.options.initial_step;
         self.previous_error = 1e-4;
         self.last_rejected = false;
@@ -265,49 +267,18 @@ impl Dopri5 {
         if let Some(step) = self.step_size {
             return Ok(step);
         }
-        let problem = InitialStepProblem {
-            t0: self.t,
-            x0: &self.x,
-            f0: &self.f_current,
-            differential: &self.setup.differential,
-            tolerances: &self.setup.tolerances,
-            order: 4,
-            max_step: self.setup.options.max_step,
-            span: t_limit - self.t,
-        };
+        let problem = self
+            .setup
+            .initial_step_problem(self.t, &self.x, &self.f_current, 4, t_limit);
         initial_step(&problem, system, &mut self.stats)
     }
 }
 
 impl Integrator for Dopri5 {
-    fn method(&self) -> Method {
-        Method::Dopri5
-    }
-
-    fn current_time(&self) -> f64 {
-        self.t
-    }
-
-    fn state(&self) -> &[f64] {
-        &self.x
-    }
-
-    fn dense_output(&self) -> &dyn DenseOutput {
-        &self.dense
-    }
-
-    fn stats(&self) -> &Stats {
-        &self.stats
-    }
-
-    fn set_max_step(&mut self, h: f64) {
-        self.setup.options.max_step = h;
-    }
+    common_accessors!(Method::Dopri5, |s| &s.x);
 
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        if x.len() != self.setup.size {
-            return Err(SolveError::invalid("reset state has the wrong length"));
-        }
+        self.setup.check_len(x)?;
         self.restart(system, t, x)
     }
 
@@ -320,14 +291,7 @@ impl Integrator for Dopri5 {
         let exponent = 0.2 - BETA * 0.75;
         let mut failures = 0usize;
         loop {
-            let Some(h_floor) = step_above_floor(h, self.t, failures > 0) else {
-                return Err(SolveError::StepSizeTooSmall {
-                    time: self.t,
-                    step: h,
-                    worst: worst_components(&self.error_vector, &self.scale),
-                });
-            };
-            h = h_floor;
+            h = step_above_floor(h, self.t, failures > 0, &self.error_vector, &self.scale)?;
             let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
             let error = match self.attempt(system, h_try) {
                 Ok(()) => self.error_norm(),

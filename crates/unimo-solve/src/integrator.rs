@@ -3,8 +3,10 @@
 
 use crate::dense_output::DenseOutput;
 use crate::error::SolveError;
+use crate::evaluate::rhs_checked;
 use crate::options::Method;
 use crate::stats::Stats;
+use crate::step_control::InitialStepProblem;
 use crate::system::System;
 
 /// One integration method (BDF, Radau5, Dormand–Prince) driven step by step.
@@ -37,6 +39,39 @@ pub trait Integrator {
     /// Changes the largest step from the next step on (e.g. while a stiff contact lasts).
     fn set_max_step(&mut self, h: f64);
 }
+
+/// The [`Integrator`] functions that only read or set common fields (`t`, `dense`,
+/// `stats`, `setup`), one definition for every method: `$state` is the current state
+/// of `self` named `$s`.
+macro_rules! common_accessors {
+    ($method:expr, |$s:ident| $state:expr) => {
+        fn method(&self) -> Method {
+            $method
+        }
+
+        fn current_time(&self) -> f64 {
+            self.t
+        }
+
+        fn state(&self) -> &[f64] {
+            let $s = self;
+            $state
+        }
+
+        fn dense_output(&self) -> &dyn DenseOutput {
+            &self.dense
+        }
+
+        fn stats(&self) -> &Stats {
+            &self.stats
+        }
+
+        fn set_max_step(&mut self, h: f64) {
+            self.setup.options.max_step = h;
+        }
+    };
+}
+pub(crate) use common_accessors;
 
 /// What every method needs from the problem, checked once at construction.
 #[derive(Debug, Clone)]
@@ -95,10 +130,53 @@ impl ProblemSetup {
         })
     }
 
+    /// The inputs of [`initial_step`](crate::step_control::initial_step) for a first
+    /// step from `(t0, x0)`, `f0 = f(t0, x0)`, towards `t_limit` by a method whose local
+    /// error has order `order`.
+    pub fn initial_step_problem<'a>(
+        &'a self,
+        t0: f64,
+        x0: &'a [f64],
+        f0: &'a [f64],
+        order: u32,
+        t_limit: f64,
+    ) -> InitialStepProblem<'a> {
+        InitialStepProblem {
+            t0,
+            x0,
+            f0,
+            differential: &self.differential,
+            tolerances: &self.tolerances,
+            order,
+            max_step: self.options.max_step,
+            span: t_limit - t0,
+        }
+    }
+
+    /// Refuses a state of another length than the problem's (a reset's new state).
+    pub fn check_len(&self, x: &[f64]) -> Result<(), SolveError> {
+        if x.len() != self.size {
+            return Err(SolveError::invalid("reset state has the wrong length"));
+        }
+        Ok(())
+    }
+
     /// Number of algebraic rows.
     pub fn algebraic_rows(&self) -> usize {
         self.differential.iter().filter(|d| !**d).count()
     }
+}
+
+/// Moves a one-step method to `(t, x)`: `x` copied into `state`, `f(t, x)` into `f`.
+pub(crate) fn restart_point(
+    system: &mut dyn System,
+    (t, x): (f64, &[f64]),
+    state: &mut [f64],
+    f: &mut [f64],
+    stats: &mut Stats,
+) -> Result<(), SolveError> {
+    state.copy_from_slice(x);
+    rhs_checked(system, t, x, f, stats).map_err(|error| eval_failure(t, error))
 }
 
 /// Converts a failed evaluation at a point that cannot be retried into a [`SolveError`].

@@ -27,16 +27,16 @@
 
 use faer::c64;
 
-use crate::dense_output::DenseOutput;
+use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{eval_failure, Integrator, ProblemSetup};
+use crate::integrator::{common_accessors, eval_failure, restart_point, Integrator, ProblemSetup};
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, worst_components, Tolerances};
 use crate::options::{LinearSolverChoice, Method, Options};
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, step_above_floor, InitialStepProblem};
+use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
 use crate::system::System;
 
 const SQRT6: f64 = 2.449_489_742_783_178;
@@ -102,12 +102,10 @@ impl DenseOutput for Radau5DenseOutput {
     }
 
     fn evaluate(&self, t: f64, out: &mut [f64]) {
-        let step = self.end - self.start;
-        if t == self.end || step == 0.0 {
+        let Some(s) = step_fraction(self.start, self.end, t, self.end) else {
             out.copy_from_slice(&self.cont[0]);
             return;
-        }
-        let s = (t - self.end) / step;
+        };
         let [c0, c1, c2, c3] = &self.cont;
         for i in 0..out.len() {
             out[i] = c0[i] + s * (c1[i] + (s - C2M1) * (c2[i] + (s - C1M1) * c3[i]));
@@ -226,9 +224,13 @@ impl Radau5 {
 
     fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.t = t;
-        self.x.copy_from_slice(x);
-        rhs_checked(system, t, x, &mut self.f_current, &mut self.stats)
-            .map_err(|error| eval_failure(t, error))?;
+        restart_point(
+            system,
+            (t, x),
+            &mut self.x,
+            &mut self.f_current,
+            &mut self.stats,
+        )?;
         self.update_scale();
         self.step_size = self.setup.options.initial_step;
         self.jacobian_valid = false;
@@ -261,16 +263,9 @@ impl Radau5 {
         if let Some(step) = self.step_size {
             return Ok(step);
         }
-        let problem = InitialStepProblem {
-            t0: self.t,
-            x0: &self.x,
-            f0: &self.f_current,
-            differential: &self.setup.differential,
-            tolerances: &self.setup.tolerances,
-            order: 3,
-            max_step: self.setup.options.max_step,
-            span: t_limit - self.t,
-        };
+        let problem = self
+            .setup
+            .initial_step_problem(self.t, &self.x, &self.f_current, 3, t_limit);
         initial_step(&problem, system, &mut self.stats)
     }
 
@@ -613,34 +608,10 @@ pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> boo
 }
 
 impl Integrator for Radau5 {
-    fn method(&self) -> Method {
-        Method::Radau5
-    }
-
-    fn current_time(&self) -> f64 {
-        self.t
-    }
-
-    fn state(&self) -> &[f64] {
-        &self.x
-    }
-
-    fn dense_output(&self) -> &dyn DenseOutput {
-        &self.dense
-    }
-
-    fn stats(&self) -> &Stats {
-        &self.stats
-    }
-
-    fn set_max_step(&mut self, h: f64) {
-        self.setup.options.max_step = h;
-    }
+    common_accessors!(Method::Radau5, |s| &s.x);
 
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        if x.len() != self.setup.size {
-            return Err(SolveError::invalid("reset state has the wrong length"));
-        }
+        self.setup.check_len(x)?;
         self.restart(system, t, x)
     }
 
@@ -652,14 +623,13 @@ impl Integrator for Radau5 {
         let mut h = self.first_step_size(system, t_limit)?.min(max_step);
         let (mut failures, mut singular) = (0usize, 0usize);
         loop {
-            let Some(h_floor) = step_above_floor(h, self.t, failures + singular > 0) else {
-                return Err(SolveError::StepSizeTooSmall {
-                    time: self.t,
-                    step: h,
-                    worst: worst_components(&self.error_vector, &self.scale),
-                });
-            };
-            h = h_floor;
+            h = step_above_floor(
+                h,
+                self.t,
+                failures + singular > 0,
+                &self.error_vector,
+                &self.scale,
+            )?;
             let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
             self.ensure_jacobian(system)?;
             if !self.factor(h_try) {

@@ -3,7 +3,7 @@
 
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::norm::Tolerances;
+use crate::norm::{worst_components, Tolerances};
 use crate::stats::Stats;
 use crate::system::System;
 
@@ -14,16 +14,27 @@ pub(crate) fn minimum_step(t: f64) -> f64 {
 
 /// The step to try at `t`: `step`, raised to [`minimum_step`] when no attempt of this
 /// call has failed yet (a step chosen at the floor, e.g. the first step after an event
-/// from a state near zero, stays legal as `t` and with it the floor grows); `None` when
-/// failures have pushed it below the floor (the step size collapsed).
-pub(crate) fn step_above_floor(step: f64, t: f64, failed: bool) -> Option<f64> {
+/// from a state near zero, stays legal as `t` and with it the floor grows);
+/// [`SolveError::StepSizeTooSmall`] naming the worst components of `errors` over `scale`
+/// when failures have pushed it below the floor (the step size collapsed).
+pub(crate) fn step_above_floor(
+    step: f64,
+    t: f64,
+    failed: bool,
+    errors: &[f64],
+    scale: &[f64],
+) -> Result<f64, SolveError> {
     let floor = minimum_step(t);
     if step >= floor {
-        Some(step)
+        Ok(step)
     } else if !failed {
-        Some(floor)
+        Ok(floor)
     } else {
-        None
+        Err(SolveError::StepSizeTooSmall {
+            time: t,
+            step,
+            worst: worst_components(errors, scale),
+        })
     }
 }
 

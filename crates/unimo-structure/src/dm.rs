@@ -64,22 +64,29 @@ pub fn dulmage_mendelsohn_where(
     let var_ok: Vec<bool> = graph.vars().map(&var_allowed).collect();
     let mut eq_seen = vec![false; graph.n_eqs()];
     let mut var_seen = vec![false; graph.n_vars()];
-    let over = reach_from_unmatched_eqs(
-        graph,
-        matching,
-        &eq_ok,
-        &var_ok,
-        &mut eq_seen,
-        &mut var_seen,
+    let unmatched_eqs = graph
+        .eqs()
+        .filter(|e| eq_ok[e.index()] && matching.var_of(*e).is_none())
+        .collect();
+    let (eqs, vars) = alternate(
+        unmatched_eqs,
+        (&mut eq_seen, &var_ok, &mut var_seen),
+        |e| graph.eq_vars(e),
+        |v| matching.eq_of(v),
     );
-    let under = reach_from_unmatched_vars(
-        graph,
-        matching,
-        &eq_ok,
-        &var_ok,
-        &mut eq_seen,
-        &mut var_seen,
+    let over = Part { eqs, vars };
+    let incidence = graph.transpose();
+    let unmatched_vars = graph
+        .vars()
+        .filter(|v| var_ok[v.index()] && matching.eq_of(*v).is_none() && !var_seen[v.index()])
+        .collect();
+    let (vars, eqs) = alternate(
+        unmatched_vars,
+        (&mut var_seen, &eq_ok, &mut eq_seen),
+        |v| incidence.var_eqs(v),
+        |e| matching.var_of(e),
     );
+    let under = Part { eqs, vars };
     let well = Part {
         eqs: graph
             .eqs()
@@ -105,79 +112,57 @@ pub fn singularity(
     (!dm.is_nonsingular()).then(|| dm.into_error())
 }
 
-fn reach_from_unmatched_eqs(
-    graph: &BipartiteGraph,
-    matching: &Matching,
-    eq_ok: &[bool],
-    var_ok: &[bool],
-    eq_seen: &mut [bool],
-    var_seen: &mut [bool],
-) -> Part {
-    let mut part = Part::default();
-    let mut queue: Vec<EqId> = graph
-        .eqs()
-        .filter(|e| eq_ok[e.index()] && matching.var_of(*e).is_none())
-        .collect();
-    for e in &queue {
-        eq_seen[e.index()] = true;
-    }
-    while let Some(e) = queue.pop() {
-        part.eqs.push(e);
-        for &v in graph.eq_vars(e) {
-            if !var_ok[v.index()] || var_seen[v.index()] {
-                continue;
-            }
-            var_seen[v.index()] = true;
-            part.vars.push(v);
-            if let Some(mate) = matching.eq_of(v) {
-                if !eq_seen[mate.index()] {
-                    eq_seen[mate.index()] = true;
-                    queue.push(mate);
-                }
-            }
-        }
-    }
-    part.eqs.sort_unstable();
-    part.vars.sort_unstable();
-    part
+/// An equation or a variable, for [`alternate`], which walks from either side.
+trait Node: Copy + Ord {
+    fn at(self) -> usize;
 }
 
-fn reach_from_unmatched_vars(
-    graph: &BipartiteGraph,
-    matching: &Matching,
-    eq_ok: &[bool],
-    var_ok: &[bool],
-    eq_seen: &mut [bool],
-    var_seen: &mut [bool],
-) -> Part {
-    let incidence = graph.transpose();
-    let mut part = Part::default();
-    let mut queue: Vec<VarId> = graph
-        .vars()
-        .filter(|v| var_ok[v.index()] && matching.eq_of(*v).is_none() && !var_seen[v.index()])
-        .collect();
-    for v in &queue {
-        var_seen[v.index()] = true;
+impl Node for EqId {
+    fn at(self) -> usize {
+        self.index()
     }
-    while let Some(v) = queue.pop() {
-        part.vars.push(v);
-        for &e in incidence.var_eqs(v) {
-            if !eq_ok[e.index()] || eq_seen[e.index()] {
+}
+
+impl Node for VarId {
+    fn at(self) -> usize {
+        self.index()
+    }
+}
+
+/// The nodes reached by alternating paths from `starts` (nodes of side A, marked seen
+/// here): from an A node along `edges` to the allowed, unseen B nodes, from each of
+/// these along the matching (`mate`) back to an A node. Returns the A and the B nodes
+/// reached, each sorted; `seen` is `(A seen, B allowed, B seen)`.
+fn alternate<'g, A: Node, B: Node + 'g>(
+    starts: Vec<A>,
+    (a_seen, b_ok, b_seen): (&mut [bool], &[bool], &mut [bool]),
+    edges: impl Fn(A) -> &'g [B],
+    mate: impl Fn(B) -> Option<A>,
+) -> (Vec<A>, Vec<B>) {
+    let mut queue = starts;
+    for a in &queue {
+        a_seen[a.at()] = true;
+    }
+    let (mut reached_a, mut reached_b) = (Vec::new(), Vec::new());
+    while let Some(a) = queue.pop() {
+        reached_a.push(a);
+        for &b in edges(a) {
+            if !b_ok[b.at()] || b_seen[b.at()] {
                 continue;
             }
-            eq_seen[e.index()] = true;
-            part.eqs.push(e);
-            if let Some(mate) = matching.var_of(e) {
-                if !var_seen[mate.index()] {
-                    var_seen[mate.index()] = true;
-                    queue.push(mate);
+            b_seen[b.at()] = true;
+            reached_b.push(b);
+            if let Some(next) = mate(b) {
+                if !a_seen[next.at()] {
+                    a_seen[next.at()] = true;
+                    queue.push(next);
                 }
             }
         }
     }
-    part.eqs.sort_unstable();
-    part.vars.sort_unstable();
-    part
+    reached_a.sort_unstable();
+    reached_b.sort_unstable();
+    (reached_a, reached_b)
 }
 
 #[cfg(test)]

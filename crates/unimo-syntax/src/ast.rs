@@ -62,6 +62,25 @@ pub enum ClassKind {
 }
 
 impl ClassKind {
+    /// Whether a class of this kind may have equation sections (not functions,
+    /// records, connectors, types, packages and operators).
+    pub fn may_have_equations(self) -> bool {
+        self != ClassKind::Function && self.may_have_algorithms()
+    }
+
+    /// Whether a class of this kind may have algorithm sections (not records,
+    /// connectors, types, packages and operators).
+    pub fn may_have_algorithms(self) -> bool {
+        !matches!(
+            self,
+            ClassKind::Record
+                | ClassKind::Connector
+                | ClassKind::Type
+                | ClassKind::Package
+                | ClassKind::Operator
+        )
+    }
+
     pub fn keyword(self) -> &'static str {
         match self {
             ClassKind::Class => "class",

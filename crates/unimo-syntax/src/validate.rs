@@ -224,30 +224,14 @@ impl Validator<'_> {
         let in_function = c.kind == ClassKind::Function;
         match s {
             Section::Equation(es) => {
-                if matches!(
-                    c.kind,
-                    ClassKind::Function
-                        | ClassKind::Record
-                        | ClassKind::Connector
-                        | ClassKind::Type
-                        | ClassKind::Package
-                        | ClassKind::Operator
-                ) {
+                if !c.kind.may_have_equations() {
                     self.push(
-                        Diagnostic::error(
-                            "E1221",
-                            format!("a {} cannot have equations", c.kind.keyword()),
-                        )
-                        .at(es.span, "equation section not allowed here")
-                        .with_label(
-                            c.name.span,
-                            format!("in {} `{}`", c.kind.keyword(), c.name.text),
-                        )
-                        .with_help(if in_function {
-                            "functions compute their outputs in an `algorithm` section with `:=`"
-                        } else {
-                            "equations belong in a `model` or `block`"
-                        }),
+                        misplaced_section(c, "E1221", "equations", es.span, "equation")
+                            .with_help(if in_function {
+                                "functions compute their outputs in an `algorithm` section with `:=`"
+                            } else {
+                                "equations belong in a `model` or `block`"
+                            }),
                     );
                 }
                 let ctx = Ctx {
@@ -260,25 +244,14 @@ impl Validator<'_> {
                 }
             }
             Section::Algorithm(al) => {
-                if matches!(
-                    c.kind,
-                    ClassKind::Record
-                        | ClassKind::Connector
-                        | ClassKind::Type
-                        | ClassKind::Package
-                        | ClassKind::Operator
-                ) {
-                    self.push(
-                        Diagnostic::error(
-                            "E1222",
-                            format!("a {} cannot have algorithm sections", c.kind.keyword()),
-                        )
-                        .at(al.span, "algorithm section not allowed here")
-                        .with_label(
-                            c.name.span,
-                            format!("in {} `{}`", c.kind.keyword(), c.name.text),
-                        ),
-                    );
+                if !c.kind.may_have_algorithms() {
+                    self.push(misplaced_section(
+                        c,
+                        "E1222",
+                        "algorithm sections",
+                        al.span,
+                        "algorithm",
+                    ));
                 }
                 let ctx = Ctx {
                     in_initial: al.initial,
@@ -799,4 +772,19 @@ impl Validator<'_> {
         }
         self.indices(&args.iterators, ctx);
     }
+}
+
+/// A section that a class of `c`'s kind cannot have (`what` in the message, `section`
+/// naming it in the label).
+fn misplaced_section(
+    c: &ClassDef,
+    code: &'static str,
+    what: &str,
+    span: Span,
+    section: &str,
+) -> Diagnostic {
+    let keyword = c.kind.keyword();
+    Diagnostic::error(code, format!("a {keyword} cannot have {what}"))
+        .at(span, format!("{section} section not allowed here"))
+        .with_label(c.name.span, format!("in {keyword} `{}`", c.name.text))
 }

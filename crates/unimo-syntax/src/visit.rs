@@ -16,137 +16,105 @@ pub enum Walk {
     Skip,
 }
 
-impl Expr {
-    /// Calls `f` with every direct sub-expression, in source order: subscripts of a
-    /// reference; a call's positional arguments, named arguments and iterator
-    /// ranges; operands; the conditions and values of `if` branches; range bounds;
-    /// array and matrix elements; tuple items; a comprehension's index ranges, then
-    /// its body; the arguments of a partial application.
-    pub fn for_each_child(&self, f: &mut dyn FnMut(&Expr)) {
-        match &self.kind {
-            ExprKind::Ref(r) => r.for_each_subscript(f),
-            ExprKind::Call { args, .. } => {
-                args.positional.iter().for_each(&mut *f);
-                args.named.iter().for_each(|a| f(&a.value));
-                index_ranges(&args.iterators, f);
-            }
-            ExprKind::Unary { operand, .. } => f(operand),
-            ExprKind::Binary { lhs, rhs, .. } => {
-                f(lhs);
-                f(rhs);
-            }
-            ExprKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (c, v) in branches {
-                    f(c);
-                    f(v);
+/// The body of [`Expr::for_each_child`] and [`Expr::for_each_child_mut`], written
+/// once: `$iter` and `$as_ref` are `iter`/`as_ref` or `iter_mut`/`as_mut`, `$subs` the
+/// subscript walk of the same access, `$m` nothing or `mut`.
+macro_rules! child_walk {
+    ($(#[$doc:meta])* $name:ident, $iter:ident, $as_ref:ident, $subs:ident $(, $m:tt)?) => {
+        $(#[$doc])*
+        pub fn $name(&$($m)? self, f: &mut dyn FnMut(&$($m)? Expr)) {
+            match &$($m)? self.kind {
+                ExprKind::Ref(r) => r.$subs(f),
+                ExprKind::Call { args, .. } => {
+                    args.positional.$iter().for_each(&mut *f);
+                    args.named.$iter().for_each(|a| f(&$($m)? a.value));
+                    let ranges = args.iterators.$iter().filter_map(|i| i.range.$as_ref());
+                    ranges.for_each(f);
                 }
-                f(otherwise);
-            }
-            ExprKind::Range { start, step, stop } => {
-                f(start);
-                if let Some(s) = step {
-                    f(s);
+                ExprKind::Unary { operand, .. } => f(operand),
+                ExprKind::Binary { lhs, rhs, .. } => {
+                    f(lhs);
+                    f(rhs);
                 }
-                f(stop);
+                ExprKind::If {
+                    branches,
+                    otherwise,
+                } => {
+                    for (c, v) in branches {
+                        f(c);
+                        f(v);
+                    }
+                    f(otherwise);
+                }
+                ExprKind::Range { start, step, stop } => {
+                    f(start);
+                    if let Some(s) = step {
+                        f(s);
+                    }
+                    f(stop);
+                }
+                ExprKind::Array(items) => items.$iter().for_each(f),
+                ExprKind::Matrix(rows) => rows.$iter().flatten().for_each(f),
+                ExprKind::Tuple(items) => items.$iter().flatten().for_each(f),
+                ExprKind::Comprehension { body, indices } => {
+                    let ranges = indices.$iter().filter_map(|i| i.range.$as_ref());
+                    ranges.for_each(&mut *f);
+                    f(body);
+                }
+                ExprKind::PartialApplication { args, .. } => {
+                    args.$iter().for_each(|a| f(&$($m)? a.value))
+                }
+                ExprKind::Integer(_)
+                | ExprKind::Real(_)
+                | ExprKind::Bool(_)
+                | ExprKind::String(_)
+                | ExprKind::End => {}
             }
-            ExprKind::Array(items) => items.iter().for_each(f),
-            ExprKind::Matrix(rows) => rows.iter().flatten().for_each(f),
-            ExprKind::Tuple(items) => items.iter().flatten().for_each(f),
-            ExprKind::Comprehension { body, indices } => {
-                index_ranges(indices, f);
-                f(body);
-            }
-            ExprKind::PartialApplication { args, .. } => args.iter().for_each(|a| f(&a.value)),
-            ExprKind::Integer(_)
-            | ExprKind::Real(_)
-            | ExprKind::Bool(_)
-            | ExprKind::String(_)
-            | ExprKind::End => {}
         }
-    }
+    };
+}
 
-    /// [`Expr::for_each_child`] with mutable access, in the same order.
-    pub fn for_each_child_mut(&mut self, f: &mut dyn FnMut(&mut Expr)) {
-        match &mut self.kind {
-            ExprKind::Ref(r) => r.for_each_subscript_mut(f),
-            ExprKind::Call { args, .. } => {
-                args.positional.iter_mut().for_each(&mut *f);
-                args.named.iter_mut().for_each(|a| f(&mut a.value));
-                args.iterators
-                    .iter_mut()
-                    .filter_map(|i| i.range.as_mut())
-                    .for_each(f);
-            }
-            ExprKind::Unary { operand, .. } => f(operand),
-            ExprKind::Binary { lhs, rhs, .. } => {
-                f(lhs);
-                f(rhs);
-            }
-            ExprKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (c, v) in branches {
-                    f(c);
-                    f(v);
+/// [`ComponentRef::for_each_subscript`] and its `_mut` twin, written once.
+macro_rules! subscript_walk {
+    ($(#[$doc:meta])* $name:ident $(, $m:tt)?) => {
+        $(#[$doc])*
+        pub fn $name(&$($m)? self, f: &mut dyn FnMut(&$($m)? Expr)) {
+            for p in &$($m)? self.parts {
+                for s in &$($m)? p.subscripts {
+                    if let Subscript::Expr(x) = s {
+                        f(x);
+                    }
                 }
-                f(otherwise);
             }
-            ExprKind::Range { start, step, stop } => {
-                f(start);
-                if let Some(s) = step {
-                    f(s);
-                }
-                f(stop);
-            }
-            ExprKind::Array(items) => items.iter_mut().for_each(f),
-            ExprKind::Matrix(rows) => rows.iter_mut().flatten().for_each(f),
-            ExprKind::Tuple(items) => items.iter_mut().flatten().for_each(f),
-            ExprKind::Comprehension { body, indices } => {
-                indices
-                    .iter_mut()
-                    .filter_map(|i| i.range.as_mut())
-                    .for_each(&mut *f);
-                f(body);
-            }
-            ExprKind::PartialApplication { args, .. } => {
-                args.iter_mut().for_each(|a| f(&mut a.value))
-            }
-            ExprKind::Integer(_)
-            | ExprKind::Real(_)
-            | ExprKind::Bool(_)
-            | ExprKind::String(_)
-            | ExprKind::End => {}
         }
-    }
+    };
+}
+
+impl Expr {
+    child_walk!(
+        /// Calls `f` with every direct sub-expression, in source order: subscripts of a
+        /// reference; a call's positional arguments, named arguments and iterator
+        /// ranges; operands; the conditions and values of `if` branches; range bounds;
+        /// array and matrix elements; tuple items; a comprehension's index ranges, then
+        /// its body; the arguments of a partial application.
+        for_each_child, iter, as_ref, for_each_subscript
+    );
+    child_walk!(
+        /// [`Expr::for_each_child`] with mutable access, in the same order.
+        for_each_child_mut, iter_mut, as_mut, for_each_subscript_mut, mut
+    );
 }
 
 impl ComponentRef {
-    /// Calls `f` with the expression of every subscript (`a[i].b[j + 1]`: `i`, then
-    /// `j + 1`); `:` has none.
-    pub fn for_each_subscript(&self, f: &mut dyn FnMut(&Expr)) {
-        for p in &self.parts {
-            for s in &p.subscripts {
-                if let Subscript::Expr(x) = s {
-                    f(x);
-                }
-            }
-        }
-    }
-
-    /// [`ComponentRef::for_each_subscript`] with mutable access.
-    pub fn for_each_subscript_mut(&mut self, f: &mut dyn FnMut(&mut Expr)) {
-        for p in &mut self.parts {
-            for s in &mut p.subscripts {
-                if let Subscript::Expr(x) = s {
-                    f(x);
-                }
-            }
-        }
-    }
+    subscript_walk!(
+        /// Calls `f` with the expression of every subscript (`a[i].b[j + 1]`: `i`, then
+        /// `j + 1`); `:` has none.
+        for_each_subscript
+    );
+    subscript_walk!(
+        /// [`ComponentRef::for_each_subscript`] with mutable access.
+        for_each_subscript_mut, mut
+    );
 }
 
 fn index_ranges(indices: &[ForIndex], f: &mut dyn FnMut(&Expr)) {
