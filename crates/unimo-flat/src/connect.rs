@@ -85,7 +85,8 @@ fn inside(key: &str, absent: &str) -> bool {
         .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
 }
 
-fn find(parent: &mut [usize], x: usize) -> usize {
+/// Union-find's root of `x`, with path compression.
+pub(crate) fn find(parent: &mut [usize], x: usize) -> usize {
     let mut r = x;
     while parent[r] != r {
         r = parent[r];
@@ -135,7 +136,8 @@ fn zeros(dims: &[usize], span: Span) -> Expr {
     }
 }
 
-fn var_ref(name: &str, span: Span) -> Expr {
+/// A reference to the flat variable `name`.
+pub(crate) fn var_ref(name: &str, span: Span) -> Expr {
     Expr {
         kind: ExprKind::Ref(ComponentRef {
             global: false,

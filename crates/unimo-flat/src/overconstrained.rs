@@ -8,6 +8,7 @@
 //! `cardinality(c)` (the number of `connect`s naming `c`, spec 3.7.2.3), whose `if`s
 //! are then resolved.
 
+use crate::connect::{find, var_ref};
 use crate::eval::{self, Env, EvalError, Value};
 use crate::flat::FlatModel;
 use crate::instantiate::{Connect, Instantiator};
@@ -40,20 +41,6 @@ impl Graph {
         self.index.insert(key.to_owned(), self.keys.len() - 1);
         self.keys.len() - 1
     }
-}
-
-fn find(parent: &mut [usize], x: usize) -> usize {
-    let mut r = x;
-    while parent[r] != r {
-        r = parent[r];
-    }
-    let mut y = x;
-    while parent[y] != r {
-        let next = parent[y];
-        parent[y] = r;
-        y = next;
-    }
-    r
 }
 
 /// The `Connections` operator a call is (`rooted` also in its deprecated form).
@@ -259,7 +246,7 @@ impl Instantiator<'_, '_> {
         let f = self.flat_function(fc, &name)?;
         let size = f.outputs.first()?.dims.first().copied().flatten()?;
         let span = Span::default();
-        let value = |key: &str| ref_expr(key, span);
+        let value = |key: &str| var_ref(key, span);
         let rhs = Expr {
             kind: ExprKind::Call {
                 func: dotted_name(&name, span),
@@ -293,23 +280,6 @@ fn dotted_name(name: &str, span: Span) -> Name {
                 span,
             })
             .collect(),
-        span,
-    }
-}
-
-fn ref_expr(name: &str, span: Span) -> Expr {
-    Expr {
-        kind: ExprKind::Ref(ComponentRef {
-            global: false,
-            parts: vec![RefPart {
-                name: Ident {
-                    text: name.into(),
-                    span,
-                },
-                subscripts: Vec::new(),
-            }],
-            span,
-        }),
         span,
     }
 }
