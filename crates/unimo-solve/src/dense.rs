@@ -54,6 +54,29 @@ pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> b
     true
 }
 
+/// Solves `a x = b` in place with the factors [`lu_solve`] left in `a` and `perm` (the
+/// same matrix, another right-hand side: iterative refinement).
+pub fn lu_resolve(n: usize, a: &[f64], perm: &[usize], b: &mut [f64], work: &mut Vec<f64>) {
+    work.clear();
+    work.extend(perm[..n].iter().map(|&p| b[p]));
+    let b = &mut b[..n];
+    b.copy_from_slice(work);
+    for k in 0..n {
+        let bk = b[k];
+        for (i, bi) in b.iter_mut().enumerate().skip(k + 1) {
+            *bi -= a[i * n + k] * bk;
+        }
+    }
+    for k in (0..n).rev() {
+        let row = &a[k * n..(k + 1) * n];
+        let s = row[k + 1..]
+            .iter()
+            .zip(&b[k + 1..])
+            .fold(b[k], |s, (&x, &y)| s - x * y);
+        b[k] = s / row[k];
+    }
+}
+
 /// `|det|` of the square submatrix of the `rows x cols` matrix `a` made of `columns`
 /// (Gaussian elimination with partial pivoting).
 pub fn abs_det(a: &[f64], rows: usize, cols: usize, columns: &[usize]) -> f64 {

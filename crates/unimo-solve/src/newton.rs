@@ -15,7 +15,7 @@
 //! 1e-12 has residuals 1e-12 times smaller and the same solution), the step's is the
 //! unknowns', which the tolerances describe.
 
-use crate::dense::lu_solve;
+use crate::dense::{lu_resolve, lu_solve};
 
 /// Iterations of Newton's method before a block fails.
 pub const MAX_ITERATIONS: usize = 50;
@@ -23,10 +23,6 @@ pub const MAX_ITERATIONS: usize = 50;
 /// The share of the integrator's error weight within which a non-converged Newton
 /// iterate is accepted.
 pub const ACCEPT_FRACTION: f64 = 1e-3;
-
-/// A linear block's residual after its step, relative to before: below this the step
-/// solved it (one LU solve leaves a residual at rounding, ~1e-16 of the system's scale).
-const LINEAR_DROP: f64 = 1e-3;
 
 /// A step below this (relative to `1 + |x|`) is rounding.
 const ROUNDING: f64 = 1e-13;
@@ -197,15 +193,31 @@ pub fn solve(
             x[k] = w.saved[k] + dx;
         }
         if linear && !converged {
-            // A linear block is solved by one step: its residual, evaluated at the new
-            // iterate (torn variables up to date), has dropped to rounding. Only a start
-            // already at rounding (the ratio cannot show it) or a block that is not
-            // linear after all iterates on.
+            // A linear block is solved by one step. Its residual at the new iterate
+            // (torn variables up to date) gives one step of iterative refinement with
+            // the same factors: when that correction is rounding, the iterate is the
+            // solution; otherwise (an ill-conditioned block, or one not linear after
+            // all) the correction is taken and Newton goes on.
             p.residual(x, &mut w.residual);
             evaluated = true;
             let after = max_abs(&w.residual);
-            if after.is_finite() && (after <= LINEAR_DROP * norm || (it >= 1 && after >= norm)) {
+            if after == 0.0 {
                 return Ok(it + 1);
+            }
+            if after.is_finite() {
+                for k in 0..n {
+                    w.step[k] = -w.residual[k];
+                }
+                lu_resolve(n, &w.matrix, &w.perm, &mut w.step, &mut w.trial);
+                let refined = (0..n).all(|k| NewtonTolerance::is_rounding(x[k], w.step[k]));
+                if refined {
+                    return Ok(it + 1);
+                }
+                for k in 0..n {
+                    x[k] += w.step[k];
+                }
+                evaluated = false;
+                continue;
             }
             if !after.is_finite() {
                 // The full step left the residual's domain (a near-singular pivot): back
