@@ -193,39 +193,20 @@ pub fn solve(
             x[k] = w.saved[k] + dx;
         }
         if linear && !converged {
-            // A linear block is solved by one step. Its residual at the new iterate
-            // (torn variables up to date) gives one step of iterative refinement with
-            // the same factors: when that correction is rounding, the iterate is the
-            // solution; otherwise (an ill-conditioned block, or one not linear after
-            // all) the correction is taken and Newton goes on.
-            p.residual(x, &mut w.residual);
-            evaluated = true;
-            let after = max_abs(&w.residual);
-            if after == 0.0 {
-                return Ok(it + 1);
-            }
-            if after.is_finite() {
-                for k in 0..n {
-                    w.step[k] = -w.residual[k];
+            match linear_refinement(p, x, w) {
+                Refinement::Solved => return Ok(it + 1),
+                Refinement::Corrected => {
+                    evaluated = false;
+                    continue;
                 }
-                lu_resolve(n, &w.matrix, &w.perm, &mut w.step, &mut w.trial);
-                let refined = (0..n).all(|k| NewtonTolerance::is_rounding(x[k], w.step[k]));
-                if refined {
-                    return Ok(it + 1);
+                Refinement::LeftDomain => {
+                    // The full step left the residual's domain (a near-singular pivot):
+                    // back to the start, on as a general block with its damped steps.
+                    x.copy_from_slice(&w.saved);
+                    linear = false;
+                    evaluated = false;
+                    continue;
                 }
-                for k in 0..n {
-                    x[k] += w.step[k];
-                }
-                evaluated = false;
-                continue;
-            }
-            if !after.is_finite() {
-                // The full step left the residual's domain (a near-singular pivot): back
-                // to the start, on as a general block with its damped steps.
-                x.copy_from_slice(&w.saved);
-                linear = false;
-                evaluated = false;
-                continue;
             }
         }
         if converged {
@@ -243,6 +224,44 @@ pub fn solve(
         return Ok(MAX_ITERATIONS);
     }
     Err(NewtonError::NoConvergence { residual: norm })
+}
+
+/// What one step of iterative refinement says of a linear block's Newton step.
+enum Refinement {
+    /// The correction is rounding: `x` (its residual evaluated) is the solution.
+    Solved,
+    /// The correction was added to `x` (an ill-conditioned block): iterate on.
+    Corrected,
+    /// The residual at the step is not finite.
+    LeftDomain,
+}
+
+/// A linear block is solved by one step. Its residual at the new iterate (torn
+/// variables up to date) gives one step of iterative refinement with the same factors
+/// (`w.matrix`, `w.perm` from the step): when that correction is rounding, the iterate
+/// is the solution; otherwise (an ill-conditioned block, or one not linear after all)
+/// the correction is taken and Newton goes on.
+fn linear_refinement(p: &mut dyn NewtonProblem, x: &mut [f64], w: &mut NewtonWork) -> Refinement {
+    let n = x.len();
+    p.residual(x, &mut w.residual);
+    let after = max_abs(&w.residual);
+    if after == 0.0 {
+        return Refinement::Solved;
+    }
+    if !after.is_finite() {
+        return Refinement::LeftDomain;
+    }
+    for k in 0..n {
+        w.step[k] = -w.residual[k];
+    }
+    lu_resolve(n, &w.matrix, &w.perm, &mut w.step, &mut w.trial);
+    if (0..n).all(|k| NewtonTolerance::is_rounding(x[k], w.step[k])) {
+        return Refinement::Solved;
+    }
+    for k in 0..n {
+        x[k] += w.step[k];
+    }
+    Refinement::Corrected
 }
 
 /// Damped Newton (Armijo backtracking): the step `w.step` from `w.saved` is halved
