@@ -13,10 +13,10 @@ cargo build --release --quiet
 results="$(mktemp -d)/results.csv"
 # A row after every solver step besides the experiment's grid (see the results page).
 cmd='{unimo} simulate {msl}/Modelica/package.mo --model {model} --lib {msl} --vars {vars} --every-step --output {csv}'
-python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
+python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
   --ref "$shared/msl-reference" --results "$results" --cmd "$cmd" "$@" | tee "${results%.csv}.txt"
 # The same with msl-check's default command (the experiment's output grid alone).
-python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
+python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
   --ref "$shared/msl-reference" --results "${results%.csv}.grid.csv" "$@" > /dev/null
 # References whose time column is named `Time` (msl-check reads `time`): a copy with
 # the header renamed, compared the same way.
@@ -39,11 +39,11 @@ for root, _, files in os.walk(ref):
             dst.write(head.replace("Time", "time", 1))
             shutil.copyfileobj(src, dst)
 PY
-python3 "$shared/tools/msl-check" --unimo target/release/unimo --msl "$shared/msl" \
+python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
   --ref "$timefix" --results "${results%.csv}.timefix.csv" --cmd "$cmd" > /dev/null
 python3 bench/msl/report.py "$results" "$shared/msl-reference" "${results%.csv}.grid.csv" \
   "${results%.csv}.timefix.csv" > docs/results/msl.md
 echo "wrote docs/results/msl.md"
 # Names: every file of the MSL through the name check (syntax errors must be 0).
-target/release/unimo check --no-balance --lib "$shared/msl" "$shared/msl" > "${results%.csv}.check" 2>&1 || true
+"${CARGO_TARGET_DIR:-target}/release/unimo" check --no-balance --lib "$shared/msl" "$shared/msl" > "${results%.csv}.check" 2>&1 || true
 python3 bench/msl/names.py "${results%.csv}.check" >> docs/results/msl.md
