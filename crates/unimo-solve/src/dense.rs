@@ -43,14 +43,7 @@ pub fn lu_solve(n: usize, a: &mut [f64], b: &mut [f64], perm: &mut [usize]) -> b
             }
         }
     }
-    for k in (0..n).rev() {
-        let row = &a[k * n..(k + 1) * n];
-        let s = row[k + 1..]
-            .iter()
-            .zip(&b[k + 1..])
-            .fold(b[k], |s, (&x, &y)| s - x * y);
-        b[k] = s / row[k];
-    }
+    back_substitute(n, a, b);
     true
 }
 
@@ -67,6 +60,11 @@ pub fn lu_resolve(n: usize, a: &[f64], perm: &[usize], b: &mut [f64], work: &mut
             *bi -= a[i * n + k] * bk;
         }
     }
+    back_substitute(n, a, b);
+}
+
+/// `U x = b` in place, `U` the upper triangle of the row-major `n x n` factors `a`.
+fn back_substitute(n: usize, a: &[f64], b: &mut [f64]) {
     for k in (0..n).rev() {
         let row = &a[k * n..(k + 1) * n];
         let s = row[k + 1..]
