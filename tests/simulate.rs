@@ -908,3 +908,36 @@ fn switched_linear_loops_are_solved_in_one_step() {
         }
     }
 }
+
+/// A function called through a component (`world.field(x)`, spec 5.3.2) is the
+/// function of that instance: its short class's modifiers read the instance's
+/// parameters (through `outer`), a redeclaration in the instance's modifier wins, and
+/// arguments given in the call win over the modifiers.
+#[test]
+fn functions_called_through_components_use_the_instance() {
+    let file = "tests/simulate/FunctionThroughComponent.mo";
+    let col = |r: &SimResult, n: &str| r.names.iter().position(|x| x == n).unwrap();
+    let m = load_named(file, "FunctionThroughComponent.Default");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
+    let kx = col(&r, "b.x");
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        let x = 2.0 * (-t).exp() - 1.0;
+        assert!(
+            (row[kx] - x).abs() < 1e-7,
+            "x({t}) = {}, exact {x}",
+            row[kx]
+        );
+    }
+    let m = load_named(file, "FunctionThroughComponent.Redeclared");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
+    let (kx, kz, kw) = (col(&r, "b.x"), col(&r, "z"), col(&r, "w"));
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        let x = 1.0 / (1.0 + 3.0 * t);
+        assert!(
+            (row[kx] - x).abs() < 1e-7,
+            "x({t}) = {}, exact {x}",
+            row[kx]
+        );
+        assert_eq!((row[kz], row[kw]), (19.0, 9.0));
+    }
+}

@@ -645,10 +645,7 @@ fn unconnected_flow_equations(model: &FlatModel, nodes: &[Node], out: &mut Vec<E
         if v.flow && !connected_inside[i] {
             out.push(eq(
                 var_ref(&v.name, v.origin),
-                Expr {
-                    kind: ExprKind::Real(0.0),
-                    span: v.origin,
-                },
+                zeros(&v.dims, v.origin),
                 v.origin,
             ));
         }

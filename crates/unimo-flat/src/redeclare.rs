@@ -47,6 +47,7 @@ impl Instantiator<'_, '_> {
             }
             let id = self.tree.add_detached(scope.class, def.clone());
             self.class_redeclares.insert(k, id);
+            self.detached_scopes.insert(id, scope.clone());
         }
         for e in &composition.elements {
             let (true, ElementKind::Class(cd)) = (e.redeclare, &e.kind) else {
@@ -83,7 +84,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// The class a replaceable class name stands for inside the instance of `scope`.
-    fn redeclared(&self, scope: &Scope, name: &str) -> Option<ClassId> {
+    pub(crate) fn redeclared(&self, scope: &Scope, name: &str) -> Option<ClassId> {
         if self.class_redeclares.is_empty() {
             return None;
         }

@@ -19,6 +19,8 @@ mod redeclares;
 mod restrictions;
 mod walk;
 
+pub(crate) use elements::{component_type, find_component};
+
 use crate::tree::{ClassId, ClassTree};
 use unimo_source::Diagnostic;
 use unimo_syntax::ast::{ClassBody, ElementKind};

@@ -260,7 +260,15 @@ impl Instantiator<'_, '_> {
         if simple && func.parts[0].text == "getInstanceName" && args.positional.is_empty() {
             return instance_name(&self.model.name, &scope.prefix, span);
         }
-        let func = self.call_name(func, scope);
+        let modified = if simple && is_builtin_function(&func.parts[0].text) {
+            None
+        } else {
+            self.modified_function(func, scope)
+        };
+        let func = match &modified {
+            Some((c, _)) => self.class_call_name(*c, func.span),
+            None => self.call_name(func, scope),
+        };
         // A reduction over component array elements (`sum(c[i].f for i in
         // 1:n)`) is written out: `sum({c[1].f, c[2].f, ...})`.
         if let (Some(body), true) = (args.positional.first(), args.positional.len() == 1) {
@@ -290,7 +298,7 @@ impl Instantiator<'_, '_> {
             .iter()
             .map(|a| self.expr(a, scope, iters, locals))
             .collect();
-        let named = args
+        let mut named: Vec<NamedArg> = args
             .named
             .iter()
             .map(|a| NamedArg {
@@ -299,6 +307,19 @@ impl Instantiator<'_, '_> {
             })
             .collect();
         locals.truncate(locals.len() - n);
+        // The modifiers of a short function class give the inputs the call leaves out.
+        if let Some((c, defaults)) = modified {
+            let inputs = self.function_inputs(c);
+            let n_pos = args.positional.len();
+            for d in defaults {
+                let by_position = inputs.iter().position(|i| *i == d.name.text.as_str());
+                let given = named.iter().any(|a| a.name.text == d.name.text)
+                    || by_position.is_some_and(|k| k < n_pos);
+                if !given {
+                    named.push(d);
+                }
+            }
+        }
         Expr {
             kind: ExprKind::Call {
                 func,
@@ -331,33 +352,36 @@ impl Instantiator<'_, '_> {
                 self.lookup_class_path(scope, &parts)
             };
             match found {
-                Some(Found::Class(c)) => {
-                    let c = self.real_class(c);
-                    let def = self.tree.get(c).def.clone();
-                    let builtin = crate::external::builtin_alias(&def);
-                    let full = match builtin {
-                        Some(b) => b.to_owned(),
-                        // `Table(...)` of an external object class calls its
-                        // constructor.
-                        None if crate::external::is_external_object(&def) => {
-                            format!("{}.constructor", self.tree.full_name(c))
-                        }
-                        None => self.tree.full_name(c),
-                    };
-                    Name {
-                        global: builtin.is_none(),
-                        parts: crate::flat::split_name(&full)
-                            .into_iter()
-                            .map(|p| Ident {
-                                text: p.into(),
-                                span: func.span,
-                            })
-                            .collect(),
-                        span: func.span,
-                    }
-                }
+                Some(Found::Class(c)) => self.class_call_name(c, func.span),
                 _ => func.clone(),
             }
+        }
+    }
+
+    /// The name a call of function class `c` is flattened to: its full name, a
+    /// built-in's alias, or an external object's constructor.
+    fn class_call_name(&mut self, c: crate::tree::ClassId, span: Span) -> Name {
+        let c = self.real_class(c);
+        let def = self.tree.get(c).def.clone();
+        let builtin = crate::external::builtin_alias(&def);
+        let full = match builtin {
+            Some(b) => b.to_owned(),
+            // `Table(...)` of an external object class calls its constructor.
+            None if crate::external::is_external_object(&def) => {
+                format!("{}.constructor", self.tree.full_name(c))
+            }
+            None => self.tree.full_name(c),
+        };
+        Name {
+            global: builtin.is_none(),
+            parts: crate::flat::split_name(&full)
+                .into_iter()
+                .map(|p| Ident {
+                    text: p.into(),
+                    span,
+                })
+                .collect(),
+            span,
         }
     }
 

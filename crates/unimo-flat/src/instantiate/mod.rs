@@ -19,6 +19,7 @@ mod constants;
 mod elements;
 mod equations;
 mod exprs;
+mod function_calls;
 mod inner_outer;
 
 /// Attributes a variable of a predefined type may be modified with.
@@ -125,6 +126,9 @@ pub(crate) struct Instantiator<'t, 'p> {
     /// Redeclared classes by (instance key, class name): what the name means inside
     /// that instance (`redeclare model Sensor = OffsetSensor`).
     pub(crate) class_redeclares: HashMap<(String, SmolStr), ClassId>,
+    /// The scope each class redeclared in a modifier was written in (its modifiers
+    /// read names there: `redeclare function f = g(k = p)`).
+    pub(crate) detached_scopes: HashMap<ClassId, Scope>,
     /// Class paths looked up from a class (without redeclarations), by (class, path).
     pub(crate) type_cache: HashMap<(ClassId, SmolStr), Option<Found>>,
     /// The type of a component clause by (class, address of the clause's type name in
@@ -274,6 +278,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             default_inners: Vec::new(),
             records_used: Vec::new(),
             class_redeclares: HashMap::default(),
+            detached_scopes: HashMap::default(),
             type_cache: HashMap::default(),
             constraint_cache: HashMap::default(),
             clause_types: HashMap::default(),
