@@ -941,3 +941,28 @@ fn functions_called_through_components_use_the_instance() {
         assert_eq!((row[kz], row[kw]), (19.0, 9.0));
     }
 }
+
+/// Candidates that all carry one `stateSelect` (`avoid`, as the MSL's quaternions) leave
+/// the static order arbitrary: they get dynamic state selection, and the spin passes the
+/// instants where each static choice is singular.
+#[test]
+fn candidates_of_one_priority_are_selected_at_run_time() {
+    let m = load("tests/simulate/QuaternionSpin.mo");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 10.0, 20);
+    assert_eq!(r.times.last().copied(), Some(10.0));
+    let col = |n: &str| r.names.iter().position(|x| x == n).unwrap();
+    let (k1, k4) = (col("Q[1]"), col("Q[4]"));
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        let (q1, q4) = ((t / 2.0).sin(), (t / 2.0).cos());
+        assert!(
+            (row[k1] - q1).abs() < 1e-6,
+            "Q[1]({t}) = {}, exact {q1}",
+            row[k1]
+        );
+        assert!(
+            (row[k4] - q4).abs() < 1e-6,
+            "Q[4]({t}) = {}, exact {q4}",
+            row[k4]
+        );
+    }
+}

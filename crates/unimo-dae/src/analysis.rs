@@ -430,8 +430,8 @@ fn single_step(
 }
 
 /// Whether a component of a dummy level gets dynamic state selection: its candidates'
-/// integrals have no `stateSelect` of their own (a `prefer`, `always`, `avoid` or
-/// `never` decides statically), there are at most 64 of them, and the Jacobian of the
+/// integrals share one `stateSelect` other than `always` and `never` (different
+/// priorities decide statically), there are at most 64 of them, and the Jacobian of the
 /// level's equations in the candidates depends on the continuous variables (with
 /// constant coefficients, as in circuits and gears, a static choice is regular
 /// everywhere or nowhere).
@@ -441,10 +441,18 @@ fn is_dynamic_set(
     eqs: &[st::EqId],
     candidates: &[st::VarId],
 ) -> bool {
+    // `stateSelect` decides between candidates of different priorities, and `always`
+    // or `never` leave nothing to choose; among candidates of one priority (the MSL's
+    // quaternions are all `avoid`) the static order is arbitrary.
+    let Some(first) = candidates.first().map(|v| priorities[v.index()]) else {
+        return false;
+    };
     if candidates.len() > 64
-        || candidates
-            .iter()
-            .any(|v| priorities[v.index()] != st::StateSelectPriority::Default)
+        || matches!(
+            first,
+            st::StateSelectPriority::Always | st::StateSelectPriority::Never
+        )
+        || candidates.iter().any(|v| priorities[v.index()] != first)
     {
         return false;
     }
