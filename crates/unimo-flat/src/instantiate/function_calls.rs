@@ -34,7 +34,7 @@ impl Instantiator<'_, '_> {
                 let Some(Found::Class(c)) = self.lookup_class_path(scope, &parts) else {
                     return None;
                 };
-                if !self.is_modified_short_function(c) {
+                if !self.is_short_function(c) {
                     return None;
                 }
                 let decl = self.declaring_scope(c, scope, parts.len() == 1);
@@ -116,17 +116,10 @@ impl Instantiator<'_, '_> {
         }
     }
 
-    /// Whether `c` is a short function class with a modification (`function f = g(k = 2)`).
-    fn is_modified_short_function(&mut self, c: ClassId) -> bool {
+    /// Whether `c` is a short function class (`function f = g(k = 2)`, `function f = g`).
+    fn is_short_function(&mut self, c: ClassId) -> bool {
         let def = self.tree.get(c).def.clone();
-        def.kind == ClassKind::Function
-            && matches!(
-                &def.body,
-                ClassBody::Short {
-                    modification: Some(_),
-                    ..
-                }
-            )
+        def.kind == ClassKind::Function && matches!(&def.body, ClassBody::Short { .. })
     }
 
     /// From function class `c` (modifiers written in `scope`) to its long definition:
@@ -163,20 +156,25 @@ impl Instantiator<'_, '_> {
                     value,
                 });
             }
-            let Some(&base) = self.tree.bases(c).first() else {
+            // The base is looked up where the short class was written, through that
+            // instance's redeclarations (`redeclare function colorMap = colorMap` names
+            // the enclosing instance's `colorMap`).
+            let ClassBody::Short { base, .. } = &def.body else {
                 break;
             };
-            // The base's own modifiers were written where the base is declared: in the
-            // same instance when it is a sibling element, else in its package.
-            let same_instance = self.tree.get(base).parent == Some(scope.class);
-            scope = Scope {
-                class: self.tree.get(base).parent.unwrap_or(scope.class),
-                prefix: if same_instance {
-                    scope.prefix.clone()
-                } else {
-                    std::sync::Arc::from([])
-                },
+            let parts: Vec<&str> = base.parts.iter().map(|p| p.text.as_str()).collect();
+            let found = if base.global {
+                self.tree.lookup_dotted(None, &parts, false)
+            } else {
+                self.lookup_class_path(&scope, &parts)
             };
+            let Some(Found::Class(base)) = found.filter(|f| *f != Found::Class(c)) else {
+                break;
+            };
+            // The base's own modifiers were written where the base is declared: its
+            // redeclaration's scope, the same instance when it is a member of the
+            // instance's class, else its package.
+            scope = self.declaring_scope(base, &scope, parts.len() == 1);
             c = base;
         }
         (c, args)
