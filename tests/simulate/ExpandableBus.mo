@@ -18,4 +18,21 @@ package ExpandableBus
     z = bus.speed + 1;
     annotation(experiment(StopTime = 1));
   end Use;
+  model Sub "a component with its own bus, connected to the outer one"
+    Bus bus;
+    Real w;
+  equation
+    w = bus.speed * 2;
+  end Sub;
+  model Chain "buses connected to buses: `unused` is on all three, nobody sets or reads it"
+    Bus bus;
+    Source s;
+    Sub a;
+    Sub b;
+  equation
+    connect(s.y, bus.speed);
+    connect(bus, a.bus);
+    connect(a.bus, b.bus);
+    annotation(experiment(StopTime = 1));
+  end Chain;
 end ExpandableBus;

@@ -129,6 +129,7 @@ pub fn flatten_with(
     };
     let mut conn_eqs = conn_eqs;
     let called = inst.overconstrained(&mut model, &mut conn_eqs, (&connects, &absent));
+    expandable::remove_unused_members(&mut model, &mut conn_eqs, &buses);
     model.equations.extend(conn_eqs);
     if !called.is_empty() {
         // The `equalityConstraint` functions of broken loops, and what they call.
@@ -136,7 +137,6 @@ pub fn flatten_with(
         inst.add_functions(called);
         model = std::mem::take(&mut inst.model);
     }
-    expandable::remove_unused_members(&mut model, &buses);
     let connect_failed = !conn_diags.is_empty();
     diags.extend(conn_diags);
     // Sizes and types, once the connections are sound.
