@@ -980,3 +980,19 @@ fn candidates_of_one_priority_are_selected_at_run_time() {
         );
     }
 }
+
+/// Index reduction that passes through the equation of a discrete variable: its
+/// derivative is identically zero and stands as `der(b) = 0` (before: E3204 "no dummy
+/// derivatives can be chosen ... for 0 = 0", the MSL's `KinematicPTP2` and RobotR3).
+#[test]
+fn index_reduction_through_a_discrete_equation() {
+    let m = load("tests/simulate/DiscreteInIndexReduction.mo");
+    let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
+    let col = |n: &str| r.names.iter().position(|x| x == n).unwrap();
+    let (ks, ksd, kx) = (col("s"), col("sd"), col("x"));
+    for (t, row) in r.times.iter().zip(&r.rows) {
+        assert!((row[ks] - t / 2.0).abs() < 1e-9, "s({t}) = {}", row[ks]);
+        assert!((row[ksd] - 0.5).abs() < 1e-9, "sd({t}) = {}", row[ksd]);
+        assert!((row[kx] - t / 2.0).abs() < 1e-8, "x({t}) = {}", row[kx]);
+    }
+}

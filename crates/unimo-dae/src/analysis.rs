@@ -153,6 +153,7 @@ impl st::IndexReductionSystem for DaeSystem<'_> {
                 }
             }
         }
+        let d = self.discrete_derivative(eq, d);
         let origin = self.dae.equations[eq.index()].origin;
         let zero = self.dae.arena.zero();
         self.dae.equations.push(Equation {
@@ -170,6 +171,45 @@ impl st::IndexReductionSystem for DaeSystem<'_> {
         self.eq_derivative.push(None);
         self.eq_derivative[e.index()] = Some(ge);
         Ok(ge)
+    }
+}
+
+impl DaeSystem<'_> {
+    /// The derivative `d` of equation `eq`, unless `eq` relates discrete variables
+    /// alone (`b = a >= 1`): its derivative is identically zero, with no unknown
+    /// Pantelides could match, and stands as `der(b) = 0` for the equation's discrete
+    /// unknowns (their derivatives are zero between events), so that the discrete
+    /// variables Pantelides colours keep a derivative equation.
+    fn discrete_derivative(&mut self, eq: EqId, d: ExprId) -> ExprId {
+        let r = self.dae.residual(eq);
+        let vars: Vec<ScalarId> = self
+            .dae
+            .arena
+            .vars(r)
+            .into_iter()
+            .filter(|&s| self.var(s).is_some())
+            .collect();
+        let discrete = |s: &ScalarId| self.dae.scalar(*s).kind == ScalarKind::Discrete;
+        if vars.is_empty() || !vars.iter().all(discrete) {
+            return d;
+        }
+        if self
+            .dae
+            .arena
+            .vars(d)
+            .iter()
+            .any(|&s| self.var(s).is_some())
+        {
+            return d;
+        }
+        let mut sum = self.dae.arena.zero();
+        for s in vars {
+            let ds = self.dae.derivative_of(s);
+            self.add_graph_var(ds);
+            let x = self.dae.arena.var(ds);
+            sum = self.dae.arena.add(sum, x);
+        }
+        sum
     }
 }
 

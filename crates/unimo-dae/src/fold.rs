@@ -78,6 +78,17 @@ impl Lowerer<'_> {
                 tunable.extend(scalars);
             }
         }
+        // Constants never change: every one with a value is folded, in either mode
+        // (`constant Real eps` of a block decides its `if` branches).
+        for k in 0..self.dae.scalars.len() {
+            let s = ScalarId(k as u32);
+            if self.dae.scalars[k].kind == ScalarKind::Constant {
+                if let Some(x) = self.parameter_value(s) {
+                    let c = self.dae.arena.constant(x);
+                    self.evaluated.insert(s, c);
+                }
+            }
+        }
         for s in evaluate {
             tunable.remove(&s);
             if let Some(x) = self.parameter_value(s) {
@@ -90,7 +101,12 @@ impl Lowerer<'_> {
         } else {
             self.fold_all_but(tunable);
         }
-        let mut folded: Vec<ScalarId> = self.evaluated.keys().copied().collect();
+        let mut folded: Vec<ScalarId> = self
+            .evaluated
+            .keys()
+            .copied()
+            .filter(|s| self.dae.scalars[s.index()].kind == ScalarKind::Parameter)
+            .collect();
         folded.sort();
         self.dae.folded_parameters = folded;
     }
