@@ -465,10 +465,17 @@ impl<'a> Printer<'a> {
         s.push(' ');
         s.push_str(&quote(&v.name));
         if !v.dims.is_empty() {
+            // A size known only when the function is called (`output Integer
+            // state[nState]`, `nState` an input) keeps its expression.
             let d: Vec<String> = v
                 .dims
                 .iter()
-                .map(|n| n.map_or(":".to_owned(), |n| n.to_string()))
+                .enumerate()
+                .map(|(k, n)| match (n, v.dim_exprs.get(k)) {
+                    (Some(n), _) => n.to_string(),
+                    (None, Some(Some(e))) => self.local_expr(e),
+                    (None, _) => ":".to_owned(),
+                })
                 .collect();
             let _ = write!(s, "[{}]", d.join(", "));
         }
