@@ -344,3 +344,60 @@ fn a_package_file_of_a_library_checks_clean() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// The flat model of every example stands alone (it is what an FMU carries in
+/// `resources/model.mo`, `docs/fmi.md`): flattened again without the library, it gives
+/// the same text. Its functions, external functions, external object classes (the
+/// tables), records and enumeration types are printed with it.
+#[test]
+fn msl_example_flat_models_stand_alone() {
+    let msl = shared("msl");
+    let tmp = std::env::temp_dir().join(format!("unimo-msl-flat-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let flatten = |args: &[&std::ffi::OsStr]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_unimo"))
+            .args(["flatten", "--color", "never"])
+            .args(args)
+            .env_remove("MODELICAPATH")
+            .env_remove("UNIMO_PATH")
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        (out.status.success(), text, err)
+    };
+    let mut failures = Vec::new();
+    for model in EXAMPLES {
+        let package = msl.join("Modelica/package.mo");
+        let (ok, first, err) = flatten(&[
+            package.as_os_str(),
+            "--model".as_ref(),
+            model.as_ref(),
+            "--lib".as_ref(),
+            msl.as_os_str(),
+        ]);
+        if !ok {
+            failures.push(format!("{model}: flattening fails: {err}"));
+            continue;
+        }
+        let file = tmp.join(format!("{model}.mo"));
+        std::fs::write(&file, &first).unwrap();
+        let (ok, second, err) = flatten(&[file.as_os_str()]);
+        if !ok {
+            let first_error = err.lines().find(|l| l.starts_with("error")).unwrap_or("");
+            failures.push(format!(
+                "{model}: the flat text does not stand alone: {first_error}"
+            ));
+        } else if first != second {
+            failures.push(format!("{model}: flattening the flat text changes it"));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+    assert!(
+        failures.is_empty(),
+        "{} of {} MSL examples:\n{}",
+        failures.len(),
+        EXAMPLES.len(),
+        failures.join("\n")
+    );
+}

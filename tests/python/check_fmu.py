@@ -58,8 +58,12 @@ def main():
     reference = read_csv(csv_path)
     t_ref = reference["time"]
     ex = md.defaultExperiment
-    # The reference's output grid (`unimo simulate --stop-time` changes it).
-    interval = float(t_ref[1] - t_ref[0])
+    # The reference's output grid (`unimo simulate --stop-time` changes it): its most
+    # frequent step (rows at events split a grid interval in two).
+    steps = np.diff(t_ref)
+    steps = steps[steps > 1e-9 * max(1.0, abs(float(t_ref[-1])))]
+    values, counts = np.unique(np.round(steps, 12), return_counts=True)
+    interval = float(values[np.argmax(counts)])
     result = fmpy.simulate_fmu(
         fmu,
         fmi_type=kind,

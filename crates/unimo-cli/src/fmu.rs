@@ -121,9 +121,14 @@ pub fn command(a: &FmuArgs) -> i32 {
     match written {
         Ok(s) => {
             eprintln!(
-                "wrote {} ({} bytes): model identifier {}, {} variables, {} states, {} event indicators",
+                "wrote {} ({} bytes{}): model identifier {}, {} variables, {} states, {} event indicators",
                 a.output.display(),
                 s.bytes,
+                if s.stripped {
+                    ""
+                } else {
+                    "; the library is not stripped: neither strip nor objcopy was found"
+                },
                 s.identifier,
                 s.variables,
                 s.states,

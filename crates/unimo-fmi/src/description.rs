@@ -189,8 +189,13 @@ pub fn write(h: &Header<'_>, c: &Compiled) -> String {
         Kind::ModelExchange => "ModelExchange",
         Kind::CoSimulation => "CoSimulation",
     };
+    // A collision world starts its sweep (`gaps[1]`'s pass-through check) at each
+    // accepted step: Model Exchange needs `CompletedIntegratorStep` then.
+    let world = c.model.collision.is_some();
     let extra = match (h.version, h.kind) {
+        (Version::Fmi2, Kind::ModelExchange) if world => "",
         (Version::Fmi2, Kind::ModelExchange) => r#" completedIntegratorStepNotNeeded="true""#,
+        (Version::Fmi3, Kind::ModelExchange) if world => r#" needsCompletedIntegratorStep="true""#,
         (Version::Fmi3, Kind::ModelExchange) => r#" needsCompletedIntegratorStep="false""#,
         (_, Kind::CoSimulation) => r#" canHandleVariableCommunicationStepSize="true""#,
     };

@@ -339,7 +339,7 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
         c,
         "fmi2CompletedIntegratorStep",
         &[State::ContinuousTime],
-        |_| {
+        |i| {
             // SAFETY: FMI contract; checked for null.
             let (enter, stop) = unsafe {
                 (
@@ -347,6 +347,7 @@ pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
                     slice_mut(terminate, 1, "fmi2CompletedIntegratorStep")?,
                 )
             };
+            i.completed_step()?;
             enter[0] = 0;
             stop[0] = 0;
             Ok(OK)

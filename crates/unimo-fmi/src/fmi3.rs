@@ -286,9 +286,10 @@ pub unsafe extern "C" fn fmi3CompletedIntegratorStep(
     terminate: *mut bool,
 ) -> Status {
     let f = "fmi3CompletedIntegratorStep";
-    call(instance, f, &[State::ContinuousTime], |_| {
+    call(instance, f, &[State::ContinuousTime], |i| {
         put(enter_event_mode, false, f)?;
         put(terminate, false, f)?;
+        i.completed_step()?;
         Ok(OK)
     })
 }

@@ -364,6 +364,15 @@ impl Instance {
             .map_err(|e| FmiError::simulation(&e))
     }
 
+    /// The importer accepted an integrator step (Model Exchange): the collision
+    /// world, if any, starts its next sweep here.
+    pub fn completed_step(&mut self) -> Result<(), FmiError> {
+        self.running
+            .stepper
+            .completed_step()
+            .map_err(|e| FmiError::simulation(&e))
+    }
+
     pub fn enter_event_mode(&mut self) {
         self.state = State::Event;
         self.event_done = false;
@@ -371,7 +380,13 @@ impl Instance {
 
     /// The event update (the initial event's outcome right after initialization).
     pub fn update_discrete_states(&mut self) -> Result<EventOutcome, FmiError> {
-        if std::mem::take(&mut self.initial_event) {
+        // A sample instant at the start time is this event's (FMPy cannot integrate
+        // to a `nextEventTime` equal to the current time).
+        let stepper = &self.running.stepper;
+        let sample_due = stepper
+            .next_time_event()
+            .is_some_and(|s| s <= stepper.time() * (1.0 + 1e-15) + 1e-300);
+        if std::mem::take(&mut self.initial_event) && !sample_due {
             self.event_done = true;
             return Ok(EventOutcome {
                 next_time: self.running.stepper.next_time_event(),

@@ -29,17 +29,15 @@ pub struct Summary {
     pub states: usize,
     pub event_indicators: usize,
     pub bytes: usize,
+    /// The library was packaged without its debug information and symbol table
+    /// (`strip` or `objcopy` found); false: as built.
+    pub stripped: bool,
 }
 
 /// The FMU's files and the archive bytes.
 pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
     let source = FlatSource::new(r.flat_text)?;
     let mut compiled = source.compile(&[])?;
-    if compiled.model.collision.is_some() {
-        return Err(FmiError::Unsupported(
-            "models with a collision world (their contact set changes at events our solver locates) are not exported yet".into(),
-        ));
-    }
     let options = SimOptions::resolve(
         &compiled.dae.experiment,
         &Default::default(),
@@ -73,9 +71,7 @@ pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
         experiment: (options.start, options.stop, options.rtol, options.interval),
     };
     let xml = description::write(&header, &compiled);
-    let library = std::fs::read(r.library).map_err(|e| {
-        FmiError::LibraryMissing(format!("cannot read {}: {e}", r.library.display()))
-    })?;
+    let (library, stripped) = library_bytes(r.library)?;
     // FMI 2.0 names the platform `linux64`, FMI 3.0 by its tuple.
     let platform = match r.version {
         Version::Fmi2 => "linux64",
@@ -93,8 +89,51 @@ pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
         states: compiled.states.len(),
         event_indicators: compiled.model.roots.len(),
         bytes: bytes.len(),
+        stripped,
     };
     Ok((bytes, summary))
+}
+
+/// The library's bytes as the FMU ships them: without debug information and the
+/// symbols no one links against (the FMI functions stay in the dynamic symbol table),
+/// when `strip` or `objcopy` (binutils) is there to remove them (a release build with
+/// the release profile's debug information: 56 MB as built, a few MB stripped); as
+/// built otherwise. The library itself is never changed: a copy is stripped.
+fn library_bytes(path: &Path) -> Result<(Vec<u8>, bool), FmiError> {
+    let read = |p: &Path| {
+        std::fs::read(p)
+            .map_err(|e| FmiError::LibraryMissing(format!("cannot read {}: {e}", p.display())))
+    };
+    let original = read(path)?;
+    let copy = std::env::temp_dir().join(format!(
+        "unimo-fmu-{}-{}.so",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos())
+    ));
+    if std::fs::write(&copy, &original).is_err() {
+        return Ok((original, false));
+    }
+    let tools: [(&str, &[&str]); 2] = [
+        ("strip", &["--strip-unneeded"]),
+        ("objcopy", &["--strip-unneeded"]),
+    ];
+    let stripped = tools.iter().any(|(tool, args)| {
+        std::process::Command::new(tool)
+            .args(*args)
+            .arg(&copy)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    });
+    let result = match stripped {
+        true => read(&copy).map(|b| (b, true)),
+        false => Ok((original, false)),
+    };
+    let _ = std::fs::remove_file(&copy);
+    result
 }
 
 /// CRC-32 (IEEE), as zip files use.

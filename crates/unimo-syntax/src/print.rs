@@ -14,6 +14,10 @@ fn precedence(e: &Expr) -> u8 {
             op: UnaryOp::Not, ..
         } => 4,
         ExprKind::Unary { .. } => 6,
+        // A negative literal (a folded constant) is a unary minus in the text: `a - (-1)`,
+        // as Modelica's grammar has no `a - -1`.
+        ExprKind::Real(v) if v.is_sign_negative() => 6,
+        ExprKind::Integer(v) if *v < 0 => 6,
         _ => 10,
     }
 }

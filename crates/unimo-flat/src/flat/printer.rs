@@ -96,11 +96,28 @@ impl FlatModel {
         // The model and its functions first: they decide which records are printed
         // (those the text names).
         let mut body = String::new();
-        let mut functions: Vec<&crate::functions::FlatFunction> =
-            self.functions.iter().filter(|f| !f.external).collect();
+        // External object classes (spec 12.9.7), their constructors inside them.
+        let mut objects: Vec<&str> = p.objects.iter().copied().collect();
+        objects.sort_by_key(|n| quote(n));
+        for name in objects {
+            let class = quote(name);
+            let _ = writeln!(body, "class {class}\n  extends ExternalObject;");
+            let constructor = format!("{name}.constructor");
+            if let Some(f) = self.functions.iter().find(|f| f.name == constructor) {
+                p.function(&mut body, f, "constructor");
+            }
+            let _ = writeln!(body, "end {class};");
+        }
+        let mut functions: Vec<&crate::functions::FlatFunction> = self
+            .functions
+            .iter()
+            .filter(|f| {
+                p.functions.contains(f.name.as_str()) && p.constructor_of(&f.name).is_none()
+            })
+            .collect();
         functions.sort_by_key(|f| quote(&f.name));
         for f in functions {
-            p.function(&mut body, f);
+            p.function(&mut body, f, &quote(&f.name));
         }
         let model = self.model_text(&p);
         let mut used: Vec<String> = p.used_records.borrow().iter().cloned().collect();
@@ -193,7 +210,10 @@ fn class_ident(name: &str, span: Span) -> Ident {
 /// definitions printed before the model, and a whole record is written as its
 /// constructor applied to its fields.
 struct Printer<'a> {
+    /// The functions printed: those with a body and those with an external clause.
     functions: std::collections::HashSet<&'a str>,
+    /// External object classes, by full name (the types of the model's handles).
+    objects: std::collections::HashSet<&'a str>,
     records: std::collections::HashMap<&'a str, &'a crate::functions::FlatRecord>,
     instances: std::collections::HashMap<&'a str, &'a str>,
     enumerations: std::collections::HashSet<&'a str>,
@@ -210,8 +230,16 @@ impl<'a> Printer<'a> {
             functions: m
                 .functions
                 .iter()
-                .filter(|f| !f.external)
+                .filter(|f| !f.external || f.external_call.is_some())
                 .map(|f| f.name.as_str())
+                .collect(),
+            objects: m
+                .vars
+                .iter()
+                .filter_map(|v| match &v.ty {
+                    FlatType::ExternalObject { name } => Some(name.as_str()),
+                    _ => None,
+                })
                 .collect(),
             records: m.records.iter().map(|r| (r.name.as_str(), r)).collect(),
             instances: m
@@ -244,7 +272,14 @@ impl<'a> Printer<'a> {
                 if self.records.contains_key(name.as_str()) {
                     self.used_records.borrow_mut().insert(name.clone());
                 }
-                if self.functions.contains(name.as_str())
+                if let Some(class) = self.constructor_of(&name) {
+                    // The class's name calls its constructor.
+                    *func = Name {
+                        global: false,
+                        parts: vec![class_ident(class, func.span)],
+                        span: func.span,
+                    };
+                } else if self.functions.contains(name.as_str())
                     || self.records.contains_key(name.as_str())
                 {
                     *func = Name {
@@ -287,6 +322,12 @@ impl<'a> Printer<'a> {
             }
             _ => {}
         }
+    }
+
+    /// The external object class whose constructor `function` is.
+    fn constructor_of(&self, function: &str) -> Option<&'a str> {
+        let class = function.strip_suffix(".constructor")?;
+        self.objects.get(class).copied()
     }
 
     /// Whether `r` names a literal of one of the model's enumeration types.
@@ -424,10 +465,17 @@ impl<'a> Printer<'a> {
         s.push(' ');
         s.push_str(&quote(&v.name));
         if !v.dims.is_empty() {
+            // A size known only when the function is called (`output Integer
+            // state[nState]`, `nState` an input) keeps its expression.
             let d: Vec<String> = v
                 .dims
                 .iter()
-                .map(|n| n.map_or(":".to_owned(), |n| n.to_string()))
+                .enumerate()
+                .map(|(k, n)| match (n, v.dim_exprs.get(k)) {
+                    (Some(n), _) => n.to_string(),
+                    (None, Some(Some(e))) => self.local_expr(e),
+                    (None, _) => ":".to_owned(),
+                })
                 .collect();
             let _ = write!(s, "[{}]", d.join(", "));
         }
@@ -437,8 +485,9 @@ impl<'a> Printer<'a> {
         s
     }
 
-    fn function(&self, out: &mut String, f: &crate::functions::FlatFunction) {
-        let name = quote(&f.name);
+    /// A function named `name` (its full quoted name, or `constructor` inside its
+    /// external object class); an external function with its external clause.
+    fn function(&self, out: &mut String, f: &crate::functions::FlatFunction, name: &str) {
         let _ = writeln!(out, "function {name}");
         for v in &f.inputs {
             let _ = writeln!(out, "  input {};", self.func_var(v));
@@ -457,6 +506,21 @@ impl<'a> Printer<'a> {
             for s in &f.algorithm {
                 self.statement_in(out, s, 1, false);
             }
+        }
+        if let Some(ext) = f.external_call.as_ref().filter(|_| f.external) {
+            let args: Vec<String> = ext.args.iter().map(|a| self.local_expr(a)).collect();
+            let output = ext
+                .output
+                .as_ref()
+                .map(|o| format!("{o} = "))
+                .unwrap_or_default();
+            let _ = writeln!(
+                out,
+                "external {} {output}{}({});",
+                print::string_lit(&ext.language),
+                ext.function,
+                args.join(", ")
+            );
         }
         let _ = writeln!(out, "end {name};");
     }

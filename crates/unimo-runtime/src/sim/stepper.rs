@@ -31,6 +31,10 @@ pub struct Stepper<'a> {
     /// The event indicators at the end of the last event (or of initialization): a
     /// function that is zero now crossed from that side.
     reference: Vec<f64>,
+    /// Time and states at the end of the last event: an event update at that same
+    /// point (a sample instant at the start time) finds no crossing of a function
+    /// left at its zero there (`time >= startTime`).
+    last_event: (f64, Vec<f64>),
     /// The registers changed since the plan was last evaluated.
     dirty: bool,
 }
@@ -47,6 +51,7 @@ impl<'a> Stepper<'a> {
             solver: None,
             steps_taken: 0,
             reference: vec![0.0; m.roots.len()],
+            last_event: (f64::NAN, Vec::new()),
             dirty: true,
         }
     }
@@ -178,12 +183,25 @@ impl<'a> Stepper<'a> {
         }
         self.sim.eval_plan()?;
         self.finish_event()?;
+        self.completed_step()?;
         let states_changed = before != self.states();
         Ok(EventOutcome {
             terminated: self.sim.terminate.take(),
             states_changed,
             next_time: self.next_time_event(),
         })
+    }
+
+    /// Model Exchange, after each step the importer's integrator accepts and after each
+    /// event: the collision world's sweep starts at the current placements, as after
+    /// each of our own steps (`run.rs`). Nothing to do without a world.
+    pub fn completed_step(&mut self) -> Result<(), SimError> {
+        if self.model().collision.is_some() {
+            let (t, x) = (self.time(), self.sim.states());
+            self.sim.commit_collision(t, &x)?;
+            self.dirty = true;
+        }
+        Ok(())
     }
 
     /// After initialization or an event: the aliases, the reference event indicators,
@@ -199,6 +217,7 @@ impl<'a> Stepper<'a> {
         }
         let mut g = vec![0.0; m.roots.len()];
         self.event_indicators(&mut g)?;
+        self.last_event = (self.time(), self.states());
         // A relation left at its zero is on the side its held value says.
         for (k, gk) in g.iter_mut().enumerate().take(m.root_ops.len()) {
             if *gk == 0.0 && m.relation_held[k] {
@@ -233,8 +252,9 @@ impl<'a> Stepper<'a> {
         self.event_indicators(&mut g)?;
         let mut found = crossings::disagreements(m, &self.sim.ode.regs, &self.sim.ode.ev);
         let n_relations = m.root_ops.len();
+        let stationary = self.last_event.0 == self.time() && self.last_event.1 == self.states();
         for (k, (&now, &before)) in g.iter().zip(&self.reference).enumerate() {
-            if found.iter().any(|&(j, _)| j == k) || before == 0.0 {
+            if found.iter().any(|&(j, _)| j == k) || before == 0.0 || stationary {
                 continue;
             }
             let unheld = k < n_relations && !m.relation_held[k];
