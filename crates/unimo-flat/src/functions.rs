@@ -96,6 +96,60 @@ pub(crate) fn equation_calls(eq: &Equation, out: &mut Vec<String>) {
     equation_exprs(std::slice::from_ref(eq), &mut |e| called_functions(e, out));
 }
 
+/// Drops the functions and records the final model no longer calls or uses (those
+/// called only in branches that flattening removed after collecting them, such as the
+/// `isRoot` branches of overconstrained connectors), so that the printed model reads
+/// back to the same text.
+pub(crate) fn keep_called(model: &mut crate::flat::FlatModel) {
+    let mut pending = Vec::new();
+    for eq in model.equations.iter().chain(&model.initial_equations) {
+        equation_calls(eq, &mut pending);
+    }
+    for s in model
+        .algorithms
+        .iter()
+        .chain(&model.initial_algorithms)
+        .flatten()
+    {
+        statement_calls(s, &mut pending);
+    }
+    for v in &model.vars {
+        for e in v
+            .binding
+            .iter()
+            .map(|b| &**b)
+            .chain(v.attributes.iter().map(|(_, a)| a))
+        {
+            called_functions(e, &mut pending);
+        }
+    }
+    let mut used: std::collections::HashSet<String> = std::collections::HashSet::new();
+    while let Some(name) = pending.pop() {
+        if !used.insert(name.clone()) {
+            continue;
+        }
+        if let Some(f) = model.functions.iter().find(|f| f.name == name) {
+            for s in &f.algorithm {
+                statement_calls(s, &mut pending);
+            }
+            for v in f.inputs.iter().chain(&f.outputs).chain(&f.locals) {
+                if let Some(d) = &v.default {
+                    called_functions(d, &mut pending);
+                }
+                for d in v.dim_exprs.iter().flatten() {
+                    called_functions(d, &mut pending);
+                }
+            }
+            if let Some(x) = &f.external_call {
+                for a in &x.args {
+                    called_functions(a, &mut pending);
+                }
+            }
+        }
+    }
+    model.functions.retain(|f| used.contains(&f.name));
+}
+
 impl Instantiator<'_, '_> {
     /// Collects every user function the model calls (transitively) into the model.
     pub(crate) fn collect_functions(&mut self) {

@@ -145,6 +145,7 @@ pub fn flatten_with(
     }
 
     parameters_first(&mut model);
+    functions::keep_called(&mut model);
     if !diags.iter().any(|d| d.is_error()) {
         diags.extend(check::unbound_parameters(&model));
     }

@@ -175,12 +175,25 @@ impl Instantiator<'_, '_> {
                 _ => None,
             }
         };
-        let resolve = |eqs: &mut Vec<Equation>| {
+        // The conditions are evaluated as instantiation does (parameters included), so
+        // that an `elseif` a resolved `isRoot` leaves is decided as it would be in the
+        // printed model (which reads back to the same text).
+        std::mem::swap(&mut self.model, model);
+        for initial in [false, true] {
+            let eqs = if initial {
+                &mut self.model.initial_equations
+            } else {
+                &mut self.model.equations
+            };
             let old = std::mem::take(eqs);
-            *eqs = resolve_equations(old, &types, &values);
-        };
-        resolve(&mut model.equations);
-        resolve(&mut model.initial_equations);
+            let new = resolve_equations(old, &types, &values, self);
+            if initial {
+                self.model.initial_equations = new;
+            } else {
+                self.model.equations = new;
+            }
+        }
+        std::mem::swap(&mut self.model, model);
         drop(types);
         model.record_instances = records;
         called
@@ -427,6 +440,7 @@ fn resolve_equations(
     eqs: Vec<Equation>,
     types: &Instances,
     values: &dyn Fn(&str, &str) -> Option<Value>,
+    env: &mut dyn Env,
 ) -> Vec<Equation> {
     let mut out = Vec::with_capacity(eqs.len());
     for mut eq in eqs {
@@ -443,8 +457,8 @@ fn resolve_equations(
                 let (mut chosen, mut last) = (None, None);
                 for (mut c, body) in std::mem::take(branches) {
                     replace_values(&mut c, types, values);
-                    let body = resolve_equations(body, types, values);
-                    match eval::eval(&c, &mut NoVariables, &mut Vec::new()) {
+                    let body = resolve_equations(body, types, values, env);
+                    match eval::eval(&c, env, &mut Vec::new()) {
                         Ok(Value::Bool(false)) => {}
                         // Always taken: the rest is never reached.
                         Ok(Value::Bool(true)) if kept.is_empty() => {
@@ -460,7 +474,7 @@ fn resolve_equations(
                 }
                 let rest = match last {
                     Some(body) => body,
-                    None => resolve_equations(std::mem::take(otherwise), types, values),
+                    None => resolve_equations(std::mem::take(otherwise), types, values, env),
                 };
                 match (chosen, kept.is_empty()) {
                     (Some(body), _) => out.extend(body),
@@ -479,7 +493,7 @@ fn resolve_equations(
             }
             EquationKind::Call(e) => replace_values(e, types, values),
             EquationKind::For { body, .. } => {
-                *body = resolve_equations(std::mem::take(body), types, values);
+                *body = resolve_equations(std::mem::take(body), types, values, env);
             }
             _ => {}
         }
