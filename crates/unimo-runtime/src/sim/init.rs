@@ -140,6 +140,7 @@ impl Simulator<'_> {
             });
         }
         m.starts.run(&mut self.ode.regs, &mut self.ode.ev);
+        self.ode.loop_starts.note_guesses(&self.ode.regs);
         self.check_fixed_constraints()?;
         // Dynamic state sets start with the best choice at the start values.
         self.select_states(true);
