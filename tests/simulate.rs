@@ -908,3 +908,30 @@ fn switched_linear_loops_are_solved_in_one_step() {
         }
     }
 }
+
+/// A loop with two solutions and no events (an op-amp in positive feedback under
+/// `noEvent`) keeps the branch it is on until that branch ends at its fold
+/// (`|v| = 7.499`), as the MSL's Multivibrator reference does: a solution the solver
+/// found at a trial point beyond the fold (a rejected step, at a later time) must not be
+/// the start of the evaluations before it (the output switched at `v = -7.21`).
+#[test]
+fn a_bistable_loop_keeps_its_branch_until_the_fold() {
+    let m = load("tests/simulate/Multivibrator.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.2, 20_000);
+    let kv = r.names.iter().position(|n| n == "v").unwrap();
+    let kout = r.names.iter().position(|n| n == "vout").unwrap();
+    let mut switches = Vec::new();
+    for w in r.rows.windows(2) {
+        if (w[0][kout] > 0.0) != (w[1][kout] > 0.0) {
+            switches.push(w[0][kv]);
+        }
+    }
+    // From v = 1 to the first fold at -7.499, then every 0.05 s between the folds.
+    assert_eq!(switches.len(), 4, "{switches:?}");
+    for v in switches {
+        assert!(
+            (7.495..7.4991).contains(&v.abs()),
+            "switched at v = {v}, not at the fold"
+        );
+    }
+}
