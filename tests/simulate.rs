@@ -935,3 +935,18 @@ fn a_bistable_loop_keeps_its_branch_until_the_fold() {
         );
     }
 }
+
+/// Initialization starts `homotopy(actual, simplified)` at the simplified model's
+/// solution: of the three solutions of the op-amp loop at the start values the lower
+/// limit's (-15) is taken, not the unstable one Newton finds from the start values (0).
+#[test]
+fn initialization_starts_from_homotopys_simplified_model() {
+    let m = load("tests/simulate/HomotopyStart.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.1, 2);
+    let k = r.names.iter().position(|n| n == "vout").unwrap();
+    for row in &r.rows {
+        assert_eq!(row[k], -15.0, "{:?}", r.rows);
+    }
+    let k = r.names.iter().position(|n| n == "vin").unwrap();
+    assert!((r.rows[0][k] + 7.5).abs() < 1e-12, "{:?}", r.rows[0]);
+}
