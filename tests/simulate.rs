@@ -981,6 +981,33 @@ fn candidates_of_one_priority_are_selected_at_run_time() {
     }
 }
 
+/// A loop with two solutions and no events (an op-amp in positive feedback under
+/// `noEvent`) keeps the branch it is on until that branch ends at its fold
+/// (`|v| = 7.499`), as the MSL's Multivibrator reference does: a solution the solver
+/// found at a trial point beyond the fold (a rejected step, at a later time) must not be
+/// the start of the evaluations before it (the output switched at `v = -7.21`).
+#[test]
+fn a_bistable_loop_keeps_its_branch_until_the_fold() {
+    let m = load("tests/simulate/Multivibrator.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.2, 20_000);
+    let kv = r.names.iter().position(|n| n == "v").unwrap();
+    let kout = r.names.iter().position(|n| n == "vout").unwrap();
+    let mut switches = Vec::new();
+    for w in r.rows.windows(2) {
+        if (w[0][kout] > 0.0) != (w[1][kout] > 0.0) {
+            switches.push(w[0][kv]);
+        }
+    }
+    // From v = 1 to the first fold at -7.499, then every 0.05 s between the folds.
+    assert_eq!(switches.len(), 4, "{switches:?}");
+    for v in switches {
+        assert!(
+            (7.495..7.4991).contains(&v.abs()),
+            "switched at v = {v}, not at the fold"
+        );
+    }
+}
+
 /// Index reduction that passes through the equation of a discrete variable: its
 /// derivative is identically zero and stands as `der(b) = 0` (before: E3204 "no dummy
 /// derivatives can be chosen ... for 0 = 0", the MSL's `KinematicPTP2` and RobotR3).
@@ -995,4 +1022,19 @@ fn index_reduction_through_a_discrete_equation() {
         assert!((row[ksd] - 0.5).abs() < 1e-9, "sd({t}) = {}", row[ksd]);
         assert!((row[kx] - t / 2.0).abs() < 1e-8, "x({t}) = {}", row[kx]);
     }
+}
+
+/// Initialization starts `homotopy(actual, simplified)` at the simplified model's
+/// solution: of the three solutions of the op-amp loop at the start values the lower
+/// limit's (-15) is taken, not the unstable one Newton finds from the start values (0).
+#[test]
+fn initialization_starts_from_homotopys_simplified_model() {
+    let m = load("tests/simulate/HomotopyStart.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.1, 2);
+    let k = r.names.iter().position(|n| n == "vout").unwrap();
+    for row in &r.rows {
+        assert_eq!(row[k], -15.0, "{:?}", r.rows);
+    }
+    let k = r.names.iter().position(|n| n == "vin").unwrap();
+    assert!((r.rows[0][k] + 7.5).abs() < 1e-12, "{:?}", r.rows[0]);
 }

@@ -325,7 +325,7 @@ pub const BUILTINS: &[Builtin] = &[
         Fixed(2),
         &[R, R],
         R,
-        "homotopy(actual, simplified): unimo uses actual",
+        "homotopy(actual, simplified): simplified while initialization solves the start of the continuation, then actual",
     ),
     op(
         "identity",

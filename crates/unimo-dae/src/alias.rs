@@ -273,6 +273,7 @@ fn has_time_or_events(dae: &Dae, e: ExprId) -> bool {
             | Node::Pre(_)
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::Rel(..)
             | Node::Sample(..)
             | Node::External(..)

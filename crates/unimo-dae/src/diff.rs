@@ -41,6 +41,7 @@ fn derivative_node(
         | Node::Pre(_)
         | Node::Initial
         | Node::Terminal
+        | Node::HomotopyStart
         | Node::Rel(..)
         | Node::And(..)
         | Node::Or(..)

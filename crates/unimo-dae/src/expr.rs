@@ -93,6 +93,9 @@ pub enum Node {
     Initial,
     /// `terminal()`: true at the end of a successful simulation.
     Terminal,
+    /// True while initialization solves the simplified model of `homotopy(actual,
+    /// simplified)` (the start of its continuation), false otherwise.
+    HomotopyStart,
     /// `sample(start, interval)`: true at the sample instants.
     Sample(ExprId, ExprId),
     /// Output `out` of external object site `site` (a collision body's force and
@@ -183,6 +186,11 @@ impl ExprArena {
 
     pub fn initial(&mut self) -> ExprId {
         self.intern(Node::Initial)
+    }
+
+    /// See [`Node::HomotopyStart`].
+    pub fn homotopy_start(&mut self) -> ExprId {
+        self.intern(Node::HomotopyStart)
     }
 
     /// The id of an existing node, if it was ever built.
@@ -399,6 +407,7 @@ impl ExprArena {
             | Node::Time
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::External(..) => (None, None, None),
             Node::Neg(x) | Node::Fn1(_, x) | Node::Not(x) | Node::NoEvent(x) => {
                 (Some(x), None, None)
@@ -464,6 +473,7 @@ impl ExprArena {
             | Node::Time
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::External(..) => id,
             node => {
                 let kids: Vec<ExprId> = self.children(id).collect();
@@ -491,6 +501,7 @@ impl ExprArena {
             | Node::Time
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::External(..) => self.intern(node),
             Node::Add(..) => self.add(k[0], k[1]),
             Node::Mul(..) => self.mul(k[0], k[1]),
@@ -543,7 +554,7 @@ impl ExprArena {
             Node::Pre(s) => env.pre(s),
             Node::Time => env.time(),
             Node::Initial => f64::from(env.initial()),
-            Node::Terminal => 0.0,
+            Node::Terminal | Node::HomotopyStart => 0.0,
             Node::Add(a, b) => e(a) + e(b),
             Node::Mul(a, b) => e(a) * e(b),
             Node::Div(a, b) => e(a) / e(b),
@@ -632,6 +643,7 @@ impl ExprArena {
             Node::Time => out.push_str("time"),
             Node::Initial => out.push_str("initial()"),
             Node::Terminal => out.push_str("terminal()"),
+            Node::HomotopyStart => out.push_str("$homotopyStart"),
             Node::External(site, k) => write!(out, "external({site}, {k})")?,
             Node::Add(a, b) => self.write_sum(a, b, name, out, limit)?,
             Node::Mul(a, b) => {

@@ -71,6 +71,7 @@ pub(crate) fn degree(
         | Node::Time
         | Node::Initial
         | Node::Terminal
+        | Node::HomotopyStart
         | Node::Sample(..)
         | Node::External(..) => Constant,
         Node::Add(a, b) => of(a, no_event).max(of(b, no_event)),

@@ -52,6 +52,7 @@ pub fn parameters_only(dae: &Dae, e: ExprId) -> bool {
             | Node::Pre(_)
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::Sample(..)
             | Node::External(..) => return false,
             _ => stack.extend(dae.arena.children(x)),

@@ -95,7 +95,7 @@ pub fn tape_dump(m: &CompiledModel, names: &[String]) -> String {
     let l = &m.layout;
     let _ = writeln!(
         o,
-        "registers: {} ({} scalars, their pre values, time, initial(), terminal(), {} temporaries)",
+        "registers: {} ({} scalars, their pre values, time, initial(), terminal(), the homotopy flag, {} temporaries)",
         m.n_registers,
         l.n_scalars,
         m.n_registers.saturating_sub(l.temp_base as usize)

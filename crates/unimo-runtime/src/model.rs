@@ -151,6 +151,10 @@ pub struct CompiledModel {
     /// Some equation reads `initial()`: after initialization the simulator runs one
     /// more event iteration at the start time with it false.
     pub equations_read_initial: bool,
+    /// Some equation holds `homotopy(actual, simplified)`: initialization first solves
+    /// the model with `simplified` (the layout's `homotopy` register 1), then from that
+    /// solution with `actual`.
+    pub uses_homotopy: bool,
     /// Native code for the whole right-hand side, when the plan is one explicit step
     /// and `unimo-codegen` compiled it (see [`CompiledModel::single_step_ops`]).
     pub native_rhs: Option<crate::native::NativeRhs>,

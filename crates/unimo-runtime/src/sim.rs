@@ -6,6 +6,7 @@
 use crate::eval::{eval_steps, BlockFailure, Workspace};
 use crate::model::CompiledModel;
 use crate::tape::EventState;
+use starts::LoopStarts;
 use std::time::Instant;
 use unimo_dae::expr::RelOp;
 use unimo_solve::dense::{abs_det, pick_columns};
@@ -16,6 +17,7 @@ mod events;
 mod init;
 mod pattern;
 mod run;
+mod starts;
 pub mod stepper;
 
 /// Internal steps of one simulation before it is stopped.
@@ -274,91 +276,33 @@ struct Ode<'a> {
     /// The relations disagreeing with their operands at the latest time the root
     /// functions were evaluated since the last event (see `crossings::disagreements`).
     last_roots: (f64, Crossed),
-    /// Where the nonlinear loops' Newton iterations start (see [`LoopStarts`]).
+    /// Where the nonlinear loops' Newton iterations start (see [`starts`]).
     loop_starts: LoopStarts,
 }
 
-/// The iteration variables of the nonlinear loops at the last point of the trajectory
-/// (initial values, an event, an output point, the last evaluation of an accepted
-/// step): where a loop's
-/// Newton iteration starts again when it failed from the registers' values. Those are
-/// the last evaluation's solution, wherever the solver tried it (a trial state of a
-/// rejected step, a difference quotient, a predictor far off), and a loop that
-/// converges from the trajectory's last point can fail from there (the NOR gates of
-/// bipolar transistors after a source's corner: Newton diverged at every retry).
-/// Starting every evaluation from the last point instead would also remove the memory
-/// a loop with several solutions keeps between evaluations without events (an op-amp
-/// in positive feedback under `noEvent`), which the implicit integrators need to step
-/// past its switch; so the last point is the fallback, not the start.
-#[derive(Debug, Default)]
-struct LoopStarts {
-    /// The iteration registers of the nonlinear blocks.
-    regs: Vec<crate::tape::Reg>,
-    /// Their values at the last committed point; empty until the first commit.
-    values: Vec<f64>,
-    /// Their values at the last successful evaluation.
-    latest: Vec<f64>,
-}
-
-impl LoopStarts {
-    fn new(m: &CompiledModel) -> Self {
-        let regs = m
-            .steps
-            .iter()
-            .filter_map(|s| match s {
-                crate::model::CompiledStep::Block(b) if !b.linear => Some(&b.iteration),
-                _ => None,
-            })
-            .flatten()
-            .copied()
-            .collect();
-        LoopStarts {
-            regs,
-            values: Vec::new(),
-            latest: Vec::new(),
-        }
-    }
-
-    /// Writes the committed starts into the registers; false when there are none.
-    fn restore(&self, regs: &mut [f64]) -> bool {
-        if self.regs.is_empty() || self.values.len() != self.regs.len() {
-            return false;
-        }
-        for (&r, &v) in self.regs.iter().zip(&self.values) {
-            regs[r as usize] = v;
-        }
-        true
-    }
-
-    /// Notes the registers' values after a successful evaluation by the solver.
-    fn note_latest(&mut self, regs: &[f64]) {
-        if !self.regs.is_empty() {
-            self.latest.clear();
-            self.latest
-                .extend(self.regs.iter().map(|&r| regs[r as usize]));
-        }
-    }
-
-    /// Takes the last successful evaluation's values as the starts (the solver
-    /// accepted the step it belonged to).
-    fn accept_latest(&mut self) {
-        if self.latest.len() == self.regs.len() {
-            std::mem::swap(&mut self.values, &mut self.latest);
-            self.latest.clear();
-        }
-    }
-
-    /// Takes the registers' values as the starts.
-    fn commit(&mut self, regs: &[f64]) {
-        if !self.regs.is_empty() {
-            self.values.clear();
-            self.values
-                .extend(self.regs.iter().map(|&r| regs[r as usize]));
-        }
-    }
-}
-
 impl Ode<'_> {
+    /// Evaluates the plan at `t` with the loops started from the stored solution
+    /// [`LoopStarts::choose`] picks; when that fails, once more from each fallback
+    /// ([`LoopStarts::fallbacks`]) until one succeeds.
+    fn eval_from_starts(&mut self, t: f64) -> Result<(), BlockFailure> {
+        let start = self.loop_starts.choose(t);
+        if let Some(s) = start {
+            self.loop_starts.write(s, &mut self.regs);
+        }
+        let mut evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
+        if evaluated.is_ok() {
+            return evaluated;
+        }
+        for fallback in self.loop_starts.fallbacks(start) {
+            self.loop_starts.write(fallback, &mut self.regs);
+            evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
+            if evaluated.is_ok() {
+                break;
+            }
+        }
+        evaluated
+    }
+
     fn load(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
         self.regs[self.m.layout.time as usize] = t;
         for (k, &reg) in self.m.states.iter().enumerate() {
@@ -366,12 +310,9 @@ impl Ode<'_> {
         }
         self.evaluations += 1;
         let started = unimo_solve::fine_timing().then(Instant::now);
-        let mut evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
-        if evaluated.is_err() && self.loop_starts.restore(&mut self.regs) {
-            evaluated = eval_steps(self.m, &mut self.regs, &mut self.ev, &mut self.work);
-        }
+        let evaluated = self.eval_from_starts(t);
         if evaluated.is_ok() {
-            self.loop_starts.note_latest(&self.regs);
+            self.loop_starts.note_latest(t, &self.regs);
         }
         self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
         evaluated.map_err(|f| {
@@ -726,13 +667,10 @@ impl<'a> Simulator<'a> {
 
     fn eval_plan(&mut self) -> Result<(), SimError> {
         let t = self.ode.regs[self.m().layout.time as usize];
-        let m = self.m();
-        let mut evaluated = eval_steps(m, &mut self.ode.regs, &mut self.ode.ev, &mut self.ode.work);
-        if evaluated.is_err() && self.ode.loop_starts.restore(&mut self.ode.regs) {
-            evaluated = eval_steps(m, &mut self.ode.regs, &mut self.ode.ev, &mut self.ode.work);
-        }
+        let evaluated = self.ode.eval_from_starts(t);
         evaluated.map_err(|failure| SimError::Block { time: t, failure })?;
-        self.ode.loop_starts.commit(&self.ode.regs);
+        self.ode.loop_starts.note_latest(t, &self.ode.regs);
+        self.ode.loop_starts.commit(t, &self.ode.regs);
         Ok(())
     }
 
@@ -749,43 +687,4 @@ impl<'a> Simulator<'a> {
 /// Convenience: compile-time model in, results out.
 pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
     Simulator::new(m).run(o)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::LoopStarts;
-
-    /// The fallback starts follow the trajectory: none before the first commit, the
-    /// simulator's own evaluations at once, the solver's only once their step is
-    /// accepted (a rejected step's trial never becomes a start).
-    #[test]
-    fn loop_starts_are_taken_from_accepted_points_only() {
-        let mut starts = LoopStarts {
-            regs: vec![1, 3],
-            values: Vec::new(),
-            latest: Vec::new(),
-        };
-        let mut regs = vec![0.0, 1.0, 0.0, 2.0];
-        assert!(!starts.restore(&mut regs), "no start before a commit");
-        starts.commit(&regs);
-        // A trial evaluation (a rejected step) lands far off...
-        regs[1] = -5e299;
-        regs[3] = f64::NAN;
-        starts.note_latest(&regs);
-        // ...and a failed solve falls back to the committed point.
-        assert!(starts.restore(&mut regs));
-        assert_eq!(regs, [0.0, 1.0, 0.0, 2.0]);
-        // The accepted step's last evaluation becomes the start.
-        regs[1] = 1.5;
-        regs[3] = 2.5;
-        starts.note_latest(&regs);
-        starts.accept_latest();
-        regs[1] = 7.0;
-        assert!(starts.restore(&mut regs));
-        assert_eq!(regs, [0.0, 1.5, 0.0, 2.5]);
-        // Accepting twice without a new evaluation keeps the start.
-        starts.accept_latest();
-        assert!(starts.restore(&mut regs));
-        assert_eq!(regs, [0.0, 1.5, 0.0, 2.5]);
-    }
 }

@@ -156,6 +156,9 @@ pub struct Layout {
     pub time: Reg,
     pub initial: Reg,
     pub terminal: Reg,
+    /// 1 while initialization solves the simplified model of `homotopy` (see
+    /// `unimo_dae::expr::Node::HomotopyStart`), else 0.
+    pub homotopy: Reg,
     /// First temporary register.
     pub temp_base: u32,
 }
@@ -169,7 +172,8 @@ impl Layout {
             time: 2 * n,
             initial: 2 * n + 1,
             terminal: 2 * n + 2,
-            temp_base: 2 * n + 3,
+            homotopy: 2 * n + 3,
+            temp_base: 2 * n + 4,
         }
     }
 
@@ -479,6 +483,9 @@ impl<'a> Compiler<'a> {
             Node::Terminal => {
                 memo.insert(x, self.layout.terminal);
             }
+            Node::HomotopyStart => {
+                memo.insert(x, self.layout.homotopy);
+            }
             Node::External(..) => {
                 // Output registers of external objects are allocated up front by
                 // `model::compile` (in `shared`); this is only a fallback.
@@ -558,6 +565,7 @@ impl<'a> Compiler<'a> {
             | Node::Time
             | Node::Initial
             | Node::Terminal
+            | Node::HomotopyStart
             | Node::External(..) => {
                 unreachable!("leaves are handled above")
             }

@@ -149,10 +149,7 @@ impl Lowerer<'_> {
                 x.map(|v| self.dae.arena.no_event(v))
             }
             "smooth" => self.positional(args, 1, span)?,
-            "homotopy" => match args.named.iter().find(|a| a.name.text == "actual") {
-                Some(a) => self.expr(&a.value)?,
-                None => self.positional(args, 0, span)?,
-            },
+            "homotopy" => self.homotopy(args, span)?,
             "sample" => {
                 let a = self.positional(args, 0, span)?.as_scalar(span)?;
                 let b = self.positional(args, 1, span)?.as_scalar(span)?;
@@ -164,6 +161,30 @@ impl Lowerer<'_> {
             _ => return self.array_builtin(name, args, span),
         };
         Ok(Some(t))
+    }
+
+    /// `homotopy(actual, simplified)`: `simplified` while initialization solves the
+    /// start of the continuation (`Node::HomotopyStart`), else `actual`.
+    fn homotopy(&mut self, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
+        let named = |n: &str| args.named.iter().find(|a| a.name.text == n);
+        let actual = match named("actual") {
+            Some(a) => self.expr(&a.value)?,
+            None => self.positional(args, 0, span)?,
+        };
+        let simplified = match named("simplified") {
+            Some(a) => self.expr(&a.value)?,
+            None if args.positional.len() > 1 => self.positional(args, 1, span)?,
+            None => return Ok(actual),
+        };
+        if simplified.dims != actual.dims {
+            return Ok(actual);
+        }
+        let flag = self.a().homotopy_start();
+        let mut simplified = simplified.data.into_iter();
+        Ok(actual.map(|a| {
+            let s = simplified.next().unwrap_or(a);
+            self.dae.arena.if_(flag, s, a)
+        }))
     }
 
     /// `semiLinear(x, p, n)`: `p*x` for `x >= 0`, else `n*x`.

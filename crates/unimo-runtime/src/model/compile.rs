@@ -474,7 +474,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         objects,
         uses_terminal: dae.uses_terminal,
         state_sets,
-        equations_read_initial: reads_initial(dae),
+        equations_read_initial: equations_hold(dae, Node::Initial),
+        uses_homotopy: equations_hold(dae, Node::HomotopyStart),
         native_rhs: None,
     };
     finish(m)
@@ -542,14 +543,15 @@ fn parameter_order(dae: &Dae) -> Vec<ScalarId> {
     order
 }
 /// Whether an equation of the model reads `initial()`.
-fn reads_initial(dae: &Dae) -> bool {
+/// Whether some equation holds the leaf `leaf` (`initial()`, the homotopy flag).
+fn equations_hold(dae: &Dae, leaf: Node) -> bool {
     let mut seen = std::collections::HashSet::new();
     let mut stack: Vec<ExprId> = dae.equations.iter().flat_map(|e| [e.lhs, e.rhs]).collect();
     while let Some(e) = stack.pop() {
         if !seen.insert(e) {
             continue;
         }
-        if matches!(dae.arena.node(e), Node::Initial) {
+        if dae.arena.node(e) == leaf {
             return true;
         }
         stack.extend(dae.arena.children(e));

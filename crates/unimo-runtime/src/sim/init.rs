@@ -140,6 +140,7 @@ impl Simulator<'_> {
             });
         }
         m.starts.run(&mut self.ode.regs, &mut self.ode.ev);
+        self.ode.loop_starts.note_guesses(&self.ode.regs);
         self.check_fixed_constraints()?;
         // Dynamic state sets start with the best choice at the start values.
         self.select_states(true);
@@ -148,13 +149,23 @@ impl Simulator<'_> {
             self.ode.regs[(layout.pre_base + s) as usize] = self.ode.regs[s as usize];
         }
         self.ode.ev.event_mode = true;
-        if !m.initial_residuals.is_empty() {
-            self.solve_initial_equations()?;
-        } else if !m.initial_assigned.is_empty() || !m.initial_pre_assigned.is_empty() {
-            self.eval_plan()?;
-            let m = self.m();
-            m.initial_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        if m.uses_homotopy {
+            // The start of `homotopy`'s continuation: the simplified model's solution is
+            // where the actual model's solve starts (a loop with several solutions, such
+            // as a limited op-amp in positive feedback, takes the one the library's
+            // simplified model selects). A failure leaves the start values.
+            self.ode.regs[layout.homotopy as usize] = 1.0;
+            let saved = self.ode.regs.clone();
+            if self
+                .solve_initial_system()
+                .and_then(|()| self.eval_plan())
+                .is_err()
+            {
+                self.ode.regs.copy_from_slice(&saved);
+            }
+            self.ode.regs[layout.homotopy as usize] = 0.0;
         }
+        self.solve_initial_system()?;
         // A discrete variable whose `pre` the initial equations set equals it at
         // initialization (its `when` is not active: `y = pre(y)`).
         let m = self.m();
@@ -198,6 +209,19 @@ impl Simulator<'_> {
             .iter()
             .map(|&(s, _)| self.ode.regs[s as usize])
             .collect();
+        Ok(())
+    }
+
+    /// The initial equations (or, without any, the plan and the initial assignments).
+    fn solve_initial_system(&mut self) -> Result<(), SimError> {
+        let m = self.m();
+        if !m.initial_residuals.is_empty() {
+            self.solve_initial_equations()?;
+        } else if !m.initial_assigned.is_empty() || !m.initial_pre_assigned.is_empty() {
+            self.eval_plan()?;
+            let m = self.m();
+            m.initial_tape.run(&mut self.ode.regs, &mut self.ode.ev);
+        }
         Ok(())
     }
 
