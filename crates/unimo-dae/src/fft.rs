@@ -35,7 +35,10 @@ fn radix(n: usize) -> usize {
             return r;
         }
     }
-    (7..=n).step_by(2).find(|&r| n.is_multiple_of(r)).unwrap_or(n)
+    (7..=n)
+        .step_by(2)
+        .find(|&r| n.is_multiple_of(r))
+        .unwrap_or(n)
 }
 
 /// The discrete Fourier transform of `x` (forward, unscaled), by decimation in time:

@@ -299,11 +299,23 @@ fn replace(
 mod tests {
     use crate::random::xorshift1024star;
 
+    // The expected numbers come from this independent Python transcription of
+    // `ModelicaRandom_xorshift1024star_internal` (index `p`, Python's unbounded
+    // integers masked to 64 bits), first 20 numbers, of which a sample is kept:
+    //
+    //     M = (1 << 64) - 1
+    //     def step(s, p):
+    //         p &= 15; s0 = s[p]; p = (p + 1) & 15; s1 = s[p]
+    //         s1 ^= (s1 << 31) & M; s1 ^= s1 >> 11; s0 ^= s0 >> 30
+    //         s[p] = s0 ^ s1
+    //         x = (s[p] * 1181783497276652981) & M
+    //         xs = x - (1 << 64) if x >= (1 << 63) else x
+    //         return p, xs * 5.42101086242752217004e-20 + 0.5
+    //     s = [((0x0123456789ABCDEF * (i + 1)) ^ (i << 40)) & M for i in range(16)]
+    //     p = 13
+    //     for _ in range(20): p, y = step(s, p); print(repr(y))
+
     /// The rotated state of the module comment gives the numbers of MSL's indexed one.
-    /// The expected numbers come from an independent Python transcription of
-    /// `ModelicaRandom_xorshift1024star_internal` (index `p`, arbitrary-precision
-    /// integers masked to 64 bits): state `s[i] = (0x0123456789ABCDEF * (i + 1)) ^
-    /// (i << 40)` (mod 2^64), `p = 13`, first 20 numbers, of which a sample is here.
     #[test]
     fn rotated_xorshift1024star_matches_an_independent_transcription() {
         let expected: [(usize, f64); 6] = [
