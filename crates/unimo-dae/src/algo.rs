@@ -265,14 +265,18 @@ impl Lowerer<'_> {
         }
         let before = self.snapshot();
         let first_exit = self.exits.len();
+        let first_checks = self.checks_len();
         let f1 = self.exec_block(body)?;
         self.guard_exits(first_exit, c);
+        self.guard_checks(first_checks, c);
         let then = self.snapshot();
         self.restore(before);
         let not_c = self.dae.arena.not(c);
         let first_exit = self.exits.len();
+        let first_checks = self.checks_len();
         let f2 = self.exec_if(rest, otherwise, span)?;
         self.guard_exits(first_exit, not_c);
+        self.guard_checks(first_checks, not_c);
         let other = self.snapshot();
         match (f1, f2) {
             (Flow::Next, Flow::Next) => {
@@ -309,6 +313,29 @@ impl Lowerer<'_> {
                 "`return` in one branch and `break` in the other of an `if` whose condition depends on variables",
                 span,
             )),
+        }
+    }
+
+    /// How many `when` actions and assertions have been collected so far.
+    fn checks_len(&self) -> (usize, usize) {
+        let actions = self.when_actions.as_ref().map_or(0, Vec::len);
+        (actions, self.dae.assertions.len())
+    }
+
+    /// The assertions collected since `first` (of [`Self::checks_len`]) are inside a
+    /// branch entered when `c` holds: each checks `not c or condition`, so that an
+    /// `assert` in a branch not taken holds.
+    fn guard_checks(&mut self, first: (usize, usize), c: ExprId) {
+        let not_c = self.dae.arena.not(c);
+        if let Some(actions) = self.when_actions.as_mut() {
+            for (action, _) in actions.iter_mut().skip(first.0) {
+                if let WhenAction::Assert { condition, .. } = action {
+                    *condition = self.dae.arena.or(not_c, *condition);
+                }
+            }
+        }
+        for a in self.dae.assertions.iter_mut().skip(first.1) {
+            a.condition = self.dae.arena.or(not_c, a.condition);
         }
     }
 
@@ -553,6 +580,18 @@ impl Lowerer<'_> {
             return Err(unsupported("this statement", e.span));
         };
         let action = self.action_call(&func.to_dotted(), args, e.span)?;
+        if action.is_none() && self.calls_effect(func) {
+            // Its effect is recorded while inlining; a function without outputs then
+            // has nothing to return, which is no error here.
+            match self.call_outputs(e) {
+                Err(err)
+                    if err.code == DaeCode::UnassignedLocal
+                        && err.message.contains("no output") => {}
+                r => {
+                    r?;
+                }
+            }
+        }
         if let Some(a) = action {
             match &mut self.when_actions {
                 Some(actions) => actions.push((a, e.span)),
@@ -580,6 +619,16 @@ impl Lowerer<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Whether `func` is an external function unimo provides whose call statement has
+    /// an effect (other calls whose outputs are not used are dropped).
+    fn calls_effect(&self, func: &Name) -> bool {
+        let name = func.to_dotted();
+        self.functions
+            .get(name.trim_start_matches('.'))
+            .and_then(|f| f.external_call.as_ref())
+            .is_some_and(|ext| crate::external::has_effect(&ext.function))
     }
 
     /// `reinit`, `assert` or `terminate` as an action; `None` for other calls.

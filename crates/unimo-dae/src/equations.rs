@@ -53,6 +53,7 @@ pub fn lower_with(model: &FlatModel, fold: &FoldOptions) -> (Dae, Vec<Diagnostic
         let moved: Vec<_> = l.dae.equations.drain(before..).collect();
         l.dae.initial_equations.extend(moved);
     }
+    l.expand_impure_random();
     l.experiment();
     l.finish_kinds();
     let diags = l.errors.iter().map(|e| e.to_diagnostic()).collect();

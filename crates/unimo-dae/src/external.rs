@@ -1,6 +1,7 @@
 //! External functions and objects that unimo implements itself: the Modelica Standard
 //! Library's tables (`ModelicaStandardTables`, written in C by the MSL and in Rust by
-//! us), its random number generators and string hash (`random.rs`). Lowering turns the MSL's `external "C"` calls into [`Node::Ext`] nodes and the
+//! us), its random number generators and string hash (`random.rs`), the impure
+//! generator (`impure.rs`) and the real FFT (`fft.rs`, `external_fft.rs`). Lowering turns the MSL's `external "C"` calls into [`Node::Ext`] nodes and the
 //! table constructors into [`ExternalObjectSite`]s; the runtime builds the objects
 //! after the parameters and evaluates the nodes (`unimo_runtime::tables`). An external
 //! function unimo does not provide is a coded error naming it.
@@ -41,9 +42,30 @@ pub enum ExtFn {
     /// Output `k` of one xorshift128+ step of the state `(s1, .., s4)`: 0 the random
     /// number, 1 to 4 the new state.
     Xorshift128Plus(u8),
+    /// Output `k` of one xorshift1024* step on the two words it reads, as Integer
+    /// halves `(s0 lo, s0 hi, s1 lo, s1 hi)`: 0 the random number, 1 and 2 the halves
+    /// of the new word (`impure.rs` keeps the rest of the state).
+    Xorshift1024Star(u8),
+    /// A call of `impureRandom` before `impure.rs` turns it into a step of the hidden
+    /// state: operand 0 is the call's number. Never evaluated.
+    ImpureRandom,
+    /// Writes three input values of a real FFT, `(slot, a, b, c)`: `slot` is the site
+    /// times [`crate::fft::SITE_STRIDE`] plus the position; the value is the site's
+    /// base (`external_fft.rs`).
+    FftPush,
+    /// `(x, y)`: the value of `x`, once both are computed (ties the pushes together).
+    FftJoin,
+    /// Output of a real FFT, `(site, k, n)`: 0 amplitude `k`, 1 phase `k`, 2 `info`,
+    /// of the `n` values pushed to the site.
+    RealFft(u8),
 }
 
 const XORSHIFT64: [&str; 3] = ["xorshift64star", "xorshift64star_s1", "xorshift64star_s2"];
+const XORSHIFT1024: [&str; 3] = [
+    "xorshift1024star",
+    "xorshift1024star_lo",
+    "xorshift1024star_hi",
+];
 const XORSHIFT128: [&str; 5] = [
     "xorshift128plus",
     "xorshift128plus_s1",
@@ -66,12 +88,22 @@ impl ExtFn {
             ExtFn::TimeTableNextEvent => "timeTableNextEvent",
             ExtFn::Xorshift64Star(k) => XORSHIFT64[usize::from(k).min(2)],
             ExtFn::Xorshift128Plus(k) => XORSHIFT128[usize::from(k).min(4)],
+            ExtFn::Xorshift1024Star(k) => XORSHIFT1024[usize::from(k).min(2)],
+            ExtFn::ImpureRandom => "impureRandom",
+            ExtFn::FftPush => "fftPush",
+            ExtFn::FftJoin => "fftJoin",
+            ExtFn::RealFft(0) => "realFFTamplitude",
+            ExtFn::RealFft(1) => "realFFTphase",
+            ExtFn::RealFft(_) => "realFFTinfo",
         }
     }
 
     /// Whether the value is a function of the operands alone (no object, no state).
     pub fn is_pure(self) -> bool {
-        matches!(self, ExtFn::Xorshift64Star(_) | ExtFn::Xorshift128Plus(_))
+        matches!(
+            self,
+            ExtFn::Xorshift64Star(_) | ExtFn::Xorshift128Plus(_) | ExtFn::Xorshift1024Star(_)
+        )
     }
 
     /// The value of a pure function at `ops`.
@@ -93,6 +125,7 @@ impl ExtFn {
                     s[usize::from(k - 1).min(3)]
                 }
             }
+            ExtFn::Xorshift1024Star(k) => crate::random::xorshift1024star(ops, k),
             _ => f64::NAN,
         }
     }
@@ -113,7 +146,10 @@ impl ExtFn {
     pub fn arity(self) -> usize {
         match self {
             ExtFn::Xorshift64Star(_) => 1,
-            ExtFn::Xorshift128Plus(_) => 3,
+            ExtFn::Xorshift128Plus(_) | ExtFn::Xorshift1024Star(_) => 3,
+            ExtFn::ImpureRandom => 0,
+            ExtFn::FftPush => 3,
+            ExtFn::FftJoin => 1,
             ExtFn::Table1DMin | ExtFn::Table1DMax | ExtFn::TimeTableMin | ExtFn::TimeTableMax => 0,
             ExtFn::TimeTableNextEvent => 1,
             _ => 2,
@@ -179,6 +215,12 @@ enum Foreign {
     HashString,
     /// A seed from the clock and the process id (different in every run).
     AutomaticGlobalSeed,
+    /// Sets the state of the impure xorshift1024* generator (`impure.rs`).
+    SetImpureState,
+    /// One number of the impure generator (`impure.rs`).
+    ImpureRandom,
+    /// `ModelicaFFT_kiss_fftr` (`external_fft.rs`).
+    RealFft,
 }
 
 fn foreign(name: &str) -> Option<Foreign> {
@@ -213,6 +255,9 @@ fn foreign(name: &str) -> Option<Foreign> {
         "ModelicaRandom_xorshift128plus" => Random(ExtFn::Xorshift128Plus, 4),
         "ModelicaStrings_hashString" => HashString,
         "ModelicaRandom_automaticGlobalSeed" => AutomaticGlobalSeed,
+        "ModelicaRandom_setInternalState_xorshift1024star" => SetImpureState,
+        "ModelicaRandom_impureRandom_xorshift1024star" => ImpureRandom,
+        "ModelicaFFT_kiss_fftr" => RealFft,
         _ => return None,
     })
 }
@@ -268,6 +313,12 @@ impl Lowerer<'_> {
                 let h = crate::random::hash_string(&text);
                 self.dae.arena.constant(f64::from(h))
             }
+            Foreign::SetImpureState => {
+                let state = self.foreign_arg(ext, 0, span)?;
+                return self.impure_seed(f, state.data, span);
+            }
+            Foreign::ImpureRandom => self.impure_call(span),
+            Foreign::RealFft => return self.real_fft(f, ext, span),
             Foreign::AutomaticGlobalSeed => {
                 let seed = automatic_global_seed();
                 self.dae.arena.constant(f64::from(seed))
@@ -342,7 +393,7 @@ impl Lowerer<'_> {
         Ok(())
     }
 
-    fn ext_node(&mut self, func: ExtFn, args: &[ExprId]) -> ExprId {
+    pub(crate) fn ext_node(&mut self, func: ExtFn, args: &[ExprId]) -> ExprId {
         let zero = self.dae.arena.zero();
         let get = |k: usize| args.get(k).copied().unwrap_or(zero);
         let ops = [get(0), get(1), get(2), get(3)];
@@ -371,7 +422,7 @@ impl Lowerer<'_> {
     }
 
     /// Argument `k` of the foreign call, lowered.
-    fn foreign_arg(
+    pub(crate) fn foreign_arg(
         &mut self,
         ext: &ExternalCall,
         k: usize,
@@ -437,6 +488,12 @@ impl Lowerer<'_> {
         });
         Ok(self.dae.arena.constant(index as f64))
     }
+}
+
+/// Whether a call statement of the external C function `name` (no outputs used) must
+/// be lowered for its effect: the impure generator's seeding.
+pub(crate) fn has_effect(name: &str) -> bool {
+    matches!(foreign(name), Some(Foreign::SetImpureState))
 }
 
 /// `ModelicaRandom_automaticGlobalSeed`: 1 + the time of day in milliseconds (UTC) +

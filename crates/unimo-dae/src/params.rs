@@ -55,6 +55,9 @@ pub fn parameters_only(dae: &Dae, e: ExprId) -> bool {
             | Node::HomotopyStart
             | Node::Sample(..)
             | Node::External(..) => return false,
+            // A table's value or an FFT's output exists only at run time (evaluated
+            // here it would be NaN, and a comparison of NaN a definite false).
+            Node::Ext(f, _) if !f.is_pure() => return false,
             _ => stack.extend(dae.arena.children(x)),
         }
     }

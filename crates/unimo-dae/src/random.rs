@@ -1,6 +1,6 @@
 //! The MSL's random number generators (`Modelica.Math.Random`, external C functions of
 //! `ModelicaRandom.c`) and its string hash (`ModelicaStrings_hashString`), written in
-//! Rust: xorshift64* and xorshift128+ on state vectors of 32-bit Integers (two per
+//! Rust: xorshift64*, xorshift128+ and xorshift1024* on state vectors of 32-bit Integers (two per
 //! 64-bit word, the low half first), and the AP hash of a string.
 
 /// `2^-64`.
@@ -45,6 +45,31 @@ pub fn xorshift128plus(state: [f64; 4]) -> (f64, [f64; 4]) {
     let [a, b] = halves(s0);
     let [c, d] = halves(next);
     (uniform(next), [a, b, c, d])
+}
+
+/// One step of xorshift1024* (`ModelicaRandom_xorshift1024star_internal`) from the
+/// two words it reads, `s[p]` and `s[p + 1]`: the word it writes at `s[p + 1]` (the
+/// new position `p`) and the random number.
+pub fn xorshift1024star_word(s0: u64, s1: u64) -> (u64, f64) {
+    let mut s1 = s1;
+    let mut s0 = s0;
+    s1 ^= s1 << 31;
+    s1 ^= s1 >> 11;
+    s0 ^= s0 >> 30;
+    let next = s0 ^ s1;
+    (next, uniform(next.wrapping_mul(1_181_783_497_276_652_981)))
+}
+
+/// Output `k` of one xorshift1024* step on the words `s[p]` and `s[p + 1]` given as
+/// Integer halves `[s0 lo, s0 hi, s1 lo, s1 hi]`: 0 the random number, 1 and 2 the
+/// halves of the new word.
+pub fn xorshift1024star(ops: [f64; 4], k: u8) -> f64 {
+    let (next, r) = xorshift1024star_word(word(ops[0], ops[1]), word(ops[2], ops[3]));
+    match k {
+        0 => r,
+        1 => halves(next)[0],
+        _ => halves(next)[1],
+    }
 }
 
 /// The MSL's hash of a string (the AP hash over its bytes, as a signed 32-bit Integer).

@@ -3,6 +3,7 @@ pub mod collision;
 pub mod cost;
 pub mod dump;
 pub mod eval;
+pub mod fft;
 pub mod model;
 pub mod native;
 pub mod sim;

@@ -230,6 +230,7 @@ impl CompiledModel {
             samples: vec![0.0; self.samples.len()],
             collision: self.collision.as_ref().map(|_| Box::default()),
             objects: Vec::new(),
+            fft: Default::default(),
         }
     }
 }

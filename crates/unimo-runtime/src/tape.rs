@@ -208,6 +208,8 @@ pub struct EventState {
     pub collision: Option<Box<crate::collision::CollisionState>>,
     /// External objects (tables), built after the parameters; handle `k` is object `k`.
     pub objects: Vec<crate::tables::TableObject>,
+    /// The real FFT sites' scratch areas and transforms.
+    pub fft: crate::fft::FftScratch,
 }
 
 /// Relative size below which the operands of a relation count as equal at an event
@@ -300,6 +302,15 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
         Op::Sample(d, k) => r[d as usize] = ev.samples[k as usize],
         Op::Ext(f, d, ops) if f.is_pure() => {
             r[d as usize] = f.apply_pure(ops.map(|k| r[k as usize]));
+        }
+        Op::Ext(ExtFn::FftPush, d, [slot, a, b, c]) => {
+            let values = [r[a as usize], r[b as usize], r[c as usize]];
+            r[d as usize] = ev.fft.push(r[slot as usize], values);
+        }
+        Op::Ext(ExtFn::FftJoin, d, [a, ..]) => r[d as usize] = r[a as usize],
+        Op::Ext(ExtFn::RealFft(kind), d, [base, k, n, _]) => {
+            let (base, k, n) = (r[base as usize], r[k as usize], r[n as usize]);
+            r[d as usize] = ev.fft.output(base, kind, k, n);
         }
         Op::Ext(f, d, [o, a, b, _]) => {
             let object = r[o as usize];

@@ -62,6 +62,10 @@ pub struct Lowerer<'m> {
     /// Instance paths that have variables inside (`a.port[2]` of `a.port[2].T`),
     /// built when a reference through an array of components first needs it.
     pub(crate) instances: Option<rustc_hash::FxHashSet<String>>,
+    /// The impure random number generator's seeding and calls (`impure.rs`).
+    pub(crate) impure: crate::impure::ImpureCalls,
+    /// Real FFT sites lowered so far (`external_fft.rs`).
+    pub(crate) fft_sites: usize,
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
@@ -97,6 +101,8 @@ impl<'m> Lowerer<'m> {
             errors: Vec::new(),
             exits: Vec::new(),
             instances: None,
+            impure: Default::default(),
+            fft_sites: 0,
         }
     }
 

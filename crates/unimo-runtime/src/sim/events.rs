@@ -87,11 +87,15 @@ impl Simulator<'_> {
         let mut settled = false;
         let mut unsettled: Vec<u32> = Vec::new();
         let mut pending: Vec<(u32, f64)> = Vec::new();
+        // Where a target's value sits in `pending` (checked against the entry: stale
+        // positions from an earlier pass point elsewhere), so that a branch assigning
+        // thousands of variables (an FFT buffer) is not quadratic.
+        let mut slots: Vec<u32> = vec![u32::MAX; self.ode.regs.len()];
         for _ in 0..MAX_EVENT_ITERATIONS {
             self.eval_plan()?;
             m.when_tape.run(&mut self.ode.regs, &mut self.ode.ev);
             unsettled.clear();
-            let mut any = self.when_pass(&mut fired, &mut pending);
+            let mut any = self.when_pass(&mut fired, &mut pending, &mut slots);
             for (target, v) in pending.drain(..) {
                 if self.ode.regs[target as usize] != v {
                     self.ode.regs[target as usize] = v;
@@ -114,7 +118,12 @@ impl Simulator<'_> {
     /// One pass over the `when` clauses: marks the branches that fire now in `fired`
     /// and collects the assignments of every fired branch in `pending`. Returns
     /// whether a branch fired in this pass.
-    fn when_pass(&mut self, fired: &mut [bool], pending: &mut Vec<(u32, f64)>) -> bool {
+    fn when_pass(
+        &mut self,
+        fired: &mut [bool],
+        pending: &mut Vec<(u32, f64)>,
+        slots: &mut [u32],
+    ) -> bool {
         let m = self.m();
         let mut any = false;
         let mut b = 0;
@@ -138,9 +147,13 @@ impl Simulator<'_> {
                     for a in actions {
                         if let Action::Assign { target, value } = a {
                             let v = self.ode.regs[*value as usize];
-                            match pending.iter_mut().find(|(t, _)| t == target) {
-                                Some(p) => p.1 = v,
-                                None => pending.push((*target, v)),
+                            let slot = &mut slots[*target as usize];
+                            match pending.get_mut(*slot as usize) {
+                                Some(p) if p.0 == *target => p.1 = v,
+                                _ => {
+                                    *slot = pending.len() as u32;
+                                    pending.push((*target, v));
+                                }
                             }
                         }
                     }
