@@ -175,9 +175,22 @@ impl Instantiator<'_, '_> {
                 _ => None,
             }
         };
-        // The conditions are evaluated as instantiation does (parameters included), so
-        // that an `elseif` a resolved `isRoot` leaves is decided as it would be in the
-        // printed model (which reads back to the same text).
+        self.resolve_operators(model, &types, &values);
+        drop(types);
+        model.record_instances = records;
+        called
+    }
+
+    /// `model`'s equations with `isRoot`/`rooted` replaced by `values` and the `if`s
+    /// they decide resolved; the conditions are evaluated as instantiation does
+    /// (parameters included), so that an `elseif` a resolved `isRoot` leaves is decided
+    /// as it would be in the printed model (which reads back to the same text).
+    fn resolve_operators(
+        &mut self,
+        model: &mut FlatModel,
+        types: &Instances,
+        values: &dyn Fn(&str, &str) -> Option<Value>,
+    ) {
         std::mem::swap(&mut self.model, model);
         for initial in [false, true] {
             let eqs = if initial {
@@ -186,7 +199,7 @@ impl Instantiator<'_, '_> {
                 &mut self.model.equations
             };
             let old = std::mem::take(eqs);
-            let new = resolve_equations(old, &types, &values, self);
+            let new = resolve_equations(old, types, values, self);
             if initial {
                 self.model.initial_equations = new;
             } else {
@@ -194,9 +207,6 @@ impl Instantiator<'_, '_> {
             }
         }
         std::mem::swap(&mut self.model, model);
-        drop(types);
-        model.record_instances = records;
-        called
     }
 
     /// The optional edge each connection equation belongs to: an equation between
