@@ -379,10 +379,16 @@ impl Lowerer<'_> {
                 span,
             ));
         };
-        for (name, value) in [
+        self.assign_outputs([
             (state_out, Tensor::vector(next)),
             (result, Tensor::scalar(number)),
-        ] {
+        ]);
+        Ok(())
+    }
+
+    /// The outputs of an external call, as the caller's locals (name, value).
+    pub(crate) fn assign_outputs(&mut self, outputs: impl IntoIterator<Item = (String, Tensor)>) {
+        for (name, value) in outputs {
             self.locals.push(Local {
                 name,
                 value: Some(value),
@@ -390,7 +396,6 @@ impl Lowerer<'_> {
                 text: None,
             });
         }
-        Ok(())
     }
 
     pub(crate) fn ext_node(&mut self, func: ExtFn, args: &[ExprId]) -> ExprId {

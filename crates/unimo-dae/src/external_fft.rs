@@ -9,7 +9,7 @@
 use crate::error::{DaeCode, DaeError};
 use crate::expr::ExprId;
 use crate::external::ExtFn;
-use crate::lower::{Local, Lowerer};
+use crate::lower::Lowerer;
 use crate::tensor::Tensor;
 use unimo_flat::functions::{ExternalCall, FlatFunction};
 use unimo_source::Span;
@@ -54,18 +54,11 @@ impl Lowerer<'_> {
         let amps: Vec<ExprId> = (0..nf).map(|k| output(self, 0, k)).collect();
         let phis: Vec<ExprId> = (0..nf).map(|k| output(self, 1, k)).collect();
         let info_value = output(self, 2, 0);
-        for (name, value) in [
+        self.assign_outputs([
             (amplitudes, Tensor::vector(amps)),
             (phases, Tensor::vector(phis)),
             (info, Tensor::scalar(info_value)),
-        ] {
-            self.locals.push(Local {
-                name,
-                value: Some(value),
-                record: None,
-                text: None,
-            });
-        }
+        ]);
         Ok(())
     }
 

@@ -293,7 +293,7 @@ impl Instantiator<'_, '_> {
 }
 
 /// A function's full name, as flattened calls spell it.
-fn dotted_name(name: &str, span: Span) -> Name {
+pub(crate) fn dotted_name(name: &str, span: Span) -> Name {
     Name {
         global: true,
         parts: crate::flat::split_name(name)

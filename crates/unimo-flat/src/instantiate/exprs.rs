@@ -374,14 +374,7 @@ impl Instantiator<'_, '_> {
         };
         Name {
             global: builtin.is_none(),
-            parts: crate::flat::split_name(&full)
-                .into_iter()
-                .map(|p| Ident {
-                    text: p.into(),
-                    span,
-                })
-                .collect(),
-            span,
+            ..crate::overconstrained::dotted_name(&full, span)
         }
     }
 
