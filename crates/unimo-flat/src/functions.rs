@@ -424,7 +424,7 @@ impl Instantiator<'_, '_> {
     }
 
     /// `class` and its bases, bases first.
-    fn record_classes(&mut self, class: ClassId, out: &mut Vec<ClassId>, depth: usize) {
+    pub(crate) fn record_classes(&mut self, class: ClassId, out: &mut Vec<ClassId>, depth: usize) {
         if depth > 32 {
             return;
         }

@@ -183,7 +183,7 @@ impl Instantiator<'_, '_> {
     /// The names of the inputs of function `c`, in declaration order (bases first).
     pub(super) fn function_inputs(&mut self, c: ClassId) -> Vec<String> {
         let mut classes = Vec::new();
-        self.function_classes(c, &mut classes, 0);
+        self.record_classes(c, &mut classes, 0);
         let mut out: Vec<String> = Vec::new();
         for k in classes {
             let def = self.tree.get(k).def.clone();
@@ -206,15 +206,5 @@ impl Instantiator<'_, '_> {
             }
         }
         out
-    }
-
-    fn function_classes(&mut self, c: ClassId, out: &mut Vec<ClassId>, depth: usize) {
-        if depth > MAX_CHAIN * 2 {
-            return;
-        }
-        for b in self.tree.bases(c) {
-            self.function_classes(b, out, depth + 1);
-        }
-        out.push(c);
     }
 }
