@@ -243,6 +243,37 @@ fn structural_parameters_take_effect_and_are_reported() {
     insta::assert_snapshot!("list_params", String::from_utf8_lossy(&o.stdout));
 }
 
+/// Array parameters are set whole (`-p g={3, 4}`); a wrong shape or element is E0004.
+#[test]
+fn array_parameters_are_overridden_whole() {
+    let csv = temp_file("arrays.csv");
+    let model = "tests/interop/ArrayParameters.mo";
+    simulate_to(model, &csv, &["--vars", "x"]);
+    let x = |csv: &Path| read_csv(csv)[1].1.last().copied().unwrap();
+    // x(1) = g[1] + g[2] + m[1, 2]: 3 with the declared values.
+    assert!((x(&csv) - 3.0).abs() < 1e-9, "{}", x(&csv));
+    simulate_to(
+        model,
+        &csv,
+        &["--vars", "x", "-p", "g={3, 4}", "-p", "m={{1, 5}, {0, 1}}"],
+    );
+    assert!((x(&csv) - 12.0).abs() < 1e-9, "{}", x(&csv));
+    let o = unimo(&[
+        "simulate",
+        model,
+        "-p",
+        "g={1}",
+        "-p",
+        "g=2",
+        "-p",
+        "m={{1, 2}, {3, 4.5}}",
+        "-p",
+        "g[1]=2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "usage errors exit with 2");
+    insta::assert_snapshot!("array_override_errors", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn bad_overrides_are_coded_errors() {
     let o = unimo(&[

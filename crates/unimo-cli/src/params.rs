@@ -161,6 +161,63 @@ fn typed_value(var: &FlatVar, text: &str, span: Span) -> Result<Expr, String> {
     }
 }
 
+/// The value of a parameter with these dimensions (none: a scalar): an array is written
+/// whole, as nested braces (`{1, 2, 3}`, `{{1, 0}, {0, 1}}`), each element a value of
+/// the element type.
+fn array_value(var: &FlatVar, dims: &[usize], text: &str, span: Span) -> Result<Expr, String> {
+    let Some((&n, inner)) = dims.split_first() else {
+        return typed_value(var, text, span);
+    };
+    let shape = || {
+        let d: Vec<String> = var.dims.iter().map(usize::to_string).collect();
+        format!(
+            "`{}` is an array of size [{}]: write all its elements in braces, e.g. `{}={{...}}`",
+            var.name,
+            d.join(", "),
+            var.name
+        )
+    };
+    let body = text
+        .trim()
+        .strip_prefix('{')
+        .and_then(|t| t.strip_suffix('}'))
+        .ok_or_else(shape)?;
+    let items = split_top_level(body);
+    if items.len() != n || items.iter().any(|i| i.trim().is_empty()) {
+        return Err(format!(
+            "{}: `{text}` has {} here, not {n}",
+            shape(),
+            match items.len() {
+                1 => "1 element".to_owned(),
+                k => format!("{k} elements"),
+            }
+        ));
+    }
+    let elements = items
+        .iter()
+        .map(|item| array_value(var, inner, item.trim(), span))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(literal(ExprKind::Array(elements), span))
+}
+
+/// `a, {b, c}, d` split at the commas outside braces.
+fn split_top_level(text: &str) -> Vec<&str> {
+    let (mut depth, mut start, mut out) = (0i32, 0, Vec::new());
+    for (k, c) in text.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                out.push(&text[start..k]);
+                start = k + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(&text[start..]);
+    out
+}
+
 /// Checks one override against the flat model.
 fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
     let Some(var) = flat.vars.iter().find(|v| v.name == w.name) else {
@@ -173,7 +230,10 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
             d = d.with_help(format!("did you mean `{n}`?"));
         }
         if w.name.contains('[') {
-            d = d.with_help("elements of arrays cannot be set one by one");
+            let base = w.name.split('[').next().unwrap_or_default();
+            d = d.with_help(format!(
+                "elements of arrays cannot be set one by one: set the whole array, `{base}={{...}}`"
+            ));
         }
         return Err(d);
     };
@@ -207,13 +267,7 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
             "remove `final` in the model to make it a setting",
         );
     }
-    if !var.dims.is_empty() {
-        return refuse(
-            format!("`{}` is an array parameter", w.name),
-            "only scalar parameters can be overridden from the command line",
-        );
-    }
-    let value = typed_value(var, &w.value, w.value_span).map_err(|msg| {
+    let value = array_value(var, &var.dims, &w.value, w.value_span).map_err(|msg| {
         Diagnostic::error("E0004", msg)
             .at(w.value_span, "wrong value")
             .with_label(var.origin, "declared here")

@@ -31,6 +31,9 @@ pub struct Stepper<'a> {
     /// The event indicators at the end of the last event (or of initialization): a
     /// function that is zero now crossed from that side.
     reference: Vec<f64>,
+    /// Which indicators of held relations sat at zero (within the Newton noise) at the
+    /// end of the last event: one still at zero has not moved, so it did not cross.
+    zero_at_event: Vec<bool>,
     /// Time and states at the end of the last event: an event update at that same
     /// point (a sample instant at the start time) finds no crossing of a function
     /// left at its zero there (`time >= startTime`).
@@ -51,6 +54,7 @@ impl<'a> Stepper<'a> {
             solver: None,
             steps_taken: 0,
             reference: vec![0.0; m.roots.len()],
+            zero_at_event: vec![false; m.roots.len()],
             last_event: (f64::NAN, Vec::new()),
             dirty: true,
         }
@@ -128,9 +132,36 @@ impl<'a> Stepper<'a> {
         Ok(())
     }
 
-    /// The event indicators (zero-crossing functions) at the current point, as our own
-    /// solvers see them (differences within the Newton noise are zero).
+    /// The event indicators (zero-crossing functions) at the current point, as an
+    /// importer sees them: a held relation whose function sits at its zero (within the
+    /// Newton noise) reads a tiny value on the side its held value says, so that
+    /// leaving the zero on the other side is a sign change the importer locates (a
+    /// clutch stuck at `w_rel = 0` that starts to slip backwards).
     pub fn event_indicators(&mut self, out: &mut [f64]) -> Result<(), SimError> {
+        self.raw_indicators(out)?;
+        let m = self.model();
+        for (k, gk) in out.iter_mut().enumerate().take(m.root_ops.len()) {
+            if *gk == 0.0 && m.relation_held[k] {
+                *gk = f64::MIN_POSITIVE * self.held_side(k);
+            }
+        }
+        Ok(())
+    }
+
+    /// The side of its zero a held relation's function is on by the relation's value:
+    /// 1 above, -1 below, 0 for `==` and `<>`.
+    fn held_side(&self, k: usize) -> f64 {
+        let held = self.sim.ode.ev.relations[k] != 0.0;
+        match (self.model().root_ops[k], held) {
+            (RelOp::Lt | RelOp::Le, true) | (RelOp::Gt | RelOp::Ge, false) => -1.0,
+            (RelOp::Lt | RelOp::Le, false) | (RelOp::Gt | RelOp::Ge, true) => 1.0,
+            (RelOp::Eq | RelOp::Ne, _) => 0.0,
+        }
+    }
+
+    /// The event indicators at the current point as our own solvers see them
+    /// (differences within the Newton noise are zero).
+    fn raw_indicators(&mut self, out: &mut [f64]) -> Result<(), SimError> {
         let t = self.time();
         let x = self.sim.states();
         self.dirty = true;
@@ -216,29 +247,14 @@ impl<'a> Stepper<'a> {
             return Err(e);
         }
         let mut g = vec![0.0; m.roots.len()];
-        self.event_indicators(&mut g)?;
+        self.raw_indicators(&mut g)?;
         self.last_event = (self.time(), self.states());
         // A relation left at its zero is on the side its held value says.
+        self.zero_at_event = vec![false; g.len()];
         for (k, gk) in g.iter_mut().enumerate().take(m.root_ops.len()) {
             if *gk == 0.0 && m.relation_held[k] {
-                let held = self.sim.ode.ev.relations[k] != 0.0;
-                *gk = match m.root_ops[k] {
-                    RelOp::Lt | RelOp::Le => {
-                        if held {
-                            -1.0
-                        } else {
-                            1.0
-                        }
-                    }
-                    RelOp::Gt | RelOp::Ge => {
-                        if held {
-                            1.0
-                        } else {
-                            -1.0
-                        }
-                    }
-                    RelOp::Eq | RelOp::Ne => 0.0,
-                };
+                self.zero_at_event[k] = true;
+                *gk = self.held_side(k);
             }
         }
         self.reference = g;
@@ -249,7 +265,7 @@ impl<'a> Stepper<'a> {
     fn crossed(&mut self) -> Result<Crossed, SimError> {
         let m = self.model();
         let mut g = vec![0.0; m.roots.len()];
-        self.event_indicators(&mut g)?;
+        self.raw_indicators(&mut g)?;
         let mut found = crossings::disagreements(m, &self.sim.ode.regs, &self.sim.ode.ev);
         let n_relations = m.root_ops.len();
         let stationary = self.last_event.0 == self.time() && self.last_event.1 == self.states();
@@ -266,10 +282,13 @@ impl<'a> Stepper<'a> {
                 Direction::Rising
             };
             // A held relation at its zero crossed only if that changes its value.
+            // One that sat at its zero at the last event and is there still has not moved
+            // (`u < uMin` with `u = 0` and `uMin = 1e-16` reads zero throughout).
             let flips = k >= n_relations
                 || !m.relation_held[k]
-                || after_crossing(m.root_ops[k], dir)
-                    .is_some_and(|v| v != self.sim.ode.ev.relations[k]);
+                || (!self.zero_at_event[k]
+                    && after_crossing(m.root_ops[k], dir)
+                        .is_some_and(|v| v != self.sim.ode.ev.relations[k]));
             if (at_zero && flips) || (unheld && changed_sign) {
                 found.push((k, dir));
             }
