@@ -319,6 +319,15 @@ fn msl_example_fmus_agree_with_unimo_simulate() {
     agree(&FIRST, ("2", "cs"), &[], &[], 6e-4);
     agree(&OSCILLATOR, ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 1e-5);
     agree(&OSCILLATOR, ("3", "cs"), &[], &[], 5e-4);
+    // A parameter of a component (`spring1.c`, the flat model's `'spring1.c'`) set
+    // through the FMU: E2004 while the dotted name was split inside its quotes.
+    agree(
+        &OSCILLATOR,
+        ("2", "me"),
+        &["--tolerance", "1e-10", "-p", "spring1.c=1"],
+        &["rtol=1e-9", "spring1.c=1"],
+        1e-5,
+    );
 }
 
 #[test]

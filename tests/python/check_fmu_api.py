@@ -104,8 +104,10 @@ def check_fmi2(path):
     fmu.setupExperiment(startTime=0.0)
     expect_error("fmi2ExitInitializationMode before entering it", fmu.exitInitializationMode, "E4704")
     fmu.enterInitializationMode()
-    expect_error("fmi2SetReal of a state", lambda: fmu.setReal([vrs["h"]], [1.0]), "E4705")
+    # h's start is the parameter h0 (set h0 instead); v's is a literal with fixed = true.
+    expect_error("fmi2SetReal of a state whose start is computed", lambda: fmu.setReal([vrs["h"]], [1.0]), "E4705")
     fmu.exitInitializationMode()
+    expect_error("fmi2SetReal of a state's start after initialization", lambda: fmu.setReal([vrs["v"]], [1.0]), "E4705")
     expect_error("fmi2SetReal of a parameter after initialization", lambda: fmu.setReal([vrs["e"]], [0.1]), "E4705")
     expect_error("fmi2DoStep from the wrong time", lambda: fmu.doStep(5.0, 0.1), "E4705")
     buffer = (ctypes.c_double * 2)()
@@ -156,14 +158,20 @@ def check_fmi3(path):
     fmu.instantiate(logMessage=fmpy.fmi3.fmi3LogMessageCallback(log3))
     expect_error("fmi3UpdateDiscreteStates before initialization", fmu.updateDiscreteStates, "E4704")
     expect_error("fmi3GetFloat64 of an unknown value reference", lambda: fmu.getFloat64([10**6]), "E4705")
+    # A state's start value (initial = "exact") set before the end of initialization.
+    [v] = [x for x in md.modelVariables if x.name == "v"]
+    assert v.initial == "exact" and float(v.start) == 0.0, (v.initial, v.start)
     fmu.enterInitializationMode(startTime=0.0)
+    fmu.setFloat64([vrs["v"]], [5.0])
+    assert fmu.getFloat64([vrs["v"]]) == [5.0]
     fmu.exitInitializationMode()
     fmu.updateDiscreteStates()
     fmu.enterContinuousTimeMode()
     states = (ctypes.c_double * 5)()
     expect_error("fmi3GetContinuousStates with a wrong size", lambda: fmu.getContinuousStates(states, 5), "E4705")
     fmu.getContinuousStates(states, 2)
-    assert list(states[:2]) == [10.0, 0.0], list(states)
+    assert list(states[:2]) == [10.0, 5.0], list(states)
+    print("ok: a state's start value set in initialization mode is its initial value")
     expect_error("fmi3GetClock (not provided)", lambda: raw(fmu, "fmi3GetClock", None, ctypes.c_size_t(0), None), "E4702")
     fmu.terminate()
     fmu.freeInstance()

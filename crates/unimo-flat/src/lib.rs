@@ -185,6 +185,24 @@ fn parameters_first(model: &mut FlatModel) {
     }
 }
 
+/// The parts of a dotted name; a quoted identifier is one part, dots and all
+/// (`'body.m'.start` is `'body.m'` and `start`, as in a flat model's text).
+fn dotted_parts(name: &str) -> Vec<&str> {
+    let (mut parts, mut start, mut quoted) = (Vec::new(), 0, false);
+    for (k, c) in name.char_indices() {
+        match c {
+            '\'' => quoted = !quoted,
+            '.' if !quoted => {
+                parts.push(&name[start..k]);
+                start = k + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&name[start..]);
+    parts
+}
+
 /// The modification `(a.b = v, ...)` of the top-level class.
 fn top_modifiers(class: ClassId, modifiers: &[(String, unimo_syntax::ast::Expr)]) -> modif::Mod {
     let scope = modif::Scope {
@@ -200,7 +218,7 @@ fn top_modifiers(class: ClassId, modifiers: &[(String, unimo_syntax::ast::Expr)]
             }),
             ..modif::Mod::default()
         };
-        for part in name.rsplit('.') {
+        for part in dotted_parts(name).into_iter().rev() {
             m = modif::Mod {
                 children: vec![(part.into(), m)],
                 ..modif::Mod::default()
@@ -209,4 +227,16 @@ fn top_modifiers(class: ClassId, modifiers: &[(String, unimo_syntax::ast::Expr)]
         out = m.over_into(out);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::dotted_parts;
+
+    #[test]
+    fn a_quoted_identifier_is_one_part_of_a_dotted_name() {
+        assert_eq!(dotted_parts("body.m"), ["body", "m"]);
+        assert_eq!(dotted_parts("'spring1.c'"), ["'spring1.c'"]);
+        assert_eq!(dotted_parts("'mass1.s'.start"), ["'mass1.s'", "start"]);
+    }
 }

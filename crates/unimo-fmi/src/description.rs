@@ -113,7 +113,9 @@ fn attributes(v: &Variable) -> (&'static str, &'static str, Option<&'static str>
         Causality::CalculatedParameter => ("calculatedParameter", variability, Some("calculated")),
         Causality::Input => ("input", variability, None),
         Causality::Output => ("output", variability, Some("calculated")),
-        Causality::Local if variability == "constant" => ("local", variability, Some("exact")),
+        Causality::Local if variability == "constant" || v.start_exact => {
+            ("local", variability, Some("exact"))
+        }
         Causality::Local => ("local", variability, Some("calculated")),
     }
 }
@@ -125,7 +127,8 @@ fn has_start(v: &Variable) -> bool {
 }
 
 /// The value references of the initial unknowns (FMI 2.0 3.2.3 / FMI 3.0 2.4.8):
-/// outputs, calculated parameters, states and derivatives, in order.
+/// outputs, calculated parameters, states (but those with `initial = "exact"`) and
+/// derivatives, in order.
 fn initial_unknowns(c: &Compiled) -> Vec<u32> {
     let mut out: Vec<u32> = c
         .variables
@@ -139,7 +142,10 @@ fn initial_unknowns(c: &Compiled) -> Vec<u32> {
         .map(|v| v.scalar)
         .collect();
     for &(x, dx) in &c.states {
-        out.extend([x, dx]);
+        if !c.variables[x as usize].start_exact {
+            out.push(x);
+        }
+        out.push(dx);
     }
     out.sort_unstable();
     out.dedup();

@@ -86,6 +86,9 @@ pub struct Instance {
     /// Parameter values the importer set, applied by recompiling at the end of
     /// initialization.
     parameters: Vec<(String, ScalarType, f64)>,
+    /// Start values of states the importer set (`initial = "exact"`), applied with the
+    /// parameters.
+    starts: Vec<(String, f64)>,
     options: SimOptions,
     /// The initialization ran; the first event update reports it.
     initial_event: bool,
@@ -138,7 +141,7 @@ impl Instance {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| FmiError::Resources(format!("cannot read {}: {e}", path.display())))?;
         let source = FlatSource::new(&text)?;
-        let compiled = source.compile(&[])?;
+        let compiled = source.compile(&[], &[])?;
         let expected = description::token(&text, &compiled.variables);
         if expected != token {
             return Err(FmiError::Resources(format!(
@@ -161,6 +164,7 @@ impl Instance {
             source,
             running,
             parameters: Vec::new(),
+            starts: Vec::new(),
             options,
             initial_event: false,
             event_done: false,
@@ -206,7 +210,7 @@ impl Instance {
     /// The end of initialization: compiled again with the parameters set, initialized
     /// at the start time (the initial event included).
     pub fn exit_initialization(&mut self) -> Result<(), FmiError> {
-        let compiled = self.source.compile(&self.parameters)?;
+        let compiled = self.source.compile(&self.parameters, &self.starts)?;
         self.running = Running::new(compiled, self.options.clone());
         self.running.stepper.set_time(self.options.start);
         self.running
@@ -281,6 +285,7 @@ impl Instance {
             .iter()
             .find(|(n, _, _)| n == name)
             .map(|p| p.2)
+            .or_else(|| self.starts.iter().find(|(n, _)| n == name).map(|p| p.1))
     }
 
     /// Sets parameters (before the end of initialization) and inputs.
@@ -298,7 +303,8 @@ impl Instance {
                     message: format!("the variable {vr} cannot be set"),
                 });
             };
-            let (name, ty, causality) = (v.name.clone(), v.ty, v.causality);
+            let (name, ty, causality, start_exact) =
+                (v.name.clone(), v.ty, v.causality, v.start_exact);
             let before_init = matches!(self.state, State::Instantiated | State::Initialization);
             match causality {
                 Causality::Parameter if before_init => {
@@ -312,11 +318,21 @@ impl Instance {
                     self.parameters.push((name, ty, value));
                 }
                 Causality::Input => self.running.stepper.set_register(vr, value),
+                Causality::Local if start_exact && before_init => {
+                    if !value.is_finite() {
+                        return Err(FmiError::BadArgument {
+                            function,
+                            message: format!("the start value {value} of `{name}` is not finite"),
+                        });
+                    }
+                    self.starts.retain(|(n, _)| *n != name);
+                    self.starts.push((name, value));
+                }
                 _ => {
                     return Err(FmiError::BadArgument {
                         function,
                         message: format!(
-                            "`{name}` cannot be set in {}: only parameters (before the end of initialization) and inputs can",
+                            "`{name}` cannot be set in {}: only parameters and states whose start is a literal with `fixed = true` (both before the end of initialization) and inputs can",
                             self.state.name()
                         ),
                     })
@@ -460,10 +476,11 @@ impl Instance {
 
     /// Back to the state after instantiation, with the default parameter values.
     pub fn reset(&mut self) -> Result<(), FmiError> {
-        let compiled = self.source.compile(&[])?;
+        let compiled = self.source.compile(&[], &[])?;
         self.running = Running::new(compiled, self.options.clone());
         let _ = self.running.stepper.initialize();
         self.parameters.clear();
+        self.starts.clear();
         self.state = State::Instantiated;
         self.terminated = false;
         self.initial_event = false;

@@ -8,6 +8,7 @@ use std::collections::HashMap;
 use unimo_dae::dae::{ScalarKind, ScalarType};
 use unimo_dae::expr::{Node, ScalarId};
 use unimo_dae::Dae;
+use unimo_flat::flat::FlatVar;
 use unimo_flat::{ClassTree, FlatModel, MemoryProvider};
 use unimo_runtime::model::CompiledModel;
 use unimo_syntax::ast::{Expr, ExprKind};
@@ -38,8 +39,11 @@ pub struct Variable {
     /// A derivative: the value reference of its state.
     pub derivative_of: Option<u32>,
     /// The value after initialization that the description gives as `start` (a
-    /// parameter's, a constant's, an input's).
+    /// parameter's, a constant's, an input's, a settable state's).
     pub start: Option<f64>,
+    /// A scalar state whose start value is a literal with `fixed = true`: the importer
+    /// may set it before the end of initialization (`initial = "exact"`).
+    pub start_exact: bool,
 }
 
 /// A compiled model with its variable table.
@@ -112,15 +116,26 @@ impl FlatSource {
     }
 
     /// Compiles the model, with `values` (by variable name) for the settable
-    /// parameters given, as top-level modifiers (what `simulate -p` does).
-    pub fn compile(&self, values: &[(String, ScalarType, f64)]) -> Result<Compiled, FmiError> {
+    /// parameters given and `starts` for the settable states' start values, as
+    /// top-level modifiers (`k = v`, `'a.x'.start = v`: what `simulate -p` does).
+    pub fn compile(
+        &self,
+        values: &[(String, ScalarType, f64)],
+        starts: &[(String, f64)],
+    ) -> Result<Compiled, FmiError> {
         let flat_overridden;
-        let flat = if values.is_empty() {
+        let flat = if values.is_empty() && starts.is_empty() {
             &self.flat
         } else {
             let modifiers: Vec<(String, Expr)> = values
                 .iter()
                 .map(|(name, ty, v)| (quoted(name), literal(*ty, *v)))
+                .chain(starts.iter().map(|(name, v)| {
+                    (
+                        format!("{}.start", quoted(name)),
+                        literal(ScalarType::Real, *v),
+                    )
+                }))
                 .collect();
             flat_overridden = flatten(&self.text, &modifiers)?;
             &flat_overridden
@@ -180,6 +195,17 @@ fn settable(dae: &Dae, s: ScalarId, flat: &FlatModel, by_name: &HashMap<String, 
         && flat.evaluated.binary_search(&var.name).is_err()
 }
 
+/// Whether a state's start value may be set through the FMU: a scalar, not `final`,
+/// `fixed = true`, its start a literal (one computed from parameters follows them).
+fn start_settable(dae: &Dae, s: ScalarId, var: Option<&FlatVar>) -> bool {
+    let scalar = dae.scalar(s);
+    var.is_some_and(|v| v.dims.is_empty() && !v.is_final)
+        && scalar.fixed == Some(true)
+        && scalar
+            .start
+            .is_some_and(|e| matches!(dae.arena.node(e), Node::Const(_)))
+}
+
 /// The variable table: every scalar of the DAE, by scalar id.
 pub fn variables(dae: &Dae, flat: &FlatModel, model: &CompiledModel) -> Vec<Variable> {
     let by_name: HashMap<String, usize> = flat
@@ -217,6 +243,8 @@ pub fn variables(dae: &Dae, flat: &FlatModel, model: &CompiledModel) -> Vec<Vari
                 unit: units.get(flat_name(&name)).cloned(),
                 derivative_of: scalar.derivative_of.map(|d| d.0),
                 start: None,
+                start_exact: model.states.contains(&s.0)
+                    && start_settable(dae, s, flat_var),
             }
         })
         .collect()

@@ -37,7 +37,7 @@ pub struct Summary {
 /// The FMU's files and the archive bytes.
 pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
     let source = FlatSource::new(r.flat_text)?;
-    let mut compiled = source.compile(&[])?;
+    let mut compiled = source.compile(&[], &[])?;
     let options = SimOptions::resolve(
         &compiled.dae.experiment,
         &Default::default(),
@@ -52,7 +52,8 @@ pub fn build(r: &Request<'_>) -> Result<(Vec<u8>, Summary), FmiError> {
     };
     for v in &mut compiled.variables {
         let wants_start = matches!(v.causality, Causality::Parameter | Causality::Input)
-            || v.kind == ScalarKind::Constant;
+            || v.kind == ScalarKind::Constant
+            || v.start_exact;
         if wants_start {
             v.start = starts.get(v.scalar as usize).copied();
         }
