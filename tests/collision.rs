@@ -12,6 +12,7 @@ use common::load;
 fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64, stop: f64) -> SimResult {
     let o = SimOptions {
         every_step: true,
+        output_rtol: 0.0,
         ..common::sim_options(method, rtol, 0.0, stop, stop / 100.0)
     };
     let r = simulate(&m.compiled, &o);
@@ -201,6 +202,7 @@ fn a_placement_computed_by_the_model_is_refused() {
         method: Method::Auto,
         interval: 0.1,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&m.compiled, &o);
     let e = r.error.expect("refused");

@@ -35,6 +35,7 @@ fn run(m: &LoadedModel, stop: f64) -> SimResult {
         method: Method::Bdf,
         interval: stop / 200.0,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
@@ -227,6 +228,7 @@ fn the_cost_report_shares_out_measured_step_times() {
         method: Method::Bdf,
         interval: 0.01,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = unimo_runtime::sim::Simulator::new(&m.compiled)
         .profile(sink.clone())

@@ -56,6 +56,7 @@ fn run_model(file: &str, tau_stop: f64, method: Method, rtol: f64) -> SimResult 
         method,
         interval: tau_stop / 50.0,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&m.compiled, &o);
     assert!(

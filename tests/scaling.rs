@@ -36,6 +36,7 @@ fn run(m: &unimo_cli::LoadedModel, method: Method, rtol: f64) -> SimResult {
         method,
         interval: 0.1,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));

@@ -35,6 +35,7 @@ fn try_run(
         method,
         interval: stop / points as f64,
         every_step: false,
+        output_rtol: 0.0,
     };
     simulate(compiled, &o)
 }
@@ -224,6 +225,7 @@ fn stiff_penalty_ball_never_gains_energy() {
             method,
             interval: 0.01,
             every_step: true,
+            output_rtol: 0.0,
         };
         o.every_step = true;
         let r = simulate(&m.compiled, &o);
@@ -254,6 +256,7 @@ fn pendulum_keeps_its_constraint() {
         method: Method::Auto,
         interval: 0.01,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none());
@@ -297,6 +300,7 @@ fn run_pruned(file: &str, var: &str, rtol: f64) -> (SimResult, usize) {
         method: Method::Bdf,
         interval: 0.5,
         every_step: false,
+        output_rtol: 0.0,
     };
     let r = simulate(&compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
@@ -330,6 +334,7 @@ fn pruning_leaves_out_the_events_of_what_is_left_out() {
         method: Method::Bdf,
         interval: 0.01,
         every_step: false,
+        output_rtol: 0.0,
     };
     let mut outcomes = Vec::new();
     for wanted in [vec![id("x")], vec![id("x"), id("above")]] {
@@ -1037,4 +1042,60 @@ fn initialization_starts_from_homotopys_simplified_model() {
     }
     let k = r.names.iter().position(|n| n == "vin").unwrap();
     assert!((r.rows[0][k] + 7.5).abs() < 1e-12, "{:?}", r.rows[0]);
+}
+
+/// `x = cos(10 t)` on an output grid of 0.5 (longer than its period): the default
+/// output adds the steps a straight line between rows would misstate, so linear
+/// interpolation of the CSV follows the closed form; `--output-tolerance 0` writes the
+/// grid alone, which does not.
+#[test]
+fn rows_between_grid_points_follow_the_solution() {
+    let worst = |extra: &[&str]| {
+        let csv = common::temp("simulate", &format!("coarse{}.csv", extra.len()));
+        let csv_s = csv.to_string_lossy().into_owned();
+        let mut args = vec![
+            "simulate",
+            "tests/simulate/CoarseGrid.mo",
+            "--tolerance",
+            "1e-8",
+            "--vars",
+            "x",
+            "-o",
+            &csv_s,
+        ];
+        args.extend_from_slice(extra);
+        let o = common::unimo(&args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let rows: Vec<(f64, f64)> = text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let mut c = l.split(',').map(|v| v.parse::<f64>().unwrap());
+                (c.next().unwrap(), c.next().unwrap())
+            })
+            .collect();
+        let at = |t: f64| {
+            let k = rows.partition_point(|r| r.0 <= t).clamp(1, rows.len() - 1);
+            let ((t0, x0), (t1, x1)) = (rows[k - 1], rows[k]);
+            x0 + (t - t0) / (t1 - t0) * (x1 - x0)
+        };
+        let err = (0..=3000)
+            .map(|k| k as f64 * 1e-3)
+            .map(|t| (at(t) - (10.0 * t).cos()).abs())
+            .fold(0.0, f64::max);
+        (err, rows.len())
+    };
+    let (refined, n_refined) = worst(&[]);
+    let (grid, n_grid) = worst(&["--output-tolerance", "0"]);
+    assert_eq!(n_grid, 7, "the grid 0, 0.5, ..., 3");
+    assert!(grid > 0.5, "the grid alone misses the oscillation: {grid}");
+    // The chord holds at the steps to 1e-3; between steps it is the step's own chord.
+    assert!(refined < 5e-3, "{refined} with {n_refined} rows");
+    eprintln!("grid alone {grid:.3} ({n_grid} rows), refined {refined:.2e} ({n_refined} rows)");
 }

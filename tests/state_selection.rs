@@ -291,6 +291,7 @@ fn contradicting_fixed_starts_name_the_constraint() {
             method: Method::Bdf,
             interval: 0.01,
             every_step: false,
+            output_rtol: 0.0,
         };
         let r = simulate(&m.compiled, &o);
         let e = r.error.unwrap_or_else(|| panic!("{model} simulated"));

@@ -54,7 +54,7 @@ def check(args, name, kind, tmp):
     code, out = run([args.bin, "fmu", *src, "--fmi", fmi, "--kind", kind, "-o", fmu], 300)
     if code != 0:
         return f"export failed: {out.strip().splitlines()[-1] if out.strip() else code}"
-    sim = [args.bin, "simulate", *src, "--vars", vars_, "--output", csv]
+    sim = [args.bin, "simulate", *src, "--vars", vars_, "--output", csv, "--output-tolerance", "0"]
     extra = []
     if kind == "me":
         sim += ["--tolerance", "1e-10"]

@@ -102,6 +102,7 @@ pub fn sim_options(
         method,
         interval,
         every_step: false,
+        output_rtol: 0.0,
     }
 }
 

@@ -121,7 +121,12 @@ impl Compiled {
         overrides: &Overrides,
         method: Method,
     ) -> Result<(SimResult, Option<ApiError>), ApiError> {
+        // The grid alone: a sweep's runs share their time points.
         let options = SimOptions::resolve(&self.dae.experiment, overrides, method, false)
+            .map(|o| SimOptions {
+                output_rtol: 0.0,
+                ..o
+            })
             .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0007", m))?;
         let result = unimo_runtime::sim::simulate(&self.model, &options);
         let error = result.error.as_ref().map(|e| self.simulation_error(e));

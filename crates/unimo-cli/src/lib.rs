@@ -236,6 +236,13 @@ pub struct SimulateArgs {
     /// Also write a row after every internal solver step.
     #[arg(long)]
     pub every_step: bool,
+    /// Rows between the grid's points: wherever a straight line between the written
+    /// rows would miss a state by more than TOL times the state's largest magnitude so
+    /// far, the solver step that keeps the line within it is written too, so plots and
+    /// linear interpolation of the result follow the solution. 0: the grid and the
+    /// events only.
+    #[arg(long, value_name = "TOL", default_value_t = unimo_runtime::sim::OUTPUT_RTOL)]
+    pub output_tolerance: f64,
     /// Write the results here instead of standard output.
     #[arg(long, short, value_name = "FILE")]
     pub output: Option<PathBuf>,

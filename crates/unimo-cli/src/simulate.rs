@@ -308,7 +308,15 @@ fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, String> {
         interval: a.interval,
         points: a.points,
     };
-    SimOptions::resolve(&dae.experiment, &overrides, method(a.method), a.every_step)
+    if !(a.output_tolerance >= 0.0 && a.output_tolerance.is_finite()) {
+        return Err("the output tolerance must be 0 or positive".into());
+    }
+    SimOptions::resolve(&dae.experiment, &overrides, method(a.method), a.every_step).map(|o| {
+        SimOptions {
+            output_rtol: a.output_tolerance,
+            ..o
+        }
+    })
 }
 
 /// Runs the simulation; a progress bar on stderr for runs longer than a moment, when

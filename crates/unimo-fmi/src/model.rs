@@ -243,8 +243,7 @@ pub fn variables(dae: &Dae, flat: &FlatModel, model: &CompiledModel) -> Vec<Vari
                 unit: units.get(flat_name(&name)).cloned(),
                 derivative_of: scalar.derivative_of.map(|d| d.0),
                 start: None,
-                start_exact: model.states.contains(&s.0)
-                    && start_settable(dae, s, flat_var),
+                start_exact: model.states.contains(&s.0) && start_settable(dae, s, flat_var),
             }
         })
         .collect()

@@ -16,6 +16,7 @@ mod crossings;
 mod events;
 mod init;
 mod pattern;
+mod refine;
 mod run;
 mod starts;
 pub mod stepper;
@@ -40,7 +41,15 @@ pub struct SimOptions {
     pub interval: f64,
     /// Also write a row after every internal step.
     pub every_step: bool,
+    /// Rows between the grid's points where a straight line between the written rows
+    /// would miss a state by more than this fraction of its largest magnitude so far
+    /// (`sim/refine.rs`); 0: the grid and the events only.
+    pub output_rtol: f64,
 }
+
+/// The default [`SimOptions::output_rtol`]: what a plot or a linear interpolation of
+/// the result resolves.
+pub const OUTPUT_RTOL: f64 = 1e-3;
 
 /// What a caller sets of a run (the command line's options); `None` leaves it to the
 /// model's `experiment` annotation, then to the default ([`SimOptions::resolve`]).
@@ -95,6 +104,7 @@ impl SimOptions {
             method,
             interval,
             every_step,
+            output_rtol: OUTPUT_RTOL,
         })
     }
 }
@@ -483,6 +493,8 @@ pub struct Simulator<'a> {
     sliding_events: usize,
     /// Per dynamic state set: the candidate each of its states is.
     selections: Vec<Vec<usize>>,
+    /// Which steps between the grid's points get a row.
+    refine: refine::Refine,
 }
 
 /// A dynamic state set changes its states when the current choice's pivot falls below
@@ -518,6 +530,7 @@ impl<'a> Simulator<'a> {
             non_finite: None,
             sliding_events: 0,
             selections: m.state_sets.iter().map(|s| s.initial.clone()).collect(),
+            refine: refine::Refine::default(),
         }
     }
 
@@ -653,6 +666,10 @@ impl<'a> Simulator<'a> {
         }
         self.result.times.push(t);
         self.result.rows.push(row);
+        if self.refine.enabled() {
+            let x = self.states();
+            self.refine.written(t, &x);
+        }
     }
 
     /// The error of a NaN or infinite value recorded since the last call, with the

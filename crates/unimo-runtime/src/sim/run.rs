@@ -69,6 +69,9 @@ impl Simulator<'_> {
         self.result.names = m.outputs.iter().map(|(n, _)| n.clone()).collect();
         self.ode.work.tolerance = NewtonTolerance::new(o.rtol, o.atol);
         let started = Instant::now();
+        if !o.every_step {
+            self.refine = super::refine::Refine::new(o.output_rtol, o.atol);
+        }
         let initialized = self.initialize(o.start);
         self.result.phase_times.initialize = started.elapsed().as_secs_f64();
         if let Err(e) = initialized {
@@ -171,6 +174,7 @@ impl Simulator<'_> {
         let (prev, now, reason) = advanced?;
         let started = Instant::now();
         self.write_grid(solver, run, prev, now, &reason)?;
+        self.refine_step(solver, now, &reason)?;
         if let Some(e) = self.take_non_finite(Some(now - prev)) {
             return Err(e);
         }
@@ -258,12 +262,44 @@ impl Simulator<'_> {
         {
             let tg = run.grid(run.next_output).min(now);
             if tg > prev && solver.interpolate(tg, &mut run.buf).is_ok() {
+                if let Some((tp, xp)) = self.refine.needed_before(tg, &run.buf) {
+                    self.load_state(tp, &xp)?;
+                    self.record(tp);
+                }
                 self.load_state(tg, &run.buf)?;
                 if tg < now || !matches!(reason, StopReason::Root { .. }) {
                     self.record(tg);
                 }
             }
             run.next_output += 1;
+        }
+        Ok(())
+    }
+
+    /// After the grid's rows of a step: the step not written before it that the chord
+    /// to this step's end would misstate, then this step's end kept as pending (an
+    /// event's rows, written next, start a new chord).
+    fn refine_step(
+        &mut self,
+        solver: &Solver,
+        now: f64,
+        reason: &StopReason,
+    ) -> Result<(), SimError> {
+        if !self.refine.enabled() || self.result.times.last() == Some(&now) {
+            return Ok(());
+        }
+        let mut x = solver.state().to_vec();
+        if matches!(reason, StopReason::Root { .. }) && solver.interpolate(now, &mut x).is_err() {
+            return Ok(());
+        }
+        if let Some((tp, xp)) = self.refine.needed_before(now, &x) {
+            self.load_state(tp, &xp)?;
+            self.record(tp);
+            // The registers hold the step's end again (assertions, loop starts).
+            self.load_state(now, &x)?;
+        }
+        if matches!(reason, StopReason::InternalStep) {
+            self.refine.step_ended(now, &x);
         }
         Ok(())
     }
