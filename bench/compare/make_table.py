@@ -108,7 +108,8 @@ for line in (out / "load.txt").read_text().splitlines():
     print(f"- {line}")
 print()
 print("What each timing covers: unimo = its `simulate` call (initialisation, integration and the"
-      " 2-row result, no model compilation); IDA = create, init, solve to t_end, free;"
+      " 2-row result; no model compilation, and the native code of `--engine native`, unimo"
+      " bench's default, is compiled before the timed runs); IDA = create, init, solve to t_end, free;"
       " diffsol = build the problem, create the solver (consistent initialisation), step to t_end;"
       " SciPy = one `solve_ivp` call (Python-level right-hand side and Jacobian).\n")
 
