@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Turns out/results.tsv (written by run.sh) into the markdown report on stdout.
 
-Usage: make_table.py OUT_DIR RUNS SCIPY_RUNS
+Usage: make_table.py OUT_DIR RUNS SCIPY_RUNS [BRUSS_RUNS]
 """
 import sys
 from pathlib import Path
 
 out = Path(sys.argv[1])
 runs, scipy_runs = sys.argv[2], sys.argv[3]
-PROBLEMS = ["ROBER", "HIRES", "VDPOL"]
+bruss_runs = sys.argv[4] if len(sys.argv) > 4 else runs
+PROBLEMS = ["ROBER", "HIRES", "VDPOL", "POLLU", "BRUSS2D"]
 TOOLS = ["unimo", "IDA", "diffsol", "SciPy"]
 
 rows = []
@@ -32,6 +33,65 @@ def cell(s):
     return s.replace("|", "\\|")
 
 
+def ok(r):
+    return r is not None and r["status"] == "ok"
+
+
+def find(problem, tool, method, rtol):
+    for r in rows:
+        if (r["problem"], r["tool"], r["method"], r["rtol"]) == (problem, tool, method, rtol):
+            return r
+    return None
+
+
+def verdict():
+    """Issue #23's point 4, cell by cell: our best method against diffsol's BDF (digits, then
+    time) and against IDA with its analytic Jacobian (time), and whether we failed."""
+    print("## Point 4 of issue #23, per problem and tolerance\n")
+    print("Our best method: of unimo's methods that reach at least diffsol BDF's scd (all of"
+          " them where diffsol fails), the fastest; where none does, the one with the most"
+          " digits. Ratios are time(other) / time(ours): above 1, we are faster. The claim"
+          " holds in a cell when ours has scd >= diffsol BDF's and ratio >= 1 (or diffsol"
+          " failed), ratio to IDA >= 3, and no unimo method failed.\n")
+    print("| problem | rtol | ours: method, scd / ms | diffsol bdf: scd / ms | vs diffsol |"
+          " IDA (analytic): scd / ms | vs IDA | unimo failures | point 4 |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for p in PROBLEMS:
+        prow = [r for r in rows if r["problem"] == p]
+        for rtol in sorted({r["rtol"] for r in prow}, reverse=True):
+            ours = [r for r in prow if r["tool"] == "unimo" and r["rtol"] == rtol]
+            good = [r for r in ours if ok(r)]
+            failures = [r["method"] for r in ours if not ok(r)]
+            ds = find(p, "diffsol", "bdf", rtol)
+            idas = [r for r in prow if r["tool"] == "IDA" and r["rtol"] == rtol
+                    and "analytic" in r["method"]]
+            ida = idas[0] if idas else None
+            if not good:
+                print(f"| {p} | {rtol:.0e} | all failed | | | | | {', '.join(failures)} | no |")
+                continue
+            target = float(ds["scd"]) if ok(ds) else None
+            reaching = [r for r in good if target is None or float(r["scd"]) >= target]
+            best = min(reaching, key=lambda r: r["ms"]) if reaching \
+                else max(good, key=lambda r: float(r["scd"]))
+            holds = not failures
+            if ok(ds):
+                vs_ds = ds["ms"] / best["ms"]
+                ds_cell, vs_ds_cell = f"{float(ds['scd']):.2f} / {ms(ds['ms'])}", f"{vs_ds:.2f}x"
+                holds = holds and float(best["scd"]) >= target and vs_ds >= 1.0
+            else:
+                ds_cell, vs_ds_cell = ("FAILED" if ds else "-"), "-"
+            if ok(ida):
+                vs_ida = ida["ms"] / best["ms"]
+                ida_cell, vs_ida_cell = f"{float(ida['scd']):.2f} / {ms(ida['ms'])}", f"{vs_ida:.2f}x"
+                holds = holds and vs_ida >= 3.0
+            else:
+                ida_cell, vs_ida_cell = ("FAILED" if ida else "-"), "-"
+            print(f"| {p} | {rtol:.0e} | {best['method']}, {float(best['scd']):.2f} / {ms(best['ms'])}"
+                  f" | {ds_cell} | {vs_ds_cell} | {ida_cell} | {vs_ida_cell} |"
+                  f" {', '.join(failures) or 'none'} | {'yes' if holds else 'no'} |")
+    print()
+
+
 def ms(x):
     return f"{x:.3f}" if x < 10 else f"{x:.1f}" if x < 1000 else f"{x:.0f}"
 
@@ -39,7 +99,8 @@ def ms(x):
 print("# unimo vs. IDA vs. diffsol vs. SciPy: error against run time\n")
 print("Written by `bench/compare/run.sh` (see README.md there). scd = -log10(max_i |y_i - ref_i| / |ref_i|)"
       " at the end time; time = median wall time of "
-      f"{runs} runs (SciPy: {scipy_runs} runs), all measured in one session, one tool after the other.\n")
+      f"{runs} runs (SciPy: {scipy_runs} runs; BRUSS2D: {bruss_runs} runs, SciPy 1), all measured in"
+      " one session, one tool after the other.\n")
 print((out / "versions.md").read_text())
 print("Load average (1, 5, 15 min) read before each tool; the machine has 2 cores and was shared"
       " with other work, so times can be noisy:\n")
@@ -47,7 +108,8 @@ for line in (out / "load.txt").read_text().splitlines():
     print(f"- {line}")
 print()
 print("What each timing covers: unimo = its `simulate` call (initialisation, integration and the"
-      " 2-row result, no model compilation); IDA = create, init, solve to t_end, free;"
+      " 2-row result; no model compilation, and the native code of `--engine native`, unimo"
+      " bench's default, is compiled before the timed runs); IDA = create, init, solve to t_end, free;"
       " diffsol = build the problem, create the solver (consistent initialisation), step to t_end;"
       " SciPy = one `solve_ivp` call (Python-level right-hand side and Jacobian).\n")
 
@@ -71,6 +133,8 @@ for p in PROBLEMS:
             m = [r for r in prow if r["tool"] == tool and r["method"] == method and r["rtol"] == t]
             if not m:
                 cells.append("")
+            elif m[0]["status"].startswith("NOT RUN"):
+                cells.append("not run")
             elif m[0]["status"] != "ok":
                 cells.append("FAILED")
             else:
@@ -78,14 +142,17 @@ for p in PROBLEMS:
         print(f"| {tool} | {method} | " + " | ".join(cells) + " |")
     print()
 
+verdict()
+
 print("## All results\n")
 print("| problem | tool | method | rtol | atol | scd | steps | median ms | note |")
 print("|---|---|---|---|---|---|---|---|---|")
 for r in rows:
     failed = r["status"] != "ok"
-    scd = "FAILED" if failed else f"{float(r['scd']):.2f}"
+    scd = ("not run" if r["status"].startswith("NOT RUN") else "FAILED") if failed \
+        else f"{float(r['scd']):.2f}"
     note = cell(r["status"]) if failed else ""
-    if failed and r["steps"] not in ("-", ""):
+    if failed and r["steps"] not in ("-", "") and not r["status"].startswith("NOT RUN"):
         note += f" (steps before the failure: {r['steps']}; time is that of the failing runs)"
     print(f"| {r['problem']} | {r['tool']} | {r['method']} | {r['rtol']:.0e} | {r['atol']:.0e} | "
           f"{scd} | {r['steps']} | {ms(r['ms'])} | {note} |")

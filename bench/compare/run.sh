@@ -2,12 +2,15 @@
 # Runs the whole comparison, one tool after the other, and writes results.md.
 #   bash bench/compare/run.sh              (from anywhere; RUNS=5 SCIPY_RUNS=5 by default)
 # Environment: RUNS (runs per configuration for unimo, IDA and diffsol), SCIPY_RUNS,
-# CARGO_TARGET_DIR for the diffsol project (default /work/tgt-compare).
+# BRUSS_RUNS (runs per configuration of the 2,048-equation BRUSS2D, default 3; SciPy runs
+# it once), CARGO_TARGET_DIR for the diffsol project (default /work/tgt-compare).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
 RUNS="${RUNS:-5}"
 SCIPY_RUNS="${SCIPY_RUNS:-5}"
+BRUSS_RUNS="${BRUSS_RUNS:-3}"
+export BRUSS2D_REF="$HERE/refs/bruss2d.csv"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-/work/tgt-compare}"
 OUT="$HERE/out"
 mkdir -p "$OUT"
@@ -29,13 +32,17 @@ load() {
 # ---- prerequisites and builds (not timed) ------------------------------------------
 dpkg -s libsundials-dev >/dev/null 2>&1 || { echo "libsundials-dev missing: run setup.sh" >&2; exit 1; }
 python3 -c 'import scipy' 2>/dev/null || { echo "scipy missing: run setup.sh" >&2; exit 1; }
-if [ ! -x "$REPO/target/release/unimo" ]; then (cd "$REPO" && cargo build --release); fi
+# UNIMO_BIN: the unimo binary to measure (default target/release/unimo of the repository).
+UNIMO_BIN="${UNIMO_BIN:-$REPO/target/release/unimo}"
+if [ ! -x "$UNIMO_BIN" ]; then (cd "$REPO" && CARGO_TARGET_DIR="$REPO/target" cargo build --release --bin unimo); fi
 # A private copy, so that a concurrent rebuild of target/ cannot swap the binary mid-run.
-cp "$REPO/target/release/unimo" "$OUT/unimo"
+cp "$UNIMO_BIN" "$OUT/unimo"
 UNIMO="$OUT/unimo"
 make -C "$HERE/ida" >/dev/null
 (cd "$HERE/diffsol" && cargo build --release --quiet)
 DIFFSOL="$CARGO_TARGET_DIR/release/compare-diffsol"
+# The peers' POLLU reaction table and analytic Jacobians, checked (complex-step derivatives).
+python3 "$HERE/scipy_compare.py" check
 
 # ---- versions ------------------------------------------------------------------------
 {
@@ -45,7 +52,7 @@ DIFFSOL="$CARGO_TARGET_DIR/release/compare-diffsol"
   if (cd "$REPO" && GIT_OPTIONAL_LOCKS=0 git status --porcelain --untracked-files=no 2>/dev/null | grep -q .); then
     DIRTY=" (the work tree had uncommitted changes, which the binary may include)"
   fi
-  echo "- unimo: $("$UNIMO" --version), HEAD $(cd "$REPO" && git rev-parse --short HEAD 2>/dev/null || echo '?')$DIRTY, binary built $(date -u -r "$REPO/target/release/unimo" '+%Y-%m-%d %H:%M UTC'), sha256 $(sha256sum "$UNIMO" | cut -c1-12)"
+  echo "- unimo: $("$UNIMO" --version), HEAD $(cd "$REPO" && git rev-parse --short HEAD 2>/dev/null || echo '?')$DIRTY, binary built $(date -u -r "$UNIMO_BIN" '+%Y-%m-%d %H:%M UTC'), sha256 $(sha256sum "$UNIMO" | cut -c1-12)"
   echo "- IDA: $("$HERE/ida/ida_compare" version), Debian libsundials-dev $(dpkg-query -W -f='${Version}' libsundials-dev), $(cc --version | head -1)"
   echo "- diffsol: $(grep -A1 '^name = "diffsol"$' "$HERE/diffsol/Cargo.lock" | sed -n 's/version = "\(.*\)"/\1/p') ($(rustc --version))"
   echo "- SciPy: $(python3 -c 'import scipy, numpy, sys; print(f"scipy {scipy.__version__}, numpy {numpy.__version__}, Python {sys.version.split()[0]}")')"
@@ -54,10 +61,12 @@ cat "$OUT/versions.md"
 
 # ---- 1. unimo ------------------------------------------------------------------------
 load "before unimo"
-for spec in "Robertson ROBER rober 1e-6" "Hires HIRES hires 1e-2" "VanDerPol VDPOL vdpol 1e-2"; do
+for spec in "Robertson ROBER rober 1e-6 $RUNS" "Hires HIRES hires 1e-2 $RUNS" \
+    "VanDerPol VDPOL vdpol 1e-2 $RUNS" "Pollu POLLU pollu 1 $RUNS" \
+    "Brusselator2D BRUSS2D bruss2d 1e-2 $BRUSS_RUNS"; do
   set -- $spec
   "$UNIMO" bench "$REPO/models/$1.mo" --reference "$HERE/refs/$3.csv" \
-    --atol-factor "$4" --runs "$RUNS" --points 1 --color never > "$OUT/unimo-$3.txt" || true
+    --atol-factor "$4" --runs "$5" --points 1 --color never > "$OUT/unimo-$3.txt" || true
   cat "$OUT/unimo-$3.txt"
   # model method rtol atol median_ms steps scd_end scd_grid [FAILED: msg]
   awk -v P="$2" 'NR > 1 {
@@ -69,17 +78,25 @@ done
 
 # ---- 2. IDA (analytic Jacobian, then difference-quotient Jacobian) -------------------
 load "before IDA"
-"$HERE/ida/ida_compare" "$RUNS" all analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
-"$HERE/ida/ida_compare" "$RUNS" all dq 2>/dev/null | tee -a "$OUT/results.tsv"
+for p in rober hires vdpol pollu; do
+  "$HERE/ida/ida_compare" "$RUNS" $p analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+done
+"$HERE/ida/ida_compare" "$BRUSS_RUNS" bruss2d analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+for p in rober hires vdpol pollu; do
+  "$HERE/ida/ida_compare" "$RUNS" $p dq 2>/dev/null | tee -a "$OUT/results.tsv"
+done
 
 # ---- 3. diffsol ------------------------------------------------------------------------
 load "before diffsol"
-"$DIFFSOL" "$RUNS" 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+"$DIFFSOL" "$RUNS" rober hires vdpol pollu 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+# BRUSS2D: BDF only by default (point 4 compares with diffsol's BDF; its SDIRK methods take
+# many times longer on this problem); BRUSS_DIFFSOL_METHODS=bdf,tr_bdf2,esdirk34 for all.
+METHODS="${BRUSS_DIFFSOL_METHODS:-bdf}" "$DIFFSOL" "$BRUSS_RUNS" bruss2d 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
 
 # ---- 4. SciPy --------------------------------------------------------------------------
 load "before SciPy"
 python3 "$HERE/scipy_compare.py" "$SCIPY_RUNS" 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
 load "after SciPy"
 
-python3 "$HERE/make_table.py" "$OUT" "$RUNS" "$SCIPY_RUNS" > "$HERE/results.md"
+python3 "$HERE/make_table.py" "$OUT" "$RUNS" "$SCIPY_RUNS" "$BRUSS_RUNS" > "$HERE/results.md"
 echo "wrote $HERE/results.md"

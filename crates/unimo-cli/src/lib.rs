@@ -339,6 +339,10 @@ pub struct BenchArgs {
     /// Write a work-precision plot (SVG) here.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// How the compiled model is evaluated, as `simulate --engine`: `native` (machine code,
+    /// compiled once before the timed runs) or `tape` (the interpreter).
+    #[arg(long, value_enum, default_value_t = EngineArg::Native)]
+    pub engine: EngineArg,
 }
 
 #[derive(clap::Args, Debug, Clone)]

@@ -251,7 +251,7 @@ fn write_result_file(
 
 /// Native code for the compiled model, or `None` with a note when it cannot be had
 /// (the tape computes the same results).
-fn native_or_tape(
+pub(crate) fn native_or_tape(
     engine: EngineArg,
     compiled: &mut CompiledModel,
 ) -> Option<unimo_codegen::NativeStats> {

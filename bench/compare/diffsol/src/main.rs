@@ -1,24 +1,37 @@
 //! diffsol side of the unimo comparison: ROBER (DAE with a singular mass matrix),
-//! HIRES and VDPOL, with diffsol's BDF and its SDIRK methods (TR-BDF2, ESDIRK34).
+//! HIRES, VDPOL, POLLU and BRUSS2D, with diffsol's BDF and its SDIRK methods (TR-BDF2,
+//! ESDIRK34).
 //!
-//! Dense nalgebra matrices and diffsol's default dense LU (`NalgebraLU`); the
-//! Jacobian is given analytically as a Jacobian-vector product (`rhs_implicit`),
-//! from which diffsol assembles the dense Jacobian. All solver options are
-//! diffsol's defaults apart from rtol and a scalar atol.
+//! The Jacobian is given analytically as a Jacobian-vector product (`rhs_implicit`).
+//! ROBER, HIRES, VDPOL, POLLU: dense nalgebra matrices and diffsol's default dense LU
+//! (`NalgebraLU`), diffsol assembling the dense Jacobian from the products. BRUSS2D
+//! (2,048 unknowns): faer sparse matrices (`FaerSparseMat`) and faer's sparse LU
+//! (`FaerSparseLU`); diffsol finds the sparsity pattern when the problem is built and
+//! assembles the sparse Jacobian by column colouring. All solver options are diffsol's
+//! defaults apart from rtol and a scalar atol.
 //!
-//! Usage: compare-diffsol [RUNS] [PROBLEM...]   (RUNS default 5; problems rober hires vdpol)
+//! Usage: compare-diffsol [RUNS] [PROBLEM...]   (RUNS default 5; problems rober hires vdpol
+//!        pollu bruss2d; BRUSS2D's reference is read from $BRUSS2D_REF, default
+//!        bench/compare/refs/bruss2d.csv; $METHODS: a subset such as `bdf,esdirk34`)
 //! Prints one tab-separated line per configuration:
 //! problem tool method rtol atol scd steps median_ms status
 
 use diffsol::{
-    NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector,
+    FaerSparseLU, FaerSparseMat, NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod,
+    OdeSolverStopReason, Vector,
 };
 use std::time::Instant;
 
 type M = NalgebraMat<f64>;
 type LS = NalgebraLU<f64>;
+type SparseM = FaerSparseMat<f64>;
+type SparseLS = FaerSparseLU<f64>;
 
-const ROBER_REF: [f64; 3] = [2.083340149701255e-8, 8.333360770334713e-14, 0.9999999791665050];
+const ROBER_REF: [f64; 3] = [
+    2.083340149701255e-8,
+    8.333360770334713e-14,
+    0.9999999791665050,
+];
 const HIRES_REF: [f64; 8] = [
     7.371312573325668e-4,
     1.442485726316185e-4,
@@ -37,7 +50,10 @@ fn scd(y: &[f64], r: &[f64]) -> f64 {
         .iter()
         .zip(r)
         .map(|(a, b)| ((a - b) / b).abs())
-        .fold(0.0f64, |m, e| if e.is_nan() { f64::INFINITY } else { m.max(e) });
+        .fold(
+            0.0f64,
+            |m, e| if e.is_nan() { f64::INFINITY } else { m.max(e) },
+        );
     -worst.log10()
 }
 
@@ -50,7 +66,8 @@ where
     Eqn: diffsol::OdeEquations<T = f64> + 'a,
     S: OdeSolverMethod<'a, Eqn>,
 {
-    s.set_stop_time(t_end).map_err(|e| Failure(e.to_string(), 0))?;
+    s.set_stop_time(t_end)
+        .map_err(|e| Failure(e.to_string(), 0))?;
     loop {
         match s.step() {
             Ok(OdeSolverStopReason::TstopReached) => break,
@@ -64,18 +81,24 @@ where
             }
         }
     }
-    Ok((s.state().y.clone_as_vec(), s.get_statistics().number_of_steps))
+    Ok((
+        s.state().y.clone_as_vec(),
+        s.get_statistics().number_of_steps,
+    ))
 }
 
 /// Builds the problem and runs one method on it; the whole thing is what is timed.
 macro_rules! solve_with {
-    ($problem:expr, $method:expr, $t_end:expr) => {{
+    ($problem:expr, $method:expr, $t_end:expr) => {
+        solve_with!($problem, $method, $t_end, LS)
+    };
+    ($problem:expr, $method:expr, $t_end:expr, $ls:ty) => {{
         let fail = |e: diffsol::DiffsolError| Failure(format!("{e} (while setting up)"), 0);
         let problem = $problem.map_err(fail)?;
         match $method {
-            "bdf" => integrate(problem.bdf::<LS>().map_err(fail)?, $t_end),
-            "tr_bdf2" => integrate(problem.tr_bdf2::<LS>().map_err(fail)?, $t_end),
-            "esdirk34" => integrate(problem.esdirk34::<LS>().map_err(fail)?, $t_end),
+            "bdf" => integrate(problem.bdf::<$ls>().map_err(fail)?, $t_end),
+            "tr_bdf2" => integrate(problem.tr_bdf2::<$ls>().map_err(fail)?, $t_end),
+            "esdirk34" => integrate(problem.esdirk34::<$ls>().map_err(fail)?, $t_end),
             m => Err(Failure(format!("unknown method {m}"), 0)),
         }
     }};
@@ -126,8 +149,7 @@ fn hires(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failur
                 y[2] = -10.03 * x[2] + 0.43 * x[3] + 0.035 * x[4];
                 y[3] = 8.32 * x[1] + 1.71 * x[2] - 1.12 * x[3];
                 y[4] = -1.745 * x[4] + 0.43 * x[5] + 0.43 * x[6];
-                y[5] = -280.0 * x[5] * x[7] + 0.69 * x[3] + 1.71 * x[4] - 0.43 * x[5]
-                    + 0.69 * x[6];
+                y[5] = -280.0 * x[5] * x[7] + 0.69 * x[3] + 1.71 * x[4] - 0.43 * x[5] + 0.69 * x[6];
                 y[6] = 280.0 * x[5] * x[7] - 1.81 * x[6];
                 y[7] = -280.0 * x[5] * x[7] + 1.81 * x[6];
             },
@@ -180,23 +202,231 @@ fn vdpol(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failur
     solve_with!(problem, method, 2.0)
 }
 
+// ---- POLLU (test set pollu.f): f = S r(y), r_k = k_k y_a (y_b) ------------------------
+const POLLU_K: [f64; 25] = [
+    0.35, 26.6, 1.23e4, 8.6e-4, 8.2e-4, 1.5e4, 1.3e-4, 2.4e4, 1.65e4, 9.0e3, 2.2e-2, 1.2e4, 1.88,
+    1.63e4, 4.8e6, 3.5e-4, 1.75e-2, 1.0e8, 4.44e11, 1.24e3, 2.1, 5.78, 4.74e-2, 1.78e3, 3.12,
+];
+/// Reactants of each reaction (0-based species); `None`: first order.
+const POLLU_REACTANTS: [(usize, Option<usize>); 25] = [
+    (0, None),
+    (1, Some(3)),
+    (4, Some(1)),
+    (6, None),
+    (6, None),
+    (6, Some(5)),
+    (8, None),
+    (8, Some(5)),
+    (10, Some(1)),
+    (10, Some(0)),
+    (12, None),
+    (9, Some(1)),
+    (13, None),
+    (0, Some(5)),
+    (2, None),
+    (3, None),
+    (3, None),
+    (15, None),
+    (15, None),
+    (16, Some(5)),
+    (18, None),
+    (18, None),
+    (0, Some(3)),
+    (18, Some(0)),
+    (19, None),
+];
+/// Net production of each reaction: (species, coefficient).
+const POLLU_STOICH: [&[(usize, f64)]; 25] = [
+    &[(0, -1.0), (1, 1.0), (2, 1.0)],
+    &[(0, 1.0), (1, -1.0), (3, -1.0)],
+    &[(0, 1.0), (1, -1.0), (4, -1.0), (5, 1.0)],
+    &[(4, 2.0), (6, -1.0), (7, 1.0)],
+    &[(6, -1.0), (7, 1.0)],
+    &[(4, 1.0), (5, -1.0), (6, -1.0), (7, 1.0)],
+    &[(4, 1.0), (7, 1.0), (8, -1.0), (9, 1.0)],
+    &[(5, -1.0), (8, -1.0), (10, 1.0)],
+    &[(0, 1.0), (1, -1.0), (9, 1.0), (10, -1.0), (11, 1.0)],
+    &[(0, -1.0), (10, -1.0), (12, 1.0)],
+    &[(0, 1.0), (10, 1.0), (12, -1.0)],
+    &[(0, 1.0), (1, -1.0), (9, -1.0), (13, 1.0)],
+    &[(4, 1.0), (6, 1.0), (13, -1.0)],
+    &[(0, -1.0), (5, -1.0), (14, 1.0)],
+    &[(2, -1.0), (3, 1.0)],
+    &[(3, -1.0), (15, 1.0)],
+    &[(2, 1.0), (3, -1.0)],
+    &[(5, 2.0), (15, -1.0)],
+    &[(2, 1.0), (15, -1.0)],
+    &[(4, 1.0), (5, -1.0), (16, -1.0), (17, 1.0)],
+    &[(1, 1.0), (18, -1.0)],
+    &[(0, 1.0), (2, 1.0), (18, -1.0)],
+    &[(0, -1.0), (3, -1.0), (18, 1.0)],
+    &[(0, -1.0), (18, -1.0), (19, 1.0)],
+    &[(0, 1.0), (18, 1.0), (19, -1.0)],
+];
+const POLLU_Y0: [f64; 20] = [
+    0.0, 0.2, 0.0, 0.04, 0.0, 0.0, 0.1, 0.3, 0.01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.007, 0.0,
+    0.0, 0.0,
+];
+const POLLU_REF: [f64; 20] = [
+    0.5646255480022769e-1,
+    0.1342484130422339,
+    0.4139734331099427e-8,
+    0.5523140207484359e-2,
+    0.2018977262302196e-6,
+    0.1464541863493966e-6,
+    0.7784249118997964e-1,
+    0.3245075353396018,
+    0.7494013383880406e-2,
+    0.1622293157301561e-7,
+    0.1135863833257075e-7,
+    0.2230505975721359e-2,
+    0.2087162882798630e-3,
+    0.1396921016840158e-4,
+    0.8964884856898295e-2,
+    0.4352846369330103e-17,
+    0.6899219696263405e-2,
+    0.1007803037365946e-3,
+    0.1772146513969984e-5,
+    0.5682943292316392e-4,
+];
+
+fn pollu(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failure> {
+    let problem = OdeBuilder::<M>::new()
+        .rtol(rtol)
+        .atol([atol])
+        .rhs_implicit(
+            |x: &[f64], _p: &[f64], _t: f64, y: &mut [f64]| {
+                y.fill(0.0);
+                for (k, &(a, b)) in POLLU_REACTANTS.iter().enumerate() {
+                    let r = POLLU_K[k] * x[a] * b.map_or(1.0, |b| x[b]);
+                    for &(i, s) in POLLU_STOICH[k] {
+                        y[i] += s * r;
+                    }
+                }
+            },
+            |x: &[f64], _p: &[f64], _t: f64, v: &[f64], y: &mut [f64]| {
+                y.fill(0.0);
+                for (k, &(a, b)) in POLLU_REACTANTS.iter().enumerate() {
+                    // d r_k = k (v_a x_b + x_a v_b), or k v_a for a first-order reaction
+                    let dr = POLLU_K[k] * b.map_or(v[a], |b| v[a] * x[b] + x[a] * v[b]);
+                    for &(i, s) in POLLU_STOICH[k] {
+                        y[i] += s * dr;
+                    }
+                }
+            },
+        )
+        .init(
+            |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&POLLU_Y0),
+            20,
+        )
+        .build();
+    solve_with!(problem, method, 60.0)
+}
+
+// ---- BRUSS2D: u, v on an N x N periodic grid; (u, v) of cell (i, j) at 2 (i N + j) ------
+const BRUSS_N: usize = 32;
+const BRUSS_ALPHA: f64 = 1.0;
+const BRUSS_C: f64 = BRUSS_ALPHA * (BRUSS_N * BRUSS_N) as f64;
+
+/// Index of u in cell (i, j), the indices wrapped around the periodic grid.
+fn cell(i: isize, j: isize) -> usize {
+    let n = BRUSS_N as isize;
+    2 * ((i.rem_euclid(n) * n + j.rem_euclid(n)) as usize)
+}
+
+/// The five-point Laplacian of species `s` (0: u, 1: v) of `x` at cell (i, j).
+fn laplacian(x: &[f64], i: isize, j: isize, s: usize) -> f64 {
+    x[cell(i + 1, j) + s] + x[cell(i - 1, j) + s] + x[cell(i, j + 1) + s] + x[cell(i, j - 1) + s]
+        - 4.0 * x[cell(i, j) + s]
+}
+
+fn bruss2d(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failure> {
+    let n = BRUSS_N as isize;
+    let problem = OdeBuilder::<SparseM>::new()
+        .rtol(rtol)
+        .atol([atol])
+        .rhs_implicit(
+            move |x: &[f64], _p: &[f64], _t: f64, y: &mut [f64]| {
+                for i in 0..n {
+                    for j in 0..n {
+                        let k = cell(i, j);
+                        let (u, v) = (x[k], x[k + 1]);
+                        let uuv = u * u * v;
+                        y[k] = 1.0 + uuv - 4.4 * u + BRUSS_C * laplacian(x, i, j, 0);
+                        y[k + 1] = 3.4 * u - uuv + BRUSS_C * laplacian(x, i, j, 1);
+                    }
+                }
+            },
+            move |x: &[f64], _p: &[f64], _t: f64, w: &[f64], y: &mut [f64]| {
+                for i in 0..n {
+                    for j in 0..n {
+                        let k = cell(i, j);
+                        let (u, v, du, dv) = (x[k], x[k + 1], w[k], w[k + 1]);
+                        let duuv = 2.0 * u * v * du + u * u * dv;
+                        y[k] = duuv - 4.4 * du + BRUSS_C * laplacian(w, i, j, 0);
+                        y[k + 1] = 3.4 * du - duuv + BRUSS_C * laplacian(w, i, j, 1);
+                    }
+                }
+            },
+        )
+        .init(
+            move |_p: &[f64], _t: f64, y: &mut [f64]| {
+                for i in 0..n {
+                    for j in 0..n {
+                        let (gx, gy) = (i as f64 / n as f64, j as f64 / n as f64);
+                        y[cell(i, j)] = 22.0 * gy * (1.0 - gy).powf(1.5);
+                        y[cell(i, j) + 1] = 27.0 * gx * (1.0 - gx).powf(1.5);
+                    }
+                }
+            },
+            2 * BRUSS_N * BRUSS_N,
+        )
+        .build();
+    solve_with!(problem, method, 11.5, SparseLS)
+}
+
+/// The reference row of a reference CSV (a header, then `t,y...`).
+fn read_reference(path: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("cannot read the reference {path}: {e}"));
+    let row = text.lines().nth(1).expect("a reference row");
+    row.split(',')
+        .skip(1)
+        .map(|v| v.trim().parse().expect("a number"))
+        .collect()
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(5);
     let mut problems: Vec<&str> = args.iter().skip(1).map(String::as_str).collect();
     if problems.is_empty() {
-        problems = vec!["rober", "hires", "vdpol"];
+        problems = vec!["rober", "hires", "vdpol", "pollu", "bruss2d"];
     }
+    // METHODS: a comma-separated subset of bdf,tr_bdf2,esdirk34 (default: all three).
+    let methods: Vec<String> = std::env::var("METHODS")
+        .unwrap_or_else(|_| "bdf,tr_bdf2,esdirk34".into())
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let bruss_path =
+        std::env::var("BRUSS2D_REF").unwrap_or_else(|_| "bench/compare/refs/bruss2d.csv".into());
     let rtols = [1e-4, 1e-6, 1e-8, 1e-10];
     for problem in problems {
+        let bruss_ref;
         let (name, factor, reference, f): (&str, f64, &[f64], fn(&str, f64, f64) -> _) =
             match problem {
                 "rober" => ("ROBER", 1e-6, &ROBER_REF[..], rober),
                 "hires" => ("HIRES", 1e-2, &HIRES_REF[..], hires),
                 "vdpol" => ("VDPOL", 1e-2, &VDPOL_REF[..], vdpol),
+                "pollu" => ("POLLU", 1.0, &POLLU_REF[..], pollu),
+                "bruss2d" => {
+                    bruss_ref = read_reference(&bruss_path);
+                    ("BRUSS2D", 1e-2, &bruss_ref[..], bruss2d)
+                }
                 p => panic!("unknown problem {p}"),
             };
-        for method in ["bdf", "tr_bdf2", "esdirk34"] {
+        for method in methods.iter().map(String::as_str) {
             for rtol in rtols {
                 let atol = rtol * factor;
                 let mut times = Vec::new();
@@ -211,7 +441,12 @@ fn main() {
                 let median = times[times.len() / 2];
                 match last.unwrap() {
                     Ok((y, steps)) => {
-                        eprintln!("{name} diffsol {method} {rtol:.0e}: y = {y:?}");
+                        if y.len() <= 20 {
+                            eprintln!("{name} diffsol {method} {rtol:.0e}: y = {y:?}");
+                        } else {
+                            let head = &y[..4];
+                            eprintln!("{name} diffsol {method} {rtol:.0e}: y = {head:?} ... ({} values)", y.len());
+                        }
                         println!(
                             "{name}\tdiffsol\t{method}\t{rtol:.0e}\t{atol:.0e}\t{:.2}\t{steps}\t{median:.3}\tok",
                             scd(&y, reference)
