@@ -1,12 +1,12 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
+use crate::results::csv::CsvStream;
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
 use crate::{
     EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
     EXIT_SIMULATION_FAILURE, EXIT_USAGE,
 };
 use std::io::Write;
-use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use unimo_dae::plan::Plan;
@@ -69,32 +69,6 @@ pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, 
     out.sort();
     out.dedup();
     Ok(out)
-}
-
-pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io::Result<()> {
-    write!(out, "time")?;
-    for &c in cols {
-        let n = &r.names[c];
-        if n.contains(',') || n.contains('"') {
-            write!(out, ",\"{}\"", n.replace('"', "\"\""))?;
-        } else {
-            write!(out, ",{n}")?;
-        }
-    }
-    writeln!(out)?;
-    let mut line = Vec::with_capacity(24 * (cols.len() + 1));
-    for (t, row) in r.times.iter().zip(&r.rows) {
-        line.clear();
-        crate::numfmt::push_exp(&mut line, *t);
-        for &c in cols {
-            line.push(b',');
-            // -0 is written as 0.
-            crate::numfmt::push_exp(&mut line, row[c] + 0.0);
-        }
-        line.push(b'\n');
-        out.write_all(&line)?;
-    }
-    Ok(())
 }
 
 pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
@@ -198,13 +172,22 @@ fn simulate_flat(
     unimo_solve::set_fine_timing(a.stats);
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
-    let result = run(&compiled, &options, sim_started, profile.clone());
+    // A CSV is written on a second thread while the run goes on.
+    let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
+    let csv = (result_format(a) == ResultFormat::Csv)
+        .then(|| CsvStream::start(a.output.as_deref(), names, cols.clone()));
+    let sink = csv.as_ref().map(|stream| stream.sink(&cols));
+    let result = run(&compiled, &options, sim_started, profile.clone(), sink);
     let simulate_ms = ms_since(sim_started);
     phases.simulate = simulate_ms;
     phases.run = result.phase_times.clone();
     let write_started = Instant::now();
     let ids = (&output_ids[..], &cols[..]);
-    if let Err(e) = write_result_file(a, flat, &dae, &result, ids, (start, options.stop)) {
+    let written = match csv {
+        Some(stream) => stream.finish(),
+        None => write_mat(a, flat, &dae, &result, ids, (start, options.stop)),
+    };
+    if let Err(e) = written {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
@@ -232,21 +215,6 @@ fn simulate_flat(
         );
     }
     how_it_ended(&dae, map, &result, start)
-}
-
-/// The result file in the format `--format` (or the extension) asks for.
-fn write_result_file(
-    a: &SimulateArgs,
-    flat: &unimo_flat::FlatModel,
-    dae: &Dae,
-    result: &SimResult,
-    (output_ids, cols): (&[unimo_dae::expr::ScalarId], &[usize]),
-    span: (f64, f64),
-) -> std::io::Result<()> {
-    match result_format(a) {
-        ResultFormat::Csv => write_results(a.output.as_deref(), result, cols),
-        ResultFormat::Mat => write_mat(a, flat, dae, result, (output_ids, cols), span),
-    }
 }
 
 /// Native code for the compiled model, or `None` with a note when it cannot be had
@@ -318,6 +286,7 @@ fn run(
     options: &SimOptions,
     sim_started: Instant,
     profile: Option<Arc<Mutex<Vec<Duration>>>>,
+    row_sink: Option<unimo_runtime::sim::RowSink<'_>>,
 ) -> SimResult {
     let (start, stop) = (options.start, options.stop);
     let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
@@ -346,6 +315,9 @@ fn run(
     let mut simulator = unimo_runtime::sim::Simulator::new(compiled);
     if let Some(sink) = profile {
         simulator = simulator.profile(sink);
+    }
+    if let Some(sink) = row_sink {
+        simulator = simulator.on_row(sink);
     }
     let result = simulator.run_with_progress(options, &mut report);
     if let Some(bar) = &bar {
@@ -392,20 +364,6 @@ fn write_mat(
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
     crate::results::mat::write(&mut f, &vars, &result.times, &result.rows, span)?;
     f.flush()
-}
-
-/// Writes the selected columns as CSV to `output`, or to stdout.
-fn write_results(output: Option<&Path>, result: &SimResult, cols: &[usize]) -> std::io::Result<()> {
-    match output {
-        Some(path) => std::fs::File::create(path)
-            .map(std::io::BufWriter::new)
-            .and_then(|mut f| write_csv(&mut f, result, cols).and_then(|_| f.flush())),
-        None => {
-            let stdout = std::io::stdout();
-            let mut lock = std::io::BufWriter::new(stdout.lock());
-            write_csv(&mut lock, result, cols).and_then(|_| lock.flush())
-        }
-    }
 }
 
 /// `E0020` for each `--tunable` name that covers no parameter of the model, with the

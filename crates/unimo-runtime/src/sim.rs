@@ -483,7 +483,13 @@ pub struct Simulator<'a> {
     sliding_events: usize,
     /// Per dynamic state set: the candidate each of its states is.
     selections: Vec<Vec<usize>>,
+    /// Called with each row as it is recorded (see [`Simulator::on_row`]).
+    row_sink: Option<RowSink<'a>>,
 }
+
+/// A receiver of result rows as they are recorded: time, then the row (one value per
+/// output, in the order of `SimResult::names`).
+pub type RowSink<'a> = Box<dyn FnMut(f64, &[f64]) + 'a>;
 
 /// A dynamic state set changes its states when the current choice's pivot falls below
 /// this fraction of the best one's (hysteresis: no switching back and forth between two
@@ -518,7 +524,16 @@ impl<'a> Simulator<'a> {
             non_finite: None,
             sliding_events: 0,
             selections: m.state_sets.iter().map(|s| s.initial.clone()).collect(),
+            row_sink: None,
         }
+    }
+
+    /// Hands every result row to `sink` as soon as it is recorded (besides keeping it in
+    /// the result): a caller can write the result file while the run goes on. Rows are
+    /// only ever appended, so the rows the sink saw are the result's rows.
+    pub fn on_row(mut self, sink: RowSink<'a>) -> Self {
+        self.row_sink = Some(sink);
+        self
     }
 
     /// Times every plan step of the run into `sink` (seconds per step, summed over the
@@ -650,6 +665,9 @@ impl<'a> Simulator<'a> {
                 equation: m.definitions.get(&defining).copied(),
             });
             return;
+        }
+        if let Some(sink) = self.row_sink.as_mut() {
+            sink(t, &row);
         }
         self.result.times.push(t);
         self.result.rows.push(row);

@@ -81,6 +81,7 @@ mod evaluate;
 mod integrator;
 mod jacobian;
 mod linear;
+mod small_lu;
 pub mod newton;
 mod norm;
 mod options;
