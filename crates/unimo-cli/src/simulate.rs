@@ -1,7 +1,7 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
-use crate::results::csv::CsvStream;
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
+use crate::results::csv::CsvStream;
 use crate::{
     EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
     EXIT_SIMULATION_FAILURE, EXIT_USAGE,

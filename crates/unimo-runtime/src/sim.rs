@@ -278,6 +278,11 @@ struct Ode<'a> {
     last_roots: (f64, Crossed),
     /// Where the nonlinear loops' Newton iterations start (see [`starts`]).
     loop_starts: LoopStarts,
+    /// While a solver step runs (`Some`): the point the registers hold the plan's
+    /// values of, if any. The solver asks for the right-hand side at the end of each
+    /// step and then for the root functions at the same point: the second evaluation
+    /// is skipped. Outside a step (`None`) the simulator writes the registers itself.
+    evaluated_at: Option<Option<(f64, Vec<f64>)>>,
 }
 
 impl Ode<'_> {
@@ -303,7 +308,29 @@ impl Ode<'_> {
         evaluated
     }
 
+    /// Starts (`true`) or ends a solver step: see `evaluated_at`.
+    fn within_step(&mut self, on: bool) {
+        self.evaluated_at = on.then_some(None);
+    }
+
     fn load(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
+        if let Some(at) = self.evaluated_at.as_mut() {
+            if at
+                .as_ref()
+                .is_some_and(|(t0, x0)| *t0 == t && x0[..] == x[..])
+            {
+                return Ok(());
+            }
+            *at = None;
+        }
+        self.load_anew(t, x)?;
+        if let Some(at) = self.evaluated_at.as_mut() {
+            *at = Some((t, x.to_vec()));
+        }
+        Ok(())
+    }
+
+    fn load_anew(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
         self.regs[self.m.layout.time as usize] = t;
         for (k, &reg) in self.m.states.iter().enumerate() {
             self.regs[reg as usize] = x[k];
@@ -345,6 +372,9 @@ impl System for Ode<'_> {
                 self.evaluations += 1;
                 let started = unimo_solve::fine_timing().then(Instant::now);
                 native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
+                if let Some(at) = self.evaluated_at.as_mut() {
+                    *at = None;
+                }
                 self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
             }
             _ => {
@@ -512,6 +542,7 @@ impl<'a> Simulator<'a> {
             last_failure: None,
             pattern: jacobian_pattern(m),
             loop_starts: LoopStarts::new(m),
+            evaluated_at: None,
         };
         Simulator {
             ode,
