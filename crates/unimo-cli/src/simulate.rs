@@ -172,22 +172,15 @@ fn simulate_flat(
     unimo_solve::set_fine_timing(a.stats);
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
-    // A CSV is written on a second thread while the run goes on.
-    let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
-    let csv = (result_format(a) == ResultFormat::Csv)
-        .then(|| CsvStream::start(a.output.as_deref(), names, cols.clone()));
+    let csv = csv_stream(a, &compiled, &cols);
     let sink = csv.as_ref().map(|stream| stream.sink(&cols));
     let result = run(&compiled, &options, sim_started, profile.clone(), sink);
     let simulate_ms = ms_since(sim_started);
-    phases.simulate = simulate_ms;
-    phases.run = result.phase_times.clone();
+    (phases.simulate, phases.run) = (simulate_ms, result.phase_times.clone());
     let write_started = Instant::now();
     let ids = (&output_ids[..], &cols[..]);
-    let written = match csv {
-        Some(stream) => stream.finish(),
-        None => write_mat(a, flat, &dae, &result, ids, (start, options.stop)),
-    };
-    if let Err(e) = written {
+    let span = (start, options.stop);
+    if let Err(e) = finish_results(a, (flat, &dae), &result, csv, ids, span) {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
@@ -215,6 +208,29 @@ fn simulate_flat(
         );
     }
     how_it_ended(&dae, map, &result, start)
+}
+
+/// The CSV writer, started before the run when the result is a CSV: it writes on a
+/// second thread while the run goes on.
+fn csv_stream(a: &SimulateArgs, compiled: &CompiledModel, cols: &[usize]) -> Option<CsvStream> {
+    let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
+    (result_format(a) == ResultFormat::Csv)
+        .then(|| CsvStream::start(a.output.as_deref(), names, cols.to_vec()))
+}
+
+/// Completes the result file: waits for the CSV writer, or writes the MAT file.
+fn finish_results(
+    a: &SimulateArgs,
+    (flat, dae): (&unimo_flat::FlatModel, &Dae),
+    result: &SimResult,
+    csv: Option<CsvStream>,
+    ids: (&[unimo_dae::expr::ScalarId], &[usize]),
+    span: (f64, f64),
+) -> std::io::Result<()> {
+    match csv {
+        Some(stream) => stream.finish(),
+        None => write_mat(a, flat, dae, result, ids, span),
+    }
 }
 
 /// Native code for the compiled model, or `None` with a note when it cannot be had
