@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{channel, Sender};
 use std::thread::JoinHandle;
-use unimo_runtime::sim::SimResult;
+use unimo_runtime::sim::{RowSink, SimResult};
 
 /// Writes the header line: `time`, then the names of `cols` (quoted when needed).
 fn write_header(out: &mut dyn Write, names: &[String], cols: &[usize]) -> std::io::Result<()> {
@@ -50,11 +50,14 @@ pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io:
 /// Rows handed over in batches (one channel message per batch, not per row).
 const BATCH_ROWS: usize = 64;
 
+/// A batch of rows: time and the selected values of each.
+type RowBatch = Vec<(f64, Vec<f64>)>;
+
 /// A CSV file (or stdout) written on its own thread from rows sent while the run goes
 /// on. The rows sent must be the result's rows, in order ([`Self::sink`]); then
 /// [`Self::finish`] waits for the writer and returns its outcome.
 pub struct CsvStream {
-    sender: Option<Sender<Vec<(f64, Vec<f64>)>>>,
+    sender: Option<Sender<RowBatch>>,
     writer: JoinHandle<std::io::Result<()>>,
 }
 
@@ -62,7 +65,7 @@ impl CsvStream {
     /// Starts the writer: it creates `output` (stdout when `None`) and writes the header
     /// of `names` selected by `cols` at once, then every batch of rows it receives.
     pub fn start(output: Option<&Path>, names: Vec<String>, cols: Vec<usize>) -> CsvStream {
-        let (sender, receiver) = channel::<Vec<(f64, Vec<f64>)>>();
+        let (sender, receiver) = channel::<RowBatch>();
         let output: Option<PathBuf> = output.map(Path::to_path_buf);
         let writer = std::thread::spawn(move || -> std::io::Result<()> {
             let mut out: Box<dyn Write> = match &output {
@@ -88,7 +91,7 @@ impl CsvStream {
 
     /// The receiver of the simulation's rows: keeps the columns `cols` of each and sends
     /// them to the writer in batches (the last, partial batch when the sink is dropped).
-    pub fn sink<'a>(&self, cols: &'a [usize]) -> Box<dyn FnMut(f64, &[f64]) + 'a> {
+    pub fn sink<'a>(&self, cols: &'a [usize]) -> RowSink<'a> {
         let Some(sender) = self.sender.clone() else {
             return Box::new(|_, _| {});
         };
@@ -116,8 +119,8 @@ impl CsvStream {
 
 /// Rows waiting to be sent; the rest go when it is dropped.
 struct Batch {
-    sender: Sender<Vec<(f64, Vec<f64>)>>,
-    rows: Vec<(f64, Vec<f64>)>,
+    sender: Sender<RowBatch>,
+    rows: RowBatch,
 }
 
 impl Batch {
