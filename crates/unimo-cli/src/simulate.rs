@@ -1,12 +1,12 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
+use crate::results::csv::CsvStream;
 use crate::{
     EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
     EXIT_SIMULATION_FAILURE, EXIT_USAGE,
 };
 use std::io::Write;
-use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use unimo_dae::plan::Plan;
@@ -69,32 +69,6 @@ pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, 
     out.sort();
     out.dedup();
     Ok(out)
-}
-
-pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io::Result<()> {
-    write!(out, "time")?;
-    for &c in cols {
-        let n = &r.names[c];
-        if n.contains(',') || n.contains('"') {
-            write!(out, ",\"{}\"", n.replace('"', "\"\""))?;
-        } else {
-            write!(out, ",{n}")?;
-        }
-    }
-    writeln!(out)?;
-    let mut line = Vec::with_capacity(24 * (cols.len() + 1));
-    for (t, row) in r.times.iter().zip(&r.rows) {
-        line.clear();
-        crate::numfmt::push_exp(&mut line, *t);
-        for &c in cols {
-            line.push(b',');
-            // -0 is written as 0.
-            crate::numfmt::push_exp(&mut line, row[c] + 0.0);
-        }
-        line.push(b'\n');
-        out.write_all(&line)?;
-    }
-    Ok(())
 }
 
 pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
@@ -198,13 +172,15 @@ fn simulate_flat(
     unimo_solve::set_fine_timing(a.stats);
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
-    let result = run(&compiled, &options, sim_started, profile.clone());
+    let csv = csv_stream(a, &compiled, &cols);
+    let sink = csv.as_ref().map(|stream| stream.sink(&cols));
+    let result = run(&compiled, &options, sim_started, profile.clone(), sink);
     let simulate_ms = ms_since(sim_started);
-    phases.simulate = simulate_ms;
-    phases.run = result.phase_times.clone();
+    (phases.simulate, phases.run) = (simulate_ms, result.phase_times.clone());
     let write_started = Instant::now();
     let ids = (&output_ids[..], &cols[..]);
-    if let Err(e) = write_result_file(a, flat, &dae, &result, ids, (start, options.stop)) {
+    let span = (start, options.stop);
+    if let Err(e) = finish_results(a, (flat, &dae), &result, csv, ids, span) {
         eprintln!("error: cannot write the results: {e}");
         return EXIT_USAGE;
     }
@@ -234,18 +210,26 @@ fn simulate_flat(
     how_it_ended(&dae, map, &result, start)
 }
 
-/// The result file in the format `--format` (or the extension) asks for.
-fn write_result_file(
+/// The CSV writer, started before the run when the result is a CSV: it writes on a
+/// second thread while the run goes on.
+fn csv_stream(a: &SimulateArgs, compiled: &CompiledModel, cols: &[usize]) -> Option<CsvStream> {
+    let names: Vec<String> = compiled.outputs.iter().map(|(n, _)| n.clone()).collect();
+    (result_format(a) == ResultFormat::Csv)
+        .then(|| CsvStream::start(a.output.as_deref(), names, cols.to_vec()))
+}
+
+/// Completes the result file: waits for the CSV writer, or writes the MAT file.
+fn finish_results(
     a: &SimulateArgs,
-    flat: &unimo_flat::FlatModel,
-    dae: &Dae,
+    (flat, dae): (&unimo_flat::FlatModel, &Dae),
     result: &SimResult,
-    (output_ids, cols): (&[unimo_dae::expr::ScalarId], &[usize]),
+    csv: Option<CsvStream>,
+    ids: (&[unimo_dae::expr::ScalarId], &[usize]),
     span: (f64, f64),
 ) -> std::io::Result<()> {
-    match result_format(a) {
-        ResultFormat::Csv => write_results(a.output.as_deref(), result, cols),
-        ResultFormat::Mat => write_mat(a, flat, dae, result, (output_ids, cols), span),
+    match csv {
+        Some(stream) => stream.finish(),
+        None => write_mat(a, flat, dae, result, ids, span),
     }
 }
 
@@ -326,6 +310,7 @@ fn run(
     options: &SimOptions,
     sim_started: Instant,
     profile: Option<Arc<Mutex<Vec<Duration>>>>,
+    row_sink: Option<unimo_runtime::sim::RowSink<'_>>,
 ) -> SimResult {
     let (start, stop) = (options.start, options.stop);
     let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
@@ -354,6 +339,9 @@ fn run(
     let mut simulator = unimo_runtime::sim::Simulator::new(compiled);
     if let Some(sink) = profile {
         simulator = simulator.profile(sink);
+    }
+    if let Some(sink) = row_sink {
+        simulator = simulator.on_row(sink);
     }
     let result = simulator.run_with_progress(options, &mut report);
     if let Some(bar) = &bar {
@@ -400,20 +388,6 @@ fn write_mat(
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
     crate::results::mat::write(&mut f, &vars, &result.times, &result.rows, span)?;
     f.flush()
-}
-
-/// Writes the selected columns as CSV to `output`, or to stdout.
-fn write_results(output: Option<&Path>, result: &SimResult, cols: &[usize]) -> std::io::Result<()> {
-    match output {
-        Some(path) => std::fs::File::create(path)
-            .map(std::io::BufWriter::new)
-            .and_then(|mut f| write_csv(&mut f, result, cols).and_then(|_| f.flush())),
-        None => {
-            let stdout = std::io::stdout();
-            let mut lock = std::io::BufWriter::new(stdout.lock());
-            write_csv(&mut lock, result, cols).and_then(|_| lock.flush())
-        }
-    }
 }
 
 /// `E0020` for each `--tunable` name that covers no parameter of the model, with the

@@ -288,6 +288,11 @@ struct Ode<'a> {
     last_roots: (f64, Crossed),
     /// Where the nonlinear loops' Newton iterations start (see [`starts`]).
     loop_starts: LoopStarts,
+    /// While a solver step runs (`Some`): the point the registers hold the plan's
+    /// values of, if any. The solver asks for the right-hand side at the end of each
+    /// step and then for the root functions at the same point: the second evaluation
+    /// is skipped. Outside a step (`None`) the simulator writes the registers itself.
+    evaluated_at: Option<Option<(f64, Vec<f64>)>>,
 }
 
 impl Ode<'_> {
@@ -313,7 +318,29 @@ impl Ode<'_> {
         evaluated
     }
 
+    /// Starts (`true`) or ends a solver step: see `evaluated_at`.
+    fn within_step(&mut self, on: bool) {
+        self.evaluated_at = on.then_some(None);
+    }
+
     fn load(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
+        if let Some(at) = self.evaluated_at.as_mut() {
+            if at
+                .as_ref()
+                .is_some_and(|(t0, x0)| *t0 == t && x0[..] == x[..])
+            {
+                return Ok(());
+            }
+            *at = None;
+        }
+        self.load_anew(t, x)?;
+        if let Some(at) = self.evaluated_at.as_mut() {
+            *at = Some((t, x.to_vec()));
+        }
+        Ok(())
+    }
+
+    fn load_anew(&mut self, t: f64, x: &[f64]) -> Result<(), EvalError> {
         self.regs[self.m.layout.time as usize] = t;
         for (k, &reg) in self.m.states.iter().enumerate() {
             self.regs[reg as usize] = x[k];
@@ -355,6 +382,9 @@ impl System for Ode<'_> {
                 self.evaluations += 1;
                 let started = unimo_solve::fine_timing().then(Instant::now);
                 native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
+                if let Some(at) = self.evaluated_at.as_mut() {
+                    *at = None;
+                }
                 self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
             }
             _ => {
@@ -495,7 +525,13 @@ pub struct Simulator<'a> {
     selections: Vec<Vec<usize>>,
     /// Which steps between the grid's points get a row.
     refine: refine::Refine,
+    /// Called with each row as it is recorded (see [`Simulator::on_row`]).
+    row_sink: Option<RowSink<'a>>,
 }
+
+/// A receiver of result rows as they are recorded: time, then the row (one value per
+/// output, in the order of `SimResult::names`).
+pub type RowSink<'a> = Box<dyn FnMut(f64, &[f64]) + 'a>;
 
 /// A dynamic state set changes its states when the current choice's pivot falls below
 /// this fraction of the best one's (hysteresis: no switching back and forth between two
@@ -518,6 +554,7 @@ impl<'a> Simulator<'a> {
             last_failure: None,
             pattern: jacobian_pattern(m),
             loop_starts: LoopStarts::new(m),
+            evaluated_at: None,
         };
         Simulator {
             ode,
@@ -531,7 +568,16 @@ impl<'a> Simulator<'a> {
             sliding_events: 0,
             selections: m.state_sets.iter().map(|s| s.initial.clone()).collect(),
             refine: refine::Refine::default(),
+            row_sink: None,
         }
+    }
+
+    /// Hands every result row to `sink` as soon as it is recorded (besides keeping it in
+    /// the result): a caller can write the result file while the run goes on. Rows are
+    /// only ever appended, so the rows the sink saw are the result's rows.
+    pub fn on_row(mut self, sink: RowSink<'a>) -> Self {
+        self.row_sink = Some(sink);
+        self
     }
 
     /// Times every plan step of the run into `sink` (seconds per step, summed over the
@@ -663,6 +709,9 @@ impl<'a> Simulator<'a> {
                 equation: m.definitions.get(&defining).copied(),
             });
             return;
+        }
+        if let Some(sink) = self.row_sink.as_mut() {
+            sink(t, &row);
         }
         self.result.times.push(t);
         self.result.rows.push(row);

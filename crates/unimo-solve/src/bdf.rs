@@ -5,12 +5,13 @@
 //!   changing the step size needs no interpolation. Predictor: `x_p = Σ φ_j`,
 //!   `x_p' = Σ γ_j φ_j`; corrector: `x = x_p + e`, `x' = x_p' + c_j e` with
 //!   `c_j = -α_s / h`, `α_s = -Σ_{j≤k} 1/j`.
-//! * Newton on `G(e) = 0` with the iteration matrix `c_j M - J` (faer LU, dense or sparse),
-//!   at most four iterations, converged when `s ||δ|| ≤ 0.33` (`s = ρ / (1 - ρ)` from the
-//!   observed rate `ρ`). The LU is refactored when `c_j` moved by more than the ratio
-//!   `[0.6, 1.67]` since the factorization (in between, corrections are scaled by
-//!   `2 / (1 + c_j / c_j,old)`); the Jacobian is re-evaluated only after a convergence failure
-//!   with a stale Jacobian or when it is 50 steps old.
+//! * Newton on `G(e) = 0` with the iteration matrix `c_j M - J` (dense LU, ours below 32
+//!   unknowns and faer's above, or faer's sparse LU), at most four iterations, converged
+//!   when `s ||δ|| ≤ 0.33` (`s = ρ / (1 - ρ)` from the observed rate `ρ`). The LU is
+//!   refactored when `c_j` moved by more than the ratio `[0.6, 1.67]` since the
+//!   factorization (in between, corrections are scaled by `2 / (1 + c_j / c_j,old)`); the
+//!   Jacobian is re-evaluated only after a convergence failure with a stale Jacobian or
+//!   when it is 50 steps old.
 //! * Local error test: `C ||e|| ≤ 1` with `C = max(|α_k + α_s - α_0|, α_k)` in the weighted RMS
 //!   norm with weights `1 / (rtol_i |x_i| + atol_i)` taken at the start of the step. Algebraic
 //!   components are included unless `suppress_algebraic_error` is set (IDA's `suppressalg`).

@@ -86,6 +86,7 @@ mod norm;
 mod options;
 mod radau5;
 mod roots;
+mod small_lu;
 mod solver;
 mod stats;
 mod step_control;

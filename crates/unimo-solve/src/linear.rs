@@ -1,8 +1,10 @@
 //! LU factorizations of the shifted iteration matrices `shift * M - J` of the implicit
 //! methods (real shift for BDF and the real Radau block, complex shift for the complex Radau
-//! block), with faer: dense partial-pivoting LU factored in place in preallocated storage, or
-//! sparse LU (symbolic analysis once, numeric factorization on every refactor) on the
-//! Jacobian's pattern plus the diagonal.
+//! block): below [`SMALL_DENSE_LIMIT`] unknowns our own row-major partial-pivoting LU
+//! (`small_lu.rs`: faer's blocked kernels cost more in set-up than they save on an 18 x 18
+//! matrix); above it faer's dense partial-pivoting LU factored in place in preallocated
+//! storage, or faer's sparse LU (symbolic analysis once, numeric factorization on every
+//! refactor) on the Jacobian's pattern plus the diagonal.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor as dense_factor, solve as dense_solve};
@@ -12,6 +14,7 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
+use crate::small_lu::SmallLu;
 use crate::system::{JacobianMatrix, SparsityPattern};
 use std::cell::Cell;
 use std::time::Instant;
@@ -51,23 +54,45 @@ fn add_linear_algebra_time(started: Option<Instant>) {
     LINEAR_ALGEBRA_SECONDS.with(|c| c.set(c.get() + seconds));
 }
 
+/// Dense iteration matrices with fewer unknowns than this are factored by [`SmallLu`].
+pub const SMALL_DENSE_LIMIT: usize = 32;
+
 /// Scalars the iteration matrices are built from: `f64` and `c64`.
 pub(crate) trait LuScalar:
-    faer::traits::ComplexField + Copy + From<f64> + std::ops::Sub<Output = Self> + std::ops::AddAssign
+    faer::traits::ComplexField
+    + Copy
+    + From<f64>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::AddAssign
+    + std::ops::SubAssign
 {
     /// Nonzero and finite.
     fn is_usable_pivot(self) -> bool;
+
+    /// The size compared to choose pivots: `|x|` for reals, `|re| + |im|` for complex
+    /// numbers (LAPACK's choice for its complex LU).
+    fn pivot_size(self) -> f64;
 }
 
 impl LuScalar for f64 {
     fn is_usable_pivot(self) -> bool {
         self != 0.0 && self.is_finite()
     }
+
+    fn pivot_size(self) -> f64 {
+        self.abs()
+    }
 }
 
 impl LuScalar for c64 {
     fn is_usable_pivot(self) -> bool {
         (self.re != 0.0 || self.im != 0.0) && self.re.is_finite() && self.im.is_finite()
+    }
+
+    fn pivot_size(self) -> f64 {
+        self.re.abs() + self.im.abs()
     }
 }
 
@@ -82,6 +107,7 @@ pub(crate) struct ShiftedLu<T: LuScalar> {
 }
 
 enum Backend<T: LuScalar> {
+    Small(SmallLu<T>),
     Dense {
         factors: Mat<T>,
         permutation: Vec<usize>,
@@ -102,8 +128,20 @@ struct SparseBackend<T: LuScalar> {
 }
 
 impl<T: LuScalar> ShiftedLu<T> {
-    /// Dense LU of a `size × size` matrix.
+    /// Dense LU of a `size × size` matrix (our own below [`SMALL_DENSE_LIMIT`], faer's
+    /// above).
     pub fn dense(size: usize) -> Self {
+        if size < SMALL_DENSE_LIMIT {
+            return ShiftedLu {
+                size,
+                backend: Backend::Small(SmallLu::new(size)),
+            };
+        }
+        Self::faer_dense(size)
+    }
+
+    /// faer's dense LU of a `size × size` matrix, whatever its size.
+    pub fn faer_dense(size: usize) -> Self {
         let factor_req =
             dense_factor::lu_in_place_scratch::<usize, T>(size, size, Par::Seq, Default::default());
         let solve_req = dense_solve::solve_in_place_scratch::<usize, T>(size, 1, Par::Seq);
@@ -160,6 +198,7 @@ impl<T: LuScalar> ShiftedLu<T> {
         shift: T,
     ) -> Result<(), SingularMatrix> {
         match &mut self.backend {
+            Backend::Small(small) => small.factor_shifted(jacobian, differential, shift),
             Backend::Dense {
                 factors,
                 permutation,
@@ -201,8 +240,13 @@ impl<T: LuScalar> ShiftedLu<T> {
 
     fn solve_untimed(&mut self, rhs: &mut [T]) {
         let size = self.size;
+        if let Backend::Small(small) = &mut self.backend {
+            small.solve(rhs);
+            return;
+        }
         let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, size, 1);
         match &mut self.backend {
+            Backend::Small(_) => {}
             Backend::Dense {
                 factors,
                 permutation,

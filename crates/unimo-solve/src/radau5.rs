@@ -3,7 +3,8 @@
 //! * The stage equations for `M x' = f` are solved by simplified Newton iterations on the
 //!   transformed system: `T^-1 A^-1 T` is block diagonal, so each iteration solves one real
 //!   system with `E1 = (γ/h) M - J` and one complex system with `E2 = ((α + iβ)/h) M - J`
-//!   (faer LU, dense or sparse). Newton starts from the previous step's collocation polynomial.
+//!   (dense LU, ours below 32 unknowns and faer's above, or faer's sparse LU). Newton
+//!   starts from the previous step's collocation polynomial.
 //!   The contraction `θ` is monitored; a predicted failure (`θ ≥ 0.99`, or
 //!   `θ^(k_max - k) / (1 - θ) ||Δ|| > κ`) shrinks the step at once.
 //! * Tolerances are transformed as in RADAU5 (`rtol' = 0.1 rtol^(2/3)`,

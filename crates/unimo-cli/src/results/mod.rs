@@ -2,6 +2,7 @@
 //! aliases, time-invariant values, with descriptions and units) and their CSV and
 //! MAT v4 writers.
 
+pub mod csv;
 pub mod mat;
 
 use std::collections::HashMap;

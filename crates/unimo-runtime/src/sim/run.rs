@@ -219,9 +219,10 @@ impl Simulator<'_> {
     ) -> Result<(f64, f64, StopReason), SimError> {
         let t_stop = run.o.stop.min(t_event);
         let prev = solver.current_time();
-        let mut reason = solver
-            .step(&mut self.ode, t_stop)
-            .map_err(|e| self.solver_error(e))?;
+        self.ode.within_step(true);
+        let stepped = solver.step(&mut self.ode, t_stop);
+        self.ode.within_step(false);
+        let mut reason = stepped.map_err(|e| self.solver_error(e))?;
         let mut now = solver.current_time();
         if !matches!(reason, StopReason::Root { .. }) {
             if let Some((t, components)) = self.missed_crossing(solver, prev, now)? {
