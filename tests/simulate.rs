@@ -1099,3 +1099,26 @@ fn rows_between_grid_points_follow_the_solution() {
     assert!(refined < 5e-3, "{refined} with {n_refined} rows");
     eprintln!("grid alone {grid:.3} ({n_grid} rows), refined {refined:.2e} ({n_refined} rows)");
 }
+
+/// A call whose outputs are unused and whose function reaches an external function
+/// unimo does not provide (a file written) is not executed, and said so (`W3001`, the
+/// run goes on); a pure function's unused call is dropped without a word. Before, both
+/// were dropped silently.
+#[test]
+fn an_unexecuted_call_with_effects_is_a_warning() {
+    let out = common::temp("simulate", "UnexecutedCall.csv");
+    let run = common::unimo(&[
+        "simulate",
+        "tests/simulate/UnexecutedCall.mo",
+        "--output",
+        out.to_str().unwrap(),
+    ]);
+    let (code, _, stderr) = common::code_and_text(run);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_eq!(stderr.matches("warning[W3001]").count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("`UnexecutedCall.report`") && stderr.contains("`myWriteValue`"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_file(out);
+}

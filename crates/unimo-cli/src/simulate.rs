@@ -137,6 +137,7 @@ fn simulate_flat(
             return EXIT_MODEL_ERROR;
         }
     };
+    render_stage(&dae.warnings, map, color);
     // Select the outputs first: with --vars, what they do not need is left out.
     let (output_ids, cols) = match output_columns(&dae, &a.vars) {
         Ok(x) => x,

@@ -574,7 +574,8 @@ impl Lowerer<'_> {
         Ok(vec![self.expr(e)?])
     }
 
-    /// `assert`, `terminate`, `reinit` as statements; other calls are pure and dropped.
+    /// `assert`, `terminate`, `reinit` as statements; other calls are dropped (with
+    /// `W3001` when their effects are lost).
     fn call_statement(&mut self, e: &Expr) -> DaeResult<()> {
         let ExprKind::Call { func, args } = &e.kind else {
             return Err(unsupported("this statement", e.span));
@@ -591,6 +592,8 @@ impl Lowerer<'_> {
                     r?;
                 }
             }
+        } else if action.is_none() {
+            self.warn_unexecuted(func, e.span);
         }
         if let Some(a) = action {
             match &mut self.when_actions {

@@ -185,6 +185,8 @@ pub struct Dae {
     /// The parameters folded into the equations as constants (`fold.rs`): changing
     /// one of them needs a new compilation. Sorted.
     pub folded_parameters: Vec<ScalarId>,
+    /// The warnings of lowering (`W3xxx`), for the caller to report.
+    pub warnings: Vec<unimo_source::Diagnostic>,
 }
 
 pub use crate::collision_args::{

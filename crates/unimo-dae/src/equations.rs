@@ -56,7 +56,8 @@ pub fn lower_with(model: &FlatModel, fold: &FoldOptions) -> (Dae, Vec<Diagnostic
     l.expand_impure_random();
     l.experiment();
     l.finish_kinds();
-    let diags = l.errors.iter().map(|e| e.to_diagnostic()).collect();
+    let mut diags: Vec<Diagnostic> = l.errors.iter().map(|e| e.to_diagnostic()).collect();
+    diags.append(&mut l.dae.warnings);
     (l.dae, diags)
 }
 
@@ -91,7 +92,10 @@ impl Lowerer<'_> {
                         span,
                     )),
                     Some(_) => Err(unsupported("`terminate` outside `when`", span)),
-                    None => Ok(Vec::new()),
+                    None => {
+                        self.warn_unexecuted(func, span);
+                        Ok(Vec::new())
+                    }
                 }
             }
             EquationKind::Connect { .. } => Err(DaeError::new(
@@ -369,8 +373,9 @@ impl Lowerer<'_> {
                 }
             }
         }
-        if let Some(a) = self.action_call(&name, args, span)? {
-            actions.push((a, span));
+        match self.action_call(&name, args, span)? {
+            Some(a) => actions.push((a, span)),
+            None => self.warn_unexecuted(func, span),
         }
         Ok(())
     }

@@ -54,6 +54,9 @@ pub enum DaeCode {
     EmptyTable,
     /// E3022: the plan needs the derivative of a top-level input.
     DifferentiatedInput,
+    /// W3001 (a warning): a call statement that is not executed, since the function
+    /// reaches an external function unimo does not provide (writing a file, printing).
+    CallNotExecuted,
     /// E3201: the model is structurally singular.
     StructurallySingular,
     /// E3202: index reduction must differentiate an equation that cannot be.
@@ -89,12 +92,18 @@ impl DaeCode {
         DaeCode::MissingExternal,
         DaeCode::EmptyTable,
         DaeCode::DifferentiatedInput,
+        DaeCode::CallNotExecuted,
         DaeCode::StructurallySingular,
         DaeCode::CannotDifferentiate,
         DaeCode::DifferentiationLimit,
         DaeCode::NoDummyDerivatives,
         DaeCode::InternalStructure,
     ];
+
+    /// Whether the code is a warning (`W3xxx`): reported, and the model goes on.
+    pub fn is_warning(self) -> bool {
+        self.as_str().starts_with('W')
+    }
 
     /// The code as printed (`E3001`).
     pub fn as_str(self) -> &'static str {
@@ -119,6 +128,7 @@ impl DaeCode {
             DaeCode::MissingExternal => "E3020",
             DaeCode::EmptyTable => "E3021",
             DaeCode::DifferentiatedInput => "E3022",
+            DaeCode::CallNotExecuted => "W3001",
             DaeCode::StructurallySingular => "E3201",
             DaeCode::CannotDifferentiate => "E3202",
             DaeCode::DifferentiationLimit => "E3203",
@@ -179,8 +189,12 @@ impl DaeError {
         } else {
             &self.detail.label
         };
-        let mut d =
-            Diagnostic::error(self.code.as_str(), self.message.to_string()).at(self.span, label);
+        let mut d = if self.code.is_warning() {
+            Diagnostic::warning(self.code.as_str(), self.message.to_string())
+        } else {
+            Diagnostic::error(self.code.as_str(), self.message.to_string())
+        }
+        .at(self.span, label);
         for n in &self.detail.notes {
             d = d.with_note(n.clone());
         }

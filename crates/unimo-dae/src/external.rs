@@ -495,6 +495,62 @@ impl Lowerer<'_> {
     }
 }
 
+impl Lowerer<'_> {
+    /// A call whose outputs are not used is dropped; when the function reaches (itself
+    /// or through the functions it calls) an external function unimo does not provide,
+    /// its effects (a file written, a message printed) are lost: warning `W3001`, never
+    /// silently.
+    pub(crate) fn warn_unexecuted(&mut self, func: &unimo_syntax::ast::Name, span: Span) {
+        let name = func.to_dotted();
+        let name = name.trim_start_matches('.');
+        let Some(missing) = self.unprovided_external(name) else {
+            return;
+        };
+        let warning = DaeError::new(
+            DaeCode::CallNotExecuted,
+            format!(
+                "the call of `{name}` is not executed: it calls the external function \
+                 `{missing}`, which unimo does not provide (its effects, such as a file \
+                 written or a message printed, do not happen)"
+            ),
+            span,
+        )
+        .label("not executed");
+        self.dae.warnings.push(warning.to_diagnostic());
+    }
+
+    /// The first external C function (depth first, in call order) that `name` or a
+    /// function it calls is, and that unimo does not provide.
+    fn unprovided_external(&self, name: &str) -> Option<String> {
+        let mut stack = vec![name.to_owned()];
+        let mut seen = std::collections::HashSet::new();
+        while let Some(name) = stack.pop() {
+            if !seen.insert(name.clone()) {
+                continue;
+            }
+            let Some(f) = self.functions.get(name.as_str()) else {
+                continue;
+            };
+            match &f.external_call {
+                Some(ext) if f.external => {
+                    if foreign(&ext.function).is_none() {
+                        return Some(ext.function.clone());
+                    }
+                }
+                _ if f.external => return Some(f.name.clone()),
+                _ => {
+                    let mut called = Vec::new();
+                    for s in &f.algorithm {
+                        unimo_flat::functions::statement_calls(s, &mut called);
+                    }
+                    stack.extend(called.into_iter().rev());
+                }
+            }
+        }
+        None
+    }
+}
+
 /// Whether a call statement of the external C function `name` (no outputs used) must
 /// be lowered for its effect: the impure generator's seeding.
 pub(crate) fn has_effect(name: &str) -> bool {

@@ -66,6 +66,7 @@ pub fn analyze_model_timed(
     if diags.iter().any(|d| d.is_error()) {
         return Err(diags);
     }
+    dae.warnings = diags;
     let aliases = alias::eliminate_aliases(&mut dae);
     seconds[0] = started.elapsed().as_secs_f64();
     let started = std::time::Instant::now();

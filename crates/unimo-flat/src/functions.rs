@@ -88,7 +88,9 @@ pub(crate) fn called_functions(e: &Expr, out: &mut Vec<String>) {
     });
 }
 
-pub(crate) fn statement_calls(s: &Statement, out: &mut Vec<String>) {
+/// Global names of the user functions called in the statement `s` (nested statements
+/// too).
+pub fn statement_calls(s: &Statement, out: &mut Vec<String>) {
     statement_exprs(std::slice::from_ref(s), &mut |e| called_functions(e, out));
 }
 

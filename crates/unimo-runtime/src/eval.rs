@@ -6,15 +6,8 @@ use std::time::{Duration, Instant};
 use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
 
 use crate::model::{CompiledBlock, CompiledModel, CompiledStep};
+use crate::modes::newton;
 use crate::tape::EventState;
-
-/// Rounds of "solve with the relations frozen, then decide them again" for a block
-/// whose equations hold relations, at an event.
-const MAX_MODE_ROUNDS: usize = 16;
-
-/// Most relations of one block whose combinations are searched when its rounds cycle
-/// (2^8 = 256 solves at most).
-const MAX_SEARCHED_RELATIONS: usize = 8;
 
 /// A block whose Newton iteration did not converge.
 #[derive(Clone, Debug, PartialEq)]
@@ -151,111 +144,22 @@ fn collide(m: &CompiledModel, r: &mut [f64], ev: &mut EventState) -> Result<(), 
 /// solutions are accepted with.
 #[derive(Default, Debug)]
 pub struct Workspace {
-    relations: Vec<f64>,
+    pub(crate) relations: Vec<f64>,
     /// A block's iteration variables.
-    x: Vec<f64>,
+    pub(crate) x: Vec<f64>,
     /// Their values before the solve (restored when it fails).
-    start: Vec<f64>,
-    newton: NewtonWork,
+    pub(crate) start: Vec<f64>,
+    pub(crate) newton: NewtonWork,
     /// Time per plan step, when profiling.
     pub profile: Option<StepProfile>,
     /// The simulation's tolerances (the solver's defaults until a run sets them).
     pub tolerance: NewtonTolerance,
 }
 
-/// Solves a block. Outside events its relations are frozen (they change only at
-/// located crossings), so Newton sees a smooth residual. At an event the relations of
-/// the block are decided as for the whole model's event iteration: Newton solves with
-/// them frozen at their current outcome, then they are evaluated at the solution; when
-/// one changed (a `Real` state indicator inside the loop switched its branch), the
-/// block is solved again with the new outcomes, until they agree with the solution.
-/// Newton never sees a residual that jumps between its iterates.
-fn newton(
-    b: &CompiledBlock,
-    r: &mut [f64],
-    ev: &mut EventState,
-    w: &mut Workspace,
-) -> Result<(), BlockFailure> {
-    if !ev.event_mode || !b.has_relations {
-        return newton_smooth(b, r, ev, w);
-    }
-    // Decide the relations at the current iterate (the previous mode), then iterate.
-    b.residual_tape.run(r, ev);
-    let start: Vec<f64> = b.iteration.iter().map(|&g| r[g as usize]).collect();
-    let mut switched = vec![false; ev.relations.len()];
-    for _ in 0..MAX_MODE_ROUNDS {
-        w.relations.clear();
-        w.relations.extend_from_slice(&ev.relations);
-        ev.event_mode = false;
-        let solved = newton_smooth(b, r, ev, w);
-        ev.event_mode = true;
-        solved?;
-        b.residual_tape.run(r, ev);
-        if w.relations == ev.relations {
-            return Ok(());
-        }
-        // Outcomes that changed without changing the solution (a relation on a quantity
-        // that is exactly 0 in the active branch and flips with rounding): consistent.
-        let norm = residual_norm(b, r);
-        if norm <= 1e-10 {
-            return Ok(());
-        }
-        for (k, s) in switched.iter_mut().enumerate() {
-            *s |= w.relations[k] != ev.relations[k];
-        }
-    }
-    // The rounds cycle (friction: stuck implies sliding and sliding implies stuck,
-    // starting from the previous mode). Search: the outcomes that kept switching are
-    // frozen in every combination, fewest true first, until one agrees with its own
-    // solution (the combinatorial mixed-system search of Modelica tools).
-    let flips: Vec<usize> = (0..switched.len()).filter(|&k| switched[k]).collect();
-    if !flips.is_empty() && flips.len() <= MAX_SEARCHED_RELATIONS {
-        let base = ev.relations.clone();
-        let mut masks: Vec<u32> = (0..1u32 << flips.len()).collect();
-        masks.sort_by_key(|m| m.count_ones());
-        for mask in masks {
-            let mut frozen = base.clone();
-            for (i, &z) in flips.iter().enumerate() {
-                frozen[z] = f64::from(mask >> i & 1 == 1);
-            }
-            ev.relations.copy_from_slice(&frozen);
-            for (k, &g) in b.iteration.iter().enumerate() {
-                r[g as usize] = start[k];
-            }
-            ev.event_mode = false;
-            let solved = newton_smooth(b, r, ev, w);
-            ev.event_mode = true;
-            if solved.is_err() {
-                continue;
-            }
-            b.residual_tape.run(r, ev);
-            if flips.iter().all(|&z| ev.relations[z] == frozen[z]) {
-                return Ok(());
-            }
-        }
-        w.relations.clear();
-        w.relations.extend_from_slice(&base);
-    }
-    let flipping: Vec<String> = (0..ev.relations.len())
-        .filter(|&k| w.relations[k] != ev.relations[k])
-        .map(|k| format!("z{k}"))
-        .collect();
-    let norm = residual_norm(b, r);
-    Err(BlockFailure {
-        variables: b.names.clone(),
-        residual: norm,
-        reason: format!(
-            "the conditions inside the loop did not settle in {MAX_MODE_ROUNDS} rounds \
-             (no branch choice is consistent with its own solution; still switching: {})",
-            flipping.join(", ")
-        ),
-    })
-}
-
 /// Newton on a block with its relations frozen: the solve crate's damped Newton
 /// (`unimo_solve::newton`, converged at rounding, accepted within the simulation's
 /// tolerances) on the block's residual and Jacobian tapes.
-fn newton_smooth(
+pub(crate) fn newton_smooth(
     b: &CompiledBlock,
     r: &mut [f64],
     ev: &mut EventState,
@@ -274,6 +178,13 @@ fn newton_smooth(
             for (k, &g) in b.iteration.iter().enumerate() {
                 r[g as usize] = w.start[k];
             }
+            // A singular Jacobian whose equations are consistent (a statically
+            // indeterminate loop) has solutions: one of them.
+            if matches!(e, newton::NewtonError::Singular { .. })
+                && crate::modes::solve_indeterminate(b, r, ev, w)
+            {
+                return Ok(());
+            }
             BlockFailure {
                 variables: b.names.clone(),
                 residual: e.residual(),
@@ -286,10 +197,10 @@ fn newton_smooth(
 /// A block's equations as a Newton problem on the registers: the iteration variables
 /// are written into their registers, the residual tape computes the torn variables and
 /// the residuals, the Jacobian tape the symbolic Jacobian at the same point.
-struct BlockProblem<'a> {
-    b: &'a CompiledBlock,
-    r: &'a mut [f64],
-    ev: &'a mut EventState,
+pub(crate) struct BlockProblem<'a> {
+    pub(crate) b: &'a CompiledBlock,
+    pub(crate) r: &'a mut [f64],
+    pub(crate) ev: &'a mut EventState,
 }
 
 impl NewtonProblem for BlockProblem<'_> {
@@ -320,7 +231,7 @@ impl NewtonProblem for BlockProblem<'_> {
 }
 
 /// The largest absolute residual of a block (its residual tape must have run).
-fn residual_norm(b: &CompiledBlock, r: &[f64]) -> f64 {
+pub(crate) fn residual_norm(b: &CompiledBlock, r: &[f64]) -> f64 {
     b.residuals
         .iter()
         .map(|&g| r[g as usize].abs())

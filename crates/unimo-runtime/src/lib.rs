@@ -5,6 +5,7 @@ pub mod dump;
 pub mod eval;
 pub mod fft;
 pub mod model;
+mod modes;
 pub mod native;
 pub mod sim;
 pub mod tables;

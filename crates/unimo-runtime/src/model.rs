@@ -24,8 +24,9 @@ pub struct CompiledBlock {
     /// Row-major, `residuals.len() x iteration.len()`.
     pub jacobian: Vec<Reg>,
     pub linear: bool,
-    /// The residuals hold relations that are decided at events.
-    pub has_relations: bool,
+    /// The relations (indices into the event state's) the residuals hold, decided at
+    /// events; sorted.
+    pub relations: Vec<u32>,
     /// Names of the iteration variables (for errors).
     pub names: Vec<String>,
 }

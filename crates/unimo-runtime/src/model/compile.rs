@@ -162,9 +162,18 @@ fn compile_block(
         .iter()
         .map(|&j| c.expr(j, &mut jt, &mut memo))
         .collect();
-    let has_relations = rt.ops.iter().any(|o| matches!(o, Op::RelEvent(..)));
+    let mut relations: Vec<u32> = rt
+        .ops
+        .iter()
+        .filter_map(|o| match o {
+            Op::RelEvent(.., k) => Some(*k),
+            _ => None,
+        })
+        .collect();
+    relations.sort_unstable();
+    relations.dedup();
     CompiledBlock {
-        has_relations,
+        relations,
         iteration: b.iteration_vars.iter().map(|&v| layout.var(v)).collect(),
         residual_tape: rt,
         residuals,
