@@ -58,7 +58,22 @@ fn compare(name: &str, tape: &SimResult, native: &SimResult) -> f64 {
         "{name}: outcome"
     );
     assert_eq!(tape.events, native.events, "{name}: event log");
-    assert_eq!(tape.stats, native.stats, "{name}: counters");
+    // Plan evaluations aside: the interpreter skips the evaluation of the root functions
+    // at the point the right-hand side just evaluated; the native right-hand side
+    // writes the registers itself and does not record that point.
+    let plan_evaluations_aside = |s: &unimo_runtime::sim::SimStats| unimo_runtime::sim::SimStats {
+        rhs_evaluations: 0,
+        ..s.clone()
+    };
+    assert_eq!(
+        plan_evaluations_aside(&tape.stats),
+        plan_evaluations_aside(&native.stats),
+        "{name}: counters"
+    );
+    assert!(
+        tape.stats.rhs_evaluations <= native.stats.rhs_evaluations,
+        "{name}: the interpreter evaluates the plan at most as often"
+    );
     assert_eq!(tape.times.len(), native.times.len(), "{name}: rows");
     let mut worst = 0.0f64;
     for (k, (a, b)) in tape.times.iter().zip(&native.times).enumerate() {

@@ -52,7 +52,7 @@ def passes(path, ref):
                if r["outcome"] == "pass" and package(r["model"]) in FIVE and has_reference(ref, r["model"]))
 
 
-def main(path, ref, grid_path=None, timefix_path=None):
+def main(path, ref, every_step_path=None, timefix_path=None):
     every = list(csv.DictReader(open(path)))
     rows = [r for r in every if r["outcome"] != "no-reference" and has_reference(ref, r["model"])]
     absent = [r for r in every if r["outcome"] == "no-reference" or not has_reference(ref, r["model"])]
@@ -63,12 +63,15 @@ def main(path, ref, grid_path=None, timefix_path=None):
           "(release build, this machine: 2 cores, shared). The criterion is "
           "`../shared/tools/msl-check`'s: every compared signal within 0.2 % of its "
           "range at the reference's time points, rows next to jumps left out; the "
-          "experiment annotation of each example drives the run. The runs write a row "
-          "after every solver step besides the experiment's output grid (`--every-step`, "
-          "through msl-check's `--cmd`): msl-check interpolates the result linearly "
-          "between rows, and the references were written on grids denser than the "
-          "examples' own `Interval` (SimpleGearShift: Interval 0.01, reference every "
-          "0.005). Times are the whole process (load, translate, simulate, write).\n")
+          "experiment annotation of each example drives the run. The command is "
+          "msl-check's default (`unimo simulate ... --vars ... --output ...`): rows on the "
+          "experiment's output grid, two at each event, and between the grid's points the "
+          "solver steps a straight line between rows would misstate by more than 1e-3 of "
+          "a state's magnitude (`--output-tolerance`, docs/simulate.md). msl-check "
+          "interpolates the result linearly between rows, and the references were written "
+          "on grids denser than the examples' own `Interval` (SimpleGearShift: Interval "
+          "0.01, reference every 0.005). Times are the whole process (load, translate, "
+          "simulate, write).\n")
     by_pkg = {}
     for r in rows:
         by_pkg.setdefault(package(r["model"]), []).append(r)
@@ -92,10 +95,10 @@ def main(path, ref, grid_path=None, timefix_path=None):
           f"Translational, HeatTransfer): **{pass_five} of {total}** match the reference "
           f"({100.0 * pass_five / max(total, 1):.0f} %; {n_absent} of the {total} have no "
           f"reference CSV in the test data and cannot pass msl-check).\n")
-    if grid_path:
-        print(f"With the experiment's output grid alone (msl-check's default command, no "
-              f"`--every-step`): **{passes(grid_path, ref)} of {total}**; the difference is "
-              f"interpolation between the grid's rows, the simulation is the same.\n")
+    if every_step_path:
+        print(f"With a row after every solver step (`--every-step` through msl-check's "
+              f"`--cmd`): **{passes(every_step_path, ref)} of {total}**; the difference is "
+              f"interpolation between rows, the simulation is the same.\n")
     times = [float(r["seconds"]) for r in rows if r["outcome"] == "pass"]
     if times:
         print(f"Whole-process time of the passing examples: median {statistics.median(times)*1000:.0f} ms, "
@@ -135,4 +138,4 @@ def main(path, ref, grid_path=None, timefix_path=None):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2], *sys.argv[3:5])
+    main(sys.argv[1], sys.argv[2], *[a or None for a in sys.argv[3:5]])

@@ -11,13 +11,13 @@ for d in "$shared/msl" "$shared/msl-reference" "$shared/tools/msl-check"; do
 done
 cargo build --release --quiet
 results="$(mktemp -d)/results.csv"
-# A row after every solver step besides the experiment's grid (see the results page).
-cmd='{unimo} simulate {msl}/Modelica/package.mo --model {model} --lib {msl} --vars {vars} --every-step --output {csv}'
+# msl-check's default command (the output grid, events, rows between where needed).
 python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
-  --ref "$shared/msl-reference" --results "$results" --cmd "$cmd" "$@" | tee "${results%.csv}.txt"
-# The same with msl-check's default command (the experiment's output grid alone).
+  --ref "$shared/msl-reference" --results "$results" "$@" | tee "${results%.csv}.txt"
+# The same with a row after every solver step (for comparison).
+every='{unimo} simulate {msl}/Modelica/package.mo --model {model} --lib {msl} --vars {vars} --every-step --output {csv}'
 python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
-  --ref "$shared/msl-reference" --results "${results%.csv}.grid.csv" "$@" > /dev/null
+  --ref "$shared/msl-reference" --results "${results%.csv}.every.csv" --cmd "$every" "$@" > /dev/null
 # References whose time column is named `Time` (msl-check reads `time`): a copy with
 # the header renamed, compared the same way.
 timefix="$(dirname "$results")/timefix"
@@ -40,8 +40,8 @@ for root, _, files in os.walk(ref):
             shutil.copyfileobj(src, dst)
 PY
 python3 "$shared/tools/msl-check" --unimo "${CARGO_TARGET_DIR:-target}/release/unimo" --msl "$shared/msl" \
-  --ref "$timefix" --results "${results%.csv}.timefix.csv" --cmd "$cmd" > /dev/null
-python3 bench/msl/report.py "$results" "$shared/msl-reference" "${results%.csv}.grid.csv" \
+  --ref "$timefix" --results "${results%.csv}.timefix.csv" > /dev/null
+python3 bench/msl/report.py "$results" "$shared/msl-reference" "${results%.csv}.every.csv" \
   "${results%.csv}.timefix.csv" > docs/results/msl.md
 echo "wrote docs/results/msl.md"
 # Names: every file of the MSL through the name check (syntax errors must be 0).

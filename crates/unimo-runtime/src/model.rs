@@ -31,6 +31,9 @@ pub struct CompiledBlock {
     pub names: Vec<String>,
 }
 
+// The steps sit in one vector walked at every evaluation: a block inline costs some
+// bytes per explicit step, a boxed one a pointer chase per block.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum CompiledStep {
     Explicit(Tape),
