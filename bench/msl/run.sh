@@ -36,6 +36,7 @@ for root, _, files in os.walk(ref):
         os.makedirs(dest, exist_ok=True)
         shutil.copy(os.path.join(root, "comparisonSignals.txt"), dest)
         with open(os.path.join(root, f)) as src, open(os.path.join(dest, f), "w") as dst:
+            src.readline()  # the header, written renamed
             dst.write(head.replace("Time", "time", 1))
             shutil.copyfileobj(src, dst)
 PY
