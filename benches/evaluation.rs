@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 use unimo_runtime::eval::RhsEvaluator;
+use unimo_runtime::native::execute_shim;
 
 fn main() {
     divan::main();
@@ -68,7 +69,8 @@ fn load(which: &str) -> unimo_cli::LoadedModel {
 fn native(bencher: divan::Bencher, which: &str) {
     let mut m = load(which);
     let options = unimo_codegen::NativeOptions::default();
-    let stats = unimo_codegen::compile_model(&mut m.compiled, &options).expect("native code");
+    let stats =
+        unimo_codegen::compile_model(&mut m.compiled, &options, execute_shim).expect("native code");
     assert!(stats.functions > 0);
     let mut ev = RhsEvaluator::new(&m.compiled);
     let n = m.compiled.states.len();
@@ -88,7 +90,9 @@ fn native_compile(bencher: divan::Bencher, which: &str) {
     let options = unimo_codegen::NativeOptions::default();
     bencher
         .with_inputs(|| m.compiled.clone())
-        .bench_local_values(|mut c| unimo_codegen::compile_model(&mut c, &options).map(|_| c));
+        .bench_local_values(|mut c| {
+            unimo_codegen::compile_model(&mut c, &options, execute_shim).map(|_| c)
+        });
 }
 
 #[divan::bench(args = ["rober", "hires", "chain1000"])]

@@ -7,6 +7,7 @@
 //! check and lowering know every entry.
 
 use unimo_builtins::{Eval, Kind, Ty, BUILTINS};
+use unimo_runtime::exec::{Instance, Run};
 
 /// Flattens `text` (its last class) in memory.
 fn flatten_text(text: &str) -> Result<unimo_flat::FlatModel, String> {
@@ -65,7 +66,7 @@ fn compiled_value(call: &str, t: f64) -> f64 {
             d.iter().map(|d| &d.message).collect::<Vec<_>>()
         )
     });
-    let m = unimo_runtime::model::compile(&dae, &analysis.plan);
+    let m = unimo_codegen::model::compile(&dae, &analysis.plan);
     let mut r = m.new_registers();
     let mut ev = m.new_event_state();
     // Event mode: roundings and relations are computed, not held.

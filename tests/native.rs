@@ -9,15 +9,17 @@
 mod common;
 
 use std::path::{Path, PathBuf};
+use unimo_codegen::model::{CompiledModel, CompiledStep};
 use unimo_codegen::{compile_model, NativeOptions, NativeStats};
-use unimo_runtime::model::{CompiledModel, CompiledStep};
+use unimo_runtime::native::execute_shim;
 use unimo_runtime::sim::{Overrides, SimOptions, SimResult};
 use unimo_solve::Method;
 
 /// A copy of the compiled model with native code for its hot tapes.
 fn native(m: &CompiledModel) -> (CompiledModel, NativeStats) {
     let mut n = m.clone();
-    let stats = compile_model(&mut n, &NativeOptions::default()).expect("native code");
+    let stats =
+        compile_model(&mut n, &NativeOptions::default(), execute_shim).expect("native code");
     assert!(!stats.above_threshold);
     for step in &n.steps {
         match step {
@@ -205,8 +207,8 @@ fn the_simulator_runs_the_native_code() {
     for step in &mut n.steps {
         if let CompiledStep::Explicit(t) = step {
             for op in &mut t.ops {
-                if let unimo_runtime::tape::Op::Copy(d, _) = *op {
-                    *op = unimo_runtime::tape::Op::Const(d, 0.0);
+                if let unimo_codegen::tape::Op::Copy(d, _) = *op {
+                    *op = unimo_codegen::tape::Op::Const(d, 0.0);
                     changed += 1;
                 }
             }
@@ -279,7 +281,7 @@ fn the_whole_right_hand_side_is_one_native_call() {
         .written()
         .next()
         .expect("the last instruction writes der(y2)");
-    t.ops[last] = unimo_runtime::tape::Op::Const(d, 0.0);
+    t.ops[last] = unimo_codegen::tape::Op::Const(d, 0.0);
     let mut after = [0.0; 2];
     RhsEvaluator::new(&n).rhs(0.0, &x, &mut after).unwrap();
     assert_eq!(

@@ -20,7 +20,7 @@ fn load_named(file: &str, model: &str) -> unimo_cli::LoadedModel {
 
 /// A run from 0 to `stop` with `points` output intervals; failures are in the result.
 fn try_run(
-    compiled: &unimo_runtime::model::CompiledModel,
+    compiled: &unimo_codegen::model::CompiledModel,
     method: Method,
     rtol: f64,
     atol: f64,
@@ -291,7 +291,7 @@ fn run_pruned(file: &str, var: &str, rtol: f64) -> (SimResult, usize) {
         .unwrap_or_else(|| panic!("{var} is a variable"));
     let mut plan = m.analysis.plan.clone();
     let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &[s]);
-    let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+    let compiled = unimo_codegen::model::compile(&m.dae, &plan);
     let o = SimOptions {
         start: 0.0,
         stop: 1.0,
@@ -340,7 +340,7 @@ fn pruning_leaves_out_the_events_of_what_is_left_out() {
     for wanted in [vec![id("x")], vec![id("x"), id("above")]] {
         let mut plan = m.analysis.plan.clone();
         let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &wanted);
-        let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+        let compiled = unimo_codegen::model::compile(&m.dae, &plan);
         let r = simulate(&compiled, &o);
         assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
         let k = r.names.iter().position(|n| n == "x").unwrap();
@@ -734,7 +734,7 @@ fn pruning_keeps_the_steps_of_held_roundings() {
     let phi = m.dae.ids().find(|&s| m.dae.name(s) == "phi").unwrap();
     let mut plan = m.analysis.plan.clone();
     unimo_dae::prune::prune(&m.dae, &mut plan, &[phi]);
-    let compiled = unimo_runtime::model::compile(&m.dae, &plan);
+    let compiled = unimo_codegen::model::compile(&m.dae, &plan);
     let r = try_run(&compiled, Method::Bdf, 1e-8, 1e-10, 20.0, 40);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     assert_eq!(r.stats.events, 3);

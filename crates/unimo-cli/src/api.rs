@@ -9,10 +9,10 @@
 use crate::provider::CliProvider;
 use std::collections::HashMap;
 use std::path::PathBuf;
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::plan::Plan;
 use unimo_dae::Dae;
 use unimo_flat::{ClassId, ClassTree, FlatModel};
-use unimo_runtime::model::CompiledModel;
 use unimo_runtime::sim::{Overrides, SimError, SimOptions, SimResult};
 use unimo_solve::Method;
 use unimo_source::{Diagnostic, SourceMap};
@@ -277,7 +277,7 @@ impl Session<'_> {
             let wanted = output_ids(&dae, outputs)?;
             unimo_dae::prune::prune(&dae, &mut plan, &wanted);
         }
-        let model = unimo_runtime::model::compile(&dae, &plan);
+        let model = unimo_codegen::model::compile(&dae, &plan);
         Ok(Compiled {
             units: crate::results::units(flat),
             dae,

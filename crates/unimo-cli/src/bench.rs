@@ -6,7 +6,7 @@ use crate::simulate::{method, native_or_tape};
 use crate::{BenchArgs, MethodArg, EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
 use std::collections::HashMap;
 use std::time::Instant;
-use unimo_runtime::model::CompiledModel;
+use unimo_codegen::model::CompiledModel;
 use unimo_runtime::sim::{simulate, SimOptions, SimResult};
 
 /// One measured configuration.
@@ -199,7 +199,7 @@ fn bench_model(
             return EXIT_MODEL_ERROR;
         }
     };
-    let mut compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+    let mut compiled = unimo_codegen::model::compile(&dae, &analysis.plan);
     // Native code is compiled once here, outside the timed runs, as the model's tapes are.
     native_or_tape(a.engine, &mut compiled);
     // The same resolution of the experiment's settings as `simulate`, with

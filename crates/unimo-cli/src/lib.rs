@@ -504,7 +504,7 @@ fn run_on_this_thread() -> i32 {
 pub struct LoadedModel {
     pub dae: unimo_dae::Dae,
     pub analysis: unimo_dae::analysis::Analysis,
-    pub compiled: unimo_runtime::model::CompiledModel,
+    pub compiled: unimo_codegen::model::CompiledModel,
 }
 
 /// Reads, flattens, lowers, analyses and compiles a model; errors come back as the
@@ -540,7 +540,7 @@ pub fn load_model_with(
     }
     let (dae, analysis) =
         unimo_dae::analyze_model_with(&flat, fold).map_err(|d| render_all(&d, &tree.sources))?;
-    let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+    let compiled = unimo_codegen::model::compile(&dae, &analysis.plan);
     Ok(LoadedModel {
         dae,
         analysis,

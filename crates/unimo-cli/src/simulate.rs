@@ -9,9 +9,9 @@ use crate::{
 use std::io::Write;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::plan::Plan;
 use unimo_dae::Dae;
-use unimo_runtime::model::CompiledModel;
 use unimo_runtime::sim::{SimError, SimOptions, SimResult};
 use unimo_solve::Method;
 use unimo_source::SourceMap;
@@ -155,7 +155,7 @@ fn simulate_flat(
     // The structure phase also holds selecting the outputs and pruning.
     phases.structure = ms_since(started) - load - phases.lower;
     let compile_started = Instant::now();
-    let mut compiled = unimo_runtime::model::compile(&dae, &plan);
+    let mut compiled = unimo_codegen::model::compile(&dae, &plan);
     phases.compile = ms_since(compile_started);
     let native_started = Instant::now();
     let native = native_or_tape(a.engine, &mut compiled);
@@ -501,11 +501,13 @@ fn native_code(
 ) -> Result<Option<unimo_codegen::NativeStats>, String> {
     match engine {
         EngineArg::Tape => Ok(None),
-        EngineArg::Native => {
-            unimo_codegen::compile_model(compiled, &unimo_codegen::NativeOptions::default())
-                .map(Some)
-                .map_err(|e| e.to_string())
-        }
+        EngineArg::Native => unimo_codegen::compile_model(
+            compiled,
+            &unimo_codegen::NativeOptions::default(),
+            unimo_runtime::native::execute_shim,
+        )
+        .map(Some)
+        .map_err(|e| e.to_string()),
     }
 }
 

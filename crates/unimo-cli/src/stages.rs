@@ -65,10 +65,10 @@ pub fn emit(
         if stage == BackStage::Structure {
             print!("{}", analysis.dump);
         } else {
-            let compiled = unimo_runtime::model::compile(&dae, &analysis.plan);
+            let compiled = unimo_codegen::model::compile(&dae, &analysis.plan);
             let names: Vec<String> = dae.ids().map(|s| dae.name(s)).collect();
             println!("tape {}", dae.name);
-            print!("{}", unimo_runtime::dump::tape_dump(&compiled, &names));
+            print!("{}", unimo_codegen::dump::tape_dump(&compiled, &names));
         }
         EXIT_OK
     })

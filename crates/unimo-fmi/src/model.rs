@@ -5,12 +5,12 @@
 
 use crate::error::FmiError;
 use std::collections::HashMap;
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::dae::{ScalarKind, ScalarType};
 use unimo_dae::expr::{Node, ScalarId};
 use unimo_dae::Dae;
 use unimo_flat::flat::FlatVar;
 use unimo_flat::{ClassTree, FlatModel, MemoryProvider};
-use unimo_runtime::model::CompiledModel;
 use unimo_syntax::ast::{Expr, ExprKind};
 
 /// The FMI causality of a variable.
@@ -143,7 +143,7 @@ impl FlatSource {
         let fold = unimo_dae::FoldOptions::default();
         let (dae, analysis) = unimo_dae::analyze_model_with(flat, &fold)
             .map_err(|d| FmiError::Model(diagnostics_text(&d)))?;
-        let model = unimo_runtime::model::compile(&dae, &analysis.plan);
+        let model = unimo_codegen::model::compile(&dae, &analysis.plan);
         let variables = variables(&dae, flat, &model);
         let states = states(&model, &variables)?;
         Ok(Compiled {

@@ -16,37 +16,15 @@
 //! With impulse impacts, the world applies Newton restitution impulses to the bodies'
 //! velocity states in event mode (sequential impulses until no pair approaches).
 
-use crate::tape::{Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
-use unimo_dae::collision_args::{CollisionBodyArgs, CollisionWorldArgs, LawCode, ShapeCode};
+use unimo_codegen::model::CollisionModel;
+use unimo_codegen::tape::Reg;
+use unimo_dae::collision_args::{CollisionBodyArgs, LawCode, ShapeCode};
 use unimo_geometry::laws::{self, Damping, Friction};
 use unimo_geometry::{
     aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Placement, Scratch, Shape,
     ShapeKind, SweepAndPrune,
 };
-
-/// Per body: argument registers by name, output registers (force, torque) and, when
-/// the velocities are plain states, their registers (for impulses).
-#[derive(Clone, Debug)]
-pub struct CollisionBodyRegs {
-    pub args: CollisionBodyArgs<Reg>,
-    pub outputs: [Reg; 6],
-    pub velocity_states: Option<[Reg; 6]>,
-    pub name: String,
-}
-
-/// The compiled collision world.
-#[derive(Clone, Debug)]
-pub struct CollisionModel {
-    /// Computes the argument registers from states and parameters.
-    pub inputs: Tape,
-    pub bodies: Vec<CollisionBodyRegs>,
-    pub world_args: CollisionWorldArgs<Reg>,
-    pub gaps: [Reg; 2],
-    /// Arguments that read variables computed by the plan (not states or parameters):
-    /// the world runs before the plan, so such a model is refused.
-    pub problems: Vec<String>,
-}
 
 /// Counters for reports.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -1,13 +1,15 @@
 //! Evaluating the compiled plan: explicit steps in order, Newton on each block (the
 //! solve crate's, on the block's residual and symbolic Jacobian tapes).
 
+use crate::exec::{Instance, Run};
+use crate::native::RhsCall;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
 
-use crate::model::{CompiledBlock, CompiledModel, CompiledStep};
+use crate::exec::EventState;
 use crate::modes::newton;
-use crate::tape::EventState;
+use unimo_codegen::model::{CompiledBlock, CompiledModel, CompiledStep};
 
 /// A block whose Newton iteration did not converge.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,13 +1,11 @@
-//! The runtime: compiled evaluation of the causal plan, initialization, events and the simulation driver.
+//! The runtime: runs what `unimo-codegen` compiled — the tape interpreter and native
+//! calls, the external objects (tables, FFT, the collision world), initialization,
+//! events and the simulation driver. It never compiles.
 pub mod collision;
-pub mod cost;
-pub mod dump;
 pub mod eval;
+pub mod exec;
 pub mod fft;
-pub mod model;
 mod modes;
 pub mod native;
 pub mod sim;
 pub mod tables;
-pub mod tape;
-pub mod verify;

@@ -2,12 +2,13 @@
 //! (rounds, then a bounded search over their outcomes), and blocks whose Jacobian is
 //! singular but whose equations are consistent (statically indeterminate loops).
 
+use crate::exec::Run;
 use unimo_solve::dense::{independent_rows_and_columns, newton_step};
 use unimo_solve::newton::{NewtonProblem, MAX_ITERATIONS};
 
 use crate::eval::{newton_smooth, residual_norm, BlockFailure, BlockProblem, Workspace};
-use crate::model::CompiledBlock;
-use crate::tape::EventState;
+use crate::exec::EventState;
+use unimo_codegen::model::CompiledBlock;
 
 /// Rounds of "solve with the relations frozen, then decide them again" for a block
 /// whose equations hold relations, at an event.

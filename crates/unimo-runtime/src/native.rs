@@ -1,124 +1,79 @@
-//! The hook for native code: a tape may carry machine code compiled from its
-//! instructions (`unimo-codegen`), which [`crate::tape::Tape::run`] calls instead of
-//! interpreting. The runtime never generates code itself; it only calls what it is
-//! given, after checking that the code was compiled from the tape as it is and that the
-//! register file and relation state are as large as the code assumes.
+//! Calling native code: a tape may carry machine code compiled from its instructions
+//! (`unimo-codegen`), which [`crate::exec::Run::run`] calls instead of interpreting.
+//! The runtime never generates code itself; it only calls what it is given, after
+//! checking that the code was compiled from the tape as it is and that the register
+//! file and relation state are as large as the code assumes. It also supplies the
+//! one-instruction interpreter the code calls back ([`execute_shim`]).
 
-use std::any::Any;
-use std::sync::Arc;
+use crate::exec::EventState;
+use unimo_codegen::native::{Events, NativeRhs, NativeTape};
+use unimo_codegen::tape::Op;
 
-use crate::tape::{EventState, Op};
-
-/// The signature of a compiled tape (or of one part of a long one): the register file
-/// (pointer and length), the event state, the relation values (read between events)
-/// and whether the call is in event mode (1) or not (0).
-pub type NativeFn = unsafe extern "C" fn(
-    registers: *mut f64,
-    n_registers: usize,
-    events: *mut EventState,
-    relations: *const f64,
-    event_mode: u32,
-);
-
-/// Machine code for one tape.
-#[derive(Clone)]
-pub struct NativeTape {
-    /// Entry points, called in order (a long tape is split into several functions).
-    pub functions: Vec<NativeFn>,
-    /// The number of instructions the code was compiled from: a tape whose instruction
-    /// list changed afterwards is interpreted.
-    pub n_ops: usize,
-    /// The code reads and writes registers below this index.
-    pub min_registers: usize,
-    /// The code reads relation values below this index.
-    pub min_relations: usize,
-    /// Keeps the code's memory alive as long as a tape refers to it.
-    pub owner: Arc<dyn Any + Send + Sync>,
+/// The event state as the opaque pointer native code passes on.
+fn events_ptr(ev: &mut EventState) -> *mut Events {
+    let p: *mut EventState = ev;
+    p.cast()
 }
 
-impl std::fmt::Debug for NativeTape {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("NativeTape")
-            .field("functions", &self.functions.len())
-            .field("n_ops", &self.n_ops)
-            .finish()
-    }
+/// Calling a tape's code.
+pub trait TapeCall {
+    /// Whether the code may run on this register file and event state, for a tape of
+    /// `n_ops` instructions.
+    fn fits(&self, n_ops: usize, registers: &[f64], ev: &EventState) -> bool;
+    /// Runs the code. The caller has checked [`TapeCall::fits`].
+    fn call(&self, registers: &mut [f64], ev: &mut EventState);
 }
 
-impl NativeTape {
-    /// Whether the code may run on this register file and event state.
+impl TapeCall for NativeTape {
     #[inline]
-    pub fn fits(&self, n_ops: usize, registers: &[f64], ev: &EventState) -> bool {
+    fn fits(&self, n_ops: usize, registers: &[f64], ev: &EventState) -> bool {
         self.n_ops == n_ops
             && registers.len() >= self.min_registers
             && ev.relations.len() >= self.min_relations
     }
 
-    /// Runs the code. The caller has checked [`NativeTape::fits`].
     #[inline]
-    pub fn call(&self, registers: &mut [f64], ev: &mut EventState) {
-        let relations = ev.relations.as_ptr();
-        let event_mode = u32::from(ev.event_mode);
-        let (regs, n) = (registers.as_mut_ptr(), registers.len());
-        let events: *mut EventState = ev;
-        for f in &self.functions {
-            // SAFETY: `unimo-codegen` compiled `f` from this tape's instructions (the
-            // count is checked by `fits`); it reads and writes registers below
-            // `min_registers <= n` and relation values below `min_relations <=
-            // relations.len()` (also checked), and passes `events` only to the
-            // runtime's own `extern "C"` functions (`execute_shim`), which do not
-            // resize the relation vector, so `relations` stays valid during the call.
-            // The code memory is alive: `owner` holds it.
-            unsafe { f(regs, n, events, relations, event_mode) };
-        }
+    fn call(&self, registers: &mut [f64], ev: &mut EventState) {
+        call_tape(self, registers, ev)
     }
 }
 
-/// The signature of a compiled right-hand side: [`NativeFn`]'s arguments, then the
-/// time, the states (`n_states` values) and where the derivatives go (`n_states`).
-pub type NativeRhsFn = unsafe extern "C" fn(
-    registers: *mut f64,
-    n_registers: usize,
-    events: *mut EventState,
-    relations: *const f64,
-    event_mode: u32,
-    time: f64,
-    states: *const f64,
-    derivatives: *mut f64,
-);
-
-/// Machine code for a whole right-hand side evaluation of a plan that is one explicit
-/// step: it writes the time and the states into the register file, runs the step and
-/// copies the derivatives out, in one call (the per-call bookkeeping of the tape path
-/// costs as much as a small model's arithmetic).
-#[derive(Clone)]
-pub struct NativeRhs {
-    pub function: NativeRhsFn,
-    /// The number of instructions of the plan's one step the code was compiled from.
-    pub n_ops: usize,
-    /// The number of states (and derivatives) the code reads (writes).
-    pub n_states: usize,
-    /// As for [`NativeTape`].
-    pub min_registers: usize,
-    pub min_relations: usize,
-    pub owner: Arc<dyn Any + Send + Sync>,
-}
-
-impl std::fmt::Debug for NativeRhs {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("NativeRhs")
-            .field("n_ops", &self.n_ops)
-            .field("n_states", &self.n_states)
-            .finish()
+fn call_tape(native: &NativeTape, registers: &mut [f64], ev: &mut EventState) {
+    let relations = ev.relations.as_ptr();
+    let event_mode = u32::from(ev.event_mode);
+    let (regs, n) = (registers.as_mut_ptr(), registers.len());
+    let events = events_ptr(ev);
+    for f in &native.functions {
+        // SAFETY: `unimo-codegen` compiled `f` from this tape's instructions (the
+        // count is checked by `fits`); it reads and writes registers below
+        // `min_registers <= n` and relation values below `min_relations <=
+        // relations.len()` (also checked), and passes `events` only to
+        // [`execute_shim`], which does not resize the relation vector, so `relations`
+        // stays valid during the call. The code memory is alive: `owner` holds it.
+        unsafe { f(regs, n, events, relations, event_mode) };
     }
 }
 
-impl NativeRhs {
-    /// Whether the code may run: compiled from a plan of one explicit step with `n_ops`
-    /// instructions and `n_states` states, on a register file and event state as large
-    /// as it assumes.
+/// Calling a whole right-hand side's code.
+pub trait RhsCall {
+    /// Whether the code may run: compiled from a plan of one explicit step with
+    /// `plan_ops` instructions and `n_states` states, on a register file and event
+    /// state as large as it assumes.
+    fn fits(
+        &self,
+        plan_ops: Option<usize>,
+        n_states: usize,
+        registers: &[f64],
+        ev: &EventState,
+    ) -> bool;
+    /// Evaluates the right-hand side. The caller has checked [`RhsCall::fits`], and
+    /// `x` and `out` hold `n_states` values each.
+    fn call(&self, t: f64, x: &[f64], out: &mut [f64], registers: &mut [f64], ev: &mut EventState);
+}
+
+impl RhsCall for NativeRhs {
     #[inline]
-    pub fn fits(
+    fn fits(
         &self,
         plan_ops: Option<usize>,
         n_states: usize,
@@ -131,60 +86,63 @@ impl NativeRhs {
             && ev.relations.len() >= self.min_relations
     }
 
-    /// Evaluates the right-hand side. The caller has checked [`NativeRhs::fits`], and
-    /// `x` and `out` hold `n_states` values each.
     #[inline]
-    pub fn call(
-        &self,
-        t: f64,
-        x: &[f64],
-        out: &mut [f64],
-        registers: &mut [f64],
-        ev: &mut EventState,
-    ) {
-        assert!(x.len() == self.n_states && out.len() == self.n_states);
-        let relations = ev.relations.as_ptr();
-        let event_mode = u32::from(ev.event_mode);
-        let (regs, n) = (registers.as_mut_ptr(), registers.len());
-        let events: *mut EventState = ev;
-        // SAFETY: as in `NativeTape::call` (the caller checked `fits`); besides the
-        // register file the code reads `n_states` values at `x` and writes `n_states`
-        // at `out`, both checked above.
-        unsafe {
-            (self.function)(
-                regs,
-                n,
-                events,
-                relations,
-                event_mode,
-                t,
-                x.as_ptr(),
-                out.as_mut_ptr(),
-            )
-        };
+    fn call(&self, t: f64, x: &[f64], out: &mut [f64], registers: &mut [f64], ev: &mut EventState) {
+        call_rhs(self, t, x, out, registers, ev)
     }
+}
+
+fn call_rhs(
+    native: &NativeRhs,
+    t: f64,
+    x: &[f64],
+    out: &mut [f64],
+    registers: &mut [f64],
+    ev: &mut EventState,
+) {
+    assert!(x.len() == native.n_states && out.len() == native.n_states);
+    let relations = ev.relations.as_ptr();
+    let event_mode = u32::from(ev.event_mode);
+    let (regs, n) = (registers.as_mut_ptr(), registers.len());
+    let events = events_ptr(ev);
+    // SAFETY: as in `call_tape` (the caller checked `fits`); besides the register
+    // file the code reads `n_states` values at `x` and writes `n_states` at `out`, both
+    // checked above.
+    unsafe {
+        (native.function)(
+            regs,
+            n,
+            events,
+            relations,
+            event_mode,
+            t,
+            x.as_ptr(),
+            out.as_mut_ptr(),
+        )
+    };
 }
 
 /// Executes one instruction with the interpreter's semantics: what native code calls
 /// for the instructions it does not translate itself (event-mode relations, samples,
-/// tables, held roundings).
+/// tables, held roundings). Pass it to `unimo_codegen::compile_model`.
 ///
 /// # Safety
 /// `op` points to a live instruction, `registers` to `n_registers` valid `f64`s and
-/// `events` to a live event state, none of them borrowed elsewhere during the call.
+/// `events` to a live [`EventState`] (cast), none of them borrowed elsewhere during the
+/// call.
 pub unsafe extern "C" fn execute_shim(
     op: *const Op,
     registers: *mut f64,
     n_registers: usize,
-    events: *mut EventState,
+    events: *mut Events,
 ) {
     // SAFETY: guaranteed by the caller (see above).
     let (op, r, ev) = unsafe {
         (
             *op,
             std::slice::from_raw_parts_mut(registers, n_registers),
-            &mut *events,
+            &mut *events.cast::<EventState>(),
         )
     };
-    crate::tape::execute(op, r, ev);
+    crate::exec::execute(op, r, ev);
 }

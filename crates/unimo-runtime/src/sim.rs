@@ -4,10 +4,12 @@
 //! sample time events, restart after each event).
 
 use crate::eval::{eval_steps, BlockFailure, Workspace};
-use crate::model::CompiledModel;
-use crate::tape::EventState;
+use crate::exec::EventState;
+use crate::exec::{Instance, Run};
+use crate::native::RhsCall;
 use starts::LoopStarts;
 use std::time::Instant;
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
 use unimo_solve::dense::{abs_det, pick_columns};
 use unimo_solve::{Direction, EvalError, Method, Solver, System};
@@ -481,7 +483,7 @@ fn output_names(m: &CompiledModel, regs: &[u32]) -> Vec<String> {
 type Crossed = Vec<(usize, Direction)>;
 
 /// Relative size below which a root function counts as zero (blocks converge to 1e-13).
-const ROOT_NOISE: f64 = crate::tape::RELATION_NOISE;
+const ROOT_NOISE: f64 = crate::exec::RELATION_NOISE;
 
 /// The relation's value just after its zero crossing went in `dir`.
 fn after_crossing(op: RelOp, dir: Direction) -> Option<f64> {

@@ -3,8 +3,9 @@
 //! crossings the root search could not see (a relation disagreeing with its operands).
 
 use super::{after_crossing, Crossed, SimError, Simulator, ROOT_NOISE};
-use crate::model::CompiledModel;
-use crate::tape::EventState;
+use crate::exec::EventState;
+use crate::exec::Run;
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
 use unimo_solve::{Direction, Solver};
 

@@ -6,7 +6,8 @@ use super::{
     output_names, EventRecord, SimError, Simulator, CHATTER_COUNT, CHATTER_WINDOW,
     MAX_EVENT_ITERATIONS,
 };
-use crate::model::Action;
+use crate::exec::Run;
+use unimo_codegen::model::Action;
 use unimo_solve::{Direction, Solver};
 
 impl Simulator<'_> {

@@ -4,7 +4,8 @@
 
 use super::{SimError, Simulator};
 use crate::eval::eval_steps_lenient;
-use crate::model::CompiledModel;
+use crate::exec::{Instance, Run};
+use unimo_codegen::model::CompiledModel;
 use unimo_solve::dense::{independent_rows_and_columns, independent_rows_in_order, newton_step};
 
 /// The unknowns of the initial equations, and the messages about their failures.

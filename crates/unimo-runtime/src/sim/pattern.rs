@@ -9,8 +9,8 @@
 //! up (the solvers stay dense) once the sets hold more than [`MAX_ENTRIES`] entries in
 //! all, which only a nearly dense Jacobian reaches.
 
-use crate::model::{CompiledModel, CompiledStep};
-use crate::tape::{Reg, Tape};
+use unimo_codegen::model::{CompiledModel, CompiledStep};
+use unimo_codegen::tape::{Reg, Tape};
 use unimo_solve::SparsityPattern;
 
 /// Total size of the dependency sets above which the pattern is not worth having.

@@ -13,8 +13,8 @@
 //! than the evaluation's is never its start; the committed point (initial values, an
 //! event, an output point, the last evaluation of an accepted step) is.
 
-use crate::model::{CompiledModel, CompiledStep};
-use crate::tape::Reg;
+use unimo_codegen::model::{CompiledModel, CompiledStep};
+use unimo_codegen::tape::Reg;
 
 /// The iteration variables of the nonlinear loops at a time.
 #[derive(Debug, Clone)]

@@ -5,7 +5,8 @@
 
 use super::run::Integration;
 use super::{after_crossing, crossings, Crossed, SimError, SimOptions, Simulator};
-use crate::model::CompiledModel;
+use crate::exec::Run;
+use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
 use unimo_solve::newton::NewtonTolerance;
 use unimo_solve::{Direction, Solver, StopReason, System};

@@ -3,9 +3,9 @@
 //! and Newton blocks with their symbolic Jacobians), zero crossings, `when` conditions
 //! and actions, assertions and alias outputs.
 
-use crate::collision::CollisionModel;
-use crate::tape::{EventState, Layout, Reg, Tape};
+use crate::tape::{Layout, Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
+use unimo_dae::collision_args::{CollisionBodyArgs, CollisionWorldArgs};
 
 mod compile;
 mod compile_external;
@@ -222,21 +222,6 @@ impl CompiledModel {
         }
         r
     }
-
-    pub fn new_event_state(&self) -> EventState {
-        EventState {
-            event_mode: false,
-            relations: vec![0.0; self.root_ops.len()],
-            forced: vec![None; self.root_ops.len()],
-            held: vec![0.0; self.n_held],
-            held_forced: vec![None; self.n_held],
-            sticky: false,
-            samples: vec![0.0; self.samples.len()],
-            collision: self.collision.as_ref().map(|_| Box::default()),
-            objects: Vec::new(),
-            fft: Default::default(),
-        }
-    }
 }
 
 /// An external object's constructor arguments, in registers (see
@@ -252,38 +237,25 @@ pub struct ObjectSite {
     pub settings: [Reg; 5],
 }
 
-impl CompiledModel {
-    /// Runs the parameters' tape; with external objects, builds them from the
-    /// parameters and runs it again (parameters may read the objects: a friction
-    /// table's value at zero speed).
-    pub fn run_parameters(&self, regs: &mut [f64], ev: &mut EventState) -> Result<(), String> {
-        self.parameters.run(regs, ev);
-        if self.objects.is_empty() {
-            return Ok(());
-        }
-        self.objects_tape.run(regs, ev);
-        let values = |rs: &[Reg]| -> Vec<f64> { rs.iter().map(|&r| regs[r as usize]).collect() };
-        let mut objects = Vec::with_capacity(self.objects.len());
-        for site in &self.objects {
-            let data = values(&site.table);
-            let columns = values(&site.columns);
-            let s = values(&site.settings);
-            let object = crate::tables::TableObject::new(&crate::tables::TableArgs {
-                kind: site.kind,
-                data: &data,
-                rows: site.rows,
-                cols: site.cols,
-                columns: &columns,
-                smoothness: s[0],
-                extrapolation: s[1],
-                start_time: s[2],
-                shift_time: s[3],
-                time_events: s[4],
-            })?;
-            objects.push(object);
-        }
-        ev.objects = objects;
-        self.parameters.run(regs, ev);
-        Ok(())
-    }
+/// Per body: argument registers by name, output registers (force, torque) and, when
+/// the velocities are plain states, their registers (for impulses).
+#[derive(Clone, Debug)]
+pub struct CollisionBodyRegs {
+    pub args: CollisionBodyArgs<Reg>,
+    pub outputs: [Reg; 6],
+    pub velocity_states: Option<[Reg; 6]>,
+    pub name: String,
+}
+
+/// The compiled collision world.
+#[derive(Clone, Debug)]
+pub struct CollisionModel {
+    /// Computes the argument registers from states and parameters.
+    pub inputs: Tape,
+    pub bodies: Vec<CollisionBodyRegs>,
+    pub world_args: CollisionWorldArgs<Reg>,
+    pub gaps: [Reg; 2],
+    /// Arguments that read variables computed by the plan (not states or parameters):
+    /// the world runs before the plan, so such a model is refused.
+    pub problems: Vec<String>,
 }

@@ -1,10 +1,12 @@
 //! Every instruction, compiled natively and interpreted, on the same registers: the
 //! same bits (NaN for NaN), in and out of event mode.
 
+use unimo_codegen::model::{CompiledModel, CompiledStep};
+use unimo_codegen::tape::{Op, Rounding, Tape};
 use unimo_codegen::{compile_model, NativeOptions};
 use unimo_dae::expr::{Fn1, Fn2, RelOp};
-use unimo_runtime::model::{CompiledModel, CompiledStep};
-use unimo_runtime::tape::{EventState, Op, Rounding, Tape};
+use unimo_runtime::exec::{EventState, Run};
+use unimo_runtime::native::execute_shim;
 
 /// Interesting values: signed zeros, infinities, NaN, integers, halves, large.
 const VALUES: [f64; 12] = [
@@ -107,7 +109,7 @@ fn native_code_computes_the_interpreters_bits() {
     let ops = program();
     let n = 200;
     let mut m = model(ops, n);
-    let stats = compile_model(&mut m, &NativeOptions::default()).expect("compiles");
+    let stats = compile_model(&mut m, &NativeOptions::default(), execute_shim).expect("compiles");
     // The step's function, and the whole right-hand side's (the plan is one step).
     assert_eq!(stats.functions, 2);
     assert!(m.native_rhs.is_some());
@@ -152,7 +154,7 @@ fn powi_matches_the_standard_library_on_many_values() {
         ops.push(Op::Powi((n + 17) as u32, 0, n));
     }
     let mut m = model(ops, 40);
-    compile_model(&mut m, &NativeOptions::default()).expect("compiles");
+    compile_model(&mut m, &NativeOptions::default(), execute_shim).expect("compiles");
     let CompiledStep::Explicit(tape) = &m.steps[0] else {
         unreachable!()
     };
@@ -176,7 +178,7 @@ fn long_tapes_are_split_and_a_changed_tape_is_interpreted() {
         max_ops_per_function: 7,
         ..NativeOptions::default()
     };
-    let stats = compile_model(&mut m, &options).expect("compiles");
+    let stats = compile_model(&mut m, &options, execute_shim).expect("compiles");
     assert_eq!(stats.functions, 15);
     let CompiledStep::Explicit(tape) = &mut m.steps[0] else {
         unreachable!()
@@ -200,7 +202,7 @@ fn a_model_above_the_threshold_keeps_its_tapes() {
         max_model_ops: 10,
         ..NativeOptions::default()
     };
-    let stats = compile_model(&mut m, &options).expect("no error");
+    let stats = compile_model(&mut m, &options, execute_shim).expect("no error");
     assert!(stats.above_threshold);
     assert_eq!(stats.functions, 0);
 }

@@ -2,8 +2,8 @@
 //! arguments, the collision world's arguments, and the symbolic Jacobian of the states'
 //! derivatives.
 
+use super::{CollisionBodyRegs, CollisionModel};
 use super::{ObjectSite, SymbolicJacobian};
-use crate::collision::{CollisionBodyRegs, CollisionModel};
 use crate::tape::{Compiler, Reg, Tape};
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::dae::{Dae, ScalarKind};

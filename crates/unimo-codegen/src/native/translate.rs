@@ -7,6 +7,8 @@
 //! between events and call the interpreter's instruction in event mode; samples,
 //! tables and held roundings always call it.
 
+use crate::native::ExecuteShim;
+use crate::tape::{Op, Reg};
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
     types, AbiParam, BlockArg, InstBuilder, MemFlagsData, SigRef, Signature, Value,
@@ -14,9 +16,8 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::FunctionBuilder;
 use rustc_hash::FxHashMap as HashMap;
 use unimo_dae::expr::{Fn1, RelOp};
-use unimo_runtime::tape::{Op, Reg};
 
-use crate::shims;
+use super::shims;
 
 /// The function's parameters, as values.
 pub(crate) struct Params {
@@ -31,7 +32,7 @@ pub(crate) struct Params {
 pub(crate) struct Signatures {
     pub unary: SigRef,
     pub binary: SigRef,
-    /// `unimo_runtime::native::execute_shim`.
+    /// The runtime's one-instruction interpreter ([`ExecuteShim`]).
     pub execute: SigRef,
 }
 
@@ -62,6 +63,13 @@ impl Signatures {
 /// where it is while the vector holding it grows.
 pub(crate) struct PinnedOp(Box<Op>);
 
+/// The instructions native code hands to the runtime's interpreter, and the
+/// interpreter's entry (given by the caller of `compile_model`).
+pub(crate) struct Interpreted {
+    pub shim: ExecuteShim,
+    pub ops: Vec<PinnedOp>,
+}
+
 /// Counts of what one function does.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Counts {
@@ -80,7 +88,7 @@ pub(crate) struct Translator<'a, 'b> {
     known: HashMap<Reg, Value>,
     /// Instructions handed to the interpreter: boxed so that their addresses, baked
     /// into the code, stay valid; kept alive with the code.
-    pub interpreted_ops: &'a mut Vec<PinnedOp>,
+    pub interpreted_ops: &'a mut Interpreted,
     pub counts: Counts,
 }
 
@@ -96,7 +104,7 @@ impl<'a, 'b> Translator<'a, 'b> {
         b: &'a mut FunctionBuilder<'b>,
         params: Params,
         sigs: Signatures,
-        interpreted_ops: &'a mut Vec<PinnedOp>,
+        interpreted_ops: &'a mut Interpreted,
     ) -> Self {
         Translator {
             b,
@@ -162,14 +170,14 @@ impl<'a, 'b> Translator<'a, 'b> {
     fn interpret(&mut self, op: Op) {
         let boxed = PinnedOp(Box::new(op));
         let address = &*boxed.0 as *const Op as usize;
-        self.interpreted_ops.push(boxed);
+        self.interpreted_ops.ops.push(boxed);
         let p = &self.params;
         let args = [p.registers, p.n_registers, p.events];
         let op_ptr = self.b.ins().iconst(types::I64, address as i64);
         let sig = self.sigs.execute;
         self.call(
             sig,
-            unimo_runtime::native::execute_shim as *const () as usize,
+            self.interpreted_ops.shim as *const () as usize,
             &[op_ptr, args[0], args[1], args[2]],
         );
         for r in written(op) {

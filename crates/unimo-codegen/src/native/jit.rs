@@ -1,6 +1,8 @@
 //! The Cranelift side: one JIT module per model, one function per part of a tape,
 //! linked once; the module's memory lives as long as a tape refers to it.
 
+use crate::native::{ExecuteShim, NativeFn, NativeRhsFn};
+use crate::tape::{Op, Reg};
 use cranelift_codegen::ir::{types, AbiParam, InstBuilder, UserFuncName, Value};
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
@@ -8,17 +10,15 @@ use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Module};
 use std::sync::Arc;
-use unimo_runtime::native::{NativeFn, NativeRhsFn};
-use unimo_runtime::tape::{Op, Reg};
 
-use crate::translate::{registers, Counts, Params, PinnedOp, Signatures, Translator};
-use crate::{CodegenError, NativeOptions, NativeStats};
+use super::translate::{registers, Counts, Interpreted, Params, Signatures, Translator};
+use super::{CodegenError, NativeOptions, NativeStats};
 
 /// The code of one model: the JIT module and the instructions its code hands to the
 /// interpreter (their addresses are in the code).
 struct NativeCode {
     module: Option<JITModule>,
-    _interpreted_ops: Vec<PinnedOp>,
+    _interpreted_ops: Interpreted,
 }
 
 // SAFETY: after `finalize_definitions` the module is never used again except by
@@ -82,7 +82,7 @@ fn new_module(options: &NativeOptions) -> Result<JITModule, CodegenError> {
 }
 
 /// A whole right-hand side to compile as one function (see
-/// `unimo_runtime::native::NativeRhs`): the plan's one step and where time, states and
+/// `crate::native::NativeRhs`): the plan's one step and where time, states and
 /// derivatives live.
 pub(crate) struct RhsSpec<'a> {
     pub ops: &'a [Op],
@@ -103,6 +103,7 @@ pub(crate) fn compile(
     tapes: &[(&str, &[Op])],
     rhs: Option<&RhsSpec<'_>>,
     options: &NativeOptions,
+    shim: ExecuteShim,
 ) -> Result<Compiled, CodegenError> {
     let mut module = new_module(options)?;
     let mut ctx = module.make_context();
@@ -112,7 +113,10 @@ pub(crate) fn compile(
     signature
         .params
         .extend([ptr, ptr, ptr, ptr, types::I32].map(AbiParam::new));
-    let mut interpreted_ops = Vec::new();
+    let mut interpreted_ops = Interpreted {
+        shim,
+        ops: Vec::new(),
+    };
     let mut ids: Vec<Vec<FuncId>> = Vec::with_capacity(tapes.len());
     let mut stats = NativeStats::default();
     let chunk = options.max_ops_per_function.max(1);
@@ -243,7 +247,7 @@ fn build(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     ops: &[Op],
-    interpreted_ops: &mut Vec<PinnedOp>,
+    interpreted_ops: &mut Interpreted,
     target: TargetFrontendConfig,
 ) -> Counts {
     let call_conv = func.signature.call_conv;
@@ -266,7 +270,7 @@ fn build_rhs(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     spec: &RhsSpec<'_>,
-    interpreted_ops: &mut Vec<PinnedOp>,
+    interpreted_ops: &mut Interpreted,
     target: TargetFrontendConfig,
 ) {
     let call_conv = func.signature.call_conv;
@@ -299,7 +303,7 @@ fn define_rhs(
     (ctx, builder_ctx): (&mut cranelift_codegen::Context, &mut FunctionBuilderContext),
     signature: &cranelift_codegen::ir::Signature,
     spec: &RhsSpec<'_>,
-    interpreted_ops: &mut Vec<PinnedOp>,
+    interpreted_ops: &mut Interpreted,
     stats: &mut NativeStats,
 ) -> Result<FuncId, CodegenError> {
     let mut rhs_signature = signature.clone();

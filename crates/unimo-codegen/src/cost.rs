@@ -7,8 +7,8 @@
 //! operations are shared among its iteration variables' components. A zero crossing
 //! belongs to the component of the first variable its relation names.
 //!
-//! With the time of each plan step measured during a run ([`crate::sim::Simulator::
-//! profile`]), each component also gets its measured share of the time spent
+//! With the time of each plan step measured during a run
+//! (`unimo_runtime::sim::Simulator::profile`), each component also gets its measured share of the time spent
 //! evaluating the plan: an explicit step's time split by its operations, a block's
 //! (residuals, Jacobians and Newton's work) equally among its iteration variables.
 
@@ -129,7 +129,7 @@ impl CompiledModel {
     }
 
     /// [`Self::cost_by_component`] with the measured seconds of each plan step (as
-    /// [`crate::sim::Simulator::profile`] gives them) shared out among the components.
+    /// `unimo_runtime::sim::Simulator::profile` gives them) shared out among the components.
     pub fn cost_by_component_timed(
         &self,
         depth: usize,
