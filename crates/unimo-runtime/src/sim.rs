@@ -674,16 +674,17 @@ impl<'a> Simulator<'a> {
 
     /// The solver's state: the model's states (and the clock state, see `Ode`).
     fn states(&self) -> Vec<f64> {
-        let mut x: Vec<f64> = self
-            .m()
-            .states
-            .iter()
-            .map(|&r| self.ode.regs[r as usize])
-            .collect();
+        let mut x = Vec::with_capacity(self.m().states.len() + 1);
+        self.states_into(&mut x);
+        x
+    }
+
+    /// [`Simulator::states`] appended to `x`.
+    fn states_into(&self, x: &mut Vec<f64>) {
+        x.extend(self.m().states.iter().map(|&r| self.ode.regs[r as usize]));
         if self.ode.clock {
             x.push(0.0);
         }
-        x
     }
 
     fn record(&mut self, t: f64) {
@@ -718,8 +719,10 @@ impl<'a> Simulator<'a> {
         self.result.times.push(t);
         self.result.rows.push(row);
         if self.refine.enabled() {
-            let x = self.states();
+            let mut x = self.refine.take_scratch();
+            self.states_into(&mut x);
             self.refine.written(t, &x);
+            self.refine.put_scratch(x);
         }
     }
 

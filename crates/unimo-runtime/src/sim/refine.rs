@@ -26,9 +26,23 @@ pub(super) struct Refine {
     slopes: Vec<(f64, f64)>,
     /// Each state's largest magnitude so far.
     scale: Vec<f64>,
+    /// Scratch for the states at a step's end or at a row (reused: no allocation per
+    /// step); taken out while in use (`take_scratch`, `put_scratch`).
+    scratch: Vec<f64>,
 }
 
 impl Refine {
+    /// The scratch vector, emptied, for the caller to fill and give back.
+    pub(super) fn take_scratch(&mut self) -> Vec<f64> {
+        let mut x = std::mem::take(&mut self.scratch);
+        x.clear();
+        x
+    }
+
+    pub(super) fn put_scratch(&mut self, x: Vec<f64>) {
+        self.scratch = x;
+    }
+
     pub(super) fn new(rtol: f64, atol: f64) -> Refine {
         Refine {
             rtol,

@@ -289,8 +289,10 @@ impl Simulator<'_> {
         if !self.refine.enabled() || self.result.times.last() == Some(&now) {
             return Ok(());
         }
-        let mut x = solver.state().to_vec();
+        let mut x = self.refine.take_scratch();
+        x.extend_from_slice(solver.state());
         if matches!(reason, StopReason::Root { .. }) && solver.interpolate(now, &mut x).is_err() {
+            self.refine.put_scratch(x);
             return Ok(());
         }
         if let Some((tp, xp)) = self.refine.needed_before(now, &x) {
@@ -302,6 +304,7 @@ impl Simulator<'_> {
         if matches!(reason, StopReason::InternalStep) {
             self.refine.step_ended(now, &x);
         }
+        self.refine.put_scratch(x);
         Ok(())
     }
 
