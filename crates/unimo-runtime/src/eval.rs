@@ -2,7 +2,7 @@
 //! solve crate's, on the block's residual and symbolic Jacobian tapes).
 
 use crate::exec::{Instance, Run};
-use crate::native::RhsCall;
+use crate::native::{call_rhs, rhs_fits};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
@@ -269,10 +269,16 @@ impl<'m> RhsEvaluator<'m> {
         let m = self.model;
         if let Some(native) = &m.native_rhs {
             if self.work.profile.is_none()
-                && native.fits(m.single_step_ops(), x.len(), &self.registers, &self.events)
+                && rhs_fits(
+                    native,
+                    m.single_step_ops(),
+                    x.len(),
+                    &self.registers,
+                    &self.events,
+                )
                 && out.len() == x.len()
             {
-                native.call(t, x, out, &mut self.registers, &mut self.events);
+                call_rhs(native, t, x, out, &mut self.registers, &mut self.events);
                 return Ok(());
             }
         }

@@ -54,45 +54,27 @@ fn call_tape(native: &NativeTape, registers: &mut [f64], ev: &mut EventState) {
     }
 }
 
-/// Calling a whole right-hand side's code.
-pub trait RhsCall {
-    /// Whether the code may run: compiled from a plan of one explicit step with
-    /// `plan_ops` instructions and `n_states` states, on a register file and event
-    /// state as large as it assumes.
-    fn fits(
-        &self,
-        plan_ops: Option<usize>,
-        n_states: usize,
-        registers: &[f64],
-        ev: &EventState,
-    ) -> bool;
-    /// Evaluates the right-hand side. The caller has checked [`RhsCall::fits`], and
-    /// `x` and `out` hold `n_states` values each.
-    fn call(&self, t: f64, x: &[f64], out: &mut [f64], registers: &mut [f64], ev: &mut EventState);
+/// Whether a whole right-hand side's code may run: compiled from a plan of one
+/// explicit step with `plan_ops` instructions and `n_states` states, on a register file
+/// and event state as large as it assumes.
+#[inline]
+pub fn rhs_fits(
+    native: &NativeRhs,
+    plan_ops: Option<usize>,
+    n_states: usize,
+    registers: &[f64],
+    ev: &EventState,
+) -> bool {
+    plan_ops == Some(native.n_ops)
+        && n_states == native.n_states
+        && registers.len() >= native.min_registers
+        && ev.relations.len() >= native.min_relations
 }
 
-impl RhsCall for NativeRhs {
-    #[inline]
-    fn fits(
-        &self,
-        plan_ops: Option<usize>,
-        n_states: usize,
-        registers: &[f64],
-        ev: &EventState,
-    ) -> bool {
-        plan_ops == Some(self.n_ops)
-            && n_states == self.n_states
-            && registers.len() >= self.min_registers
-            && ev.relations.len() >= self.min_relations
-    }
-
-    #[inline]
-    fn call(&self, t: f64, x: &[f64], out: &mut [f64], registers: &mut [f64], ev: &mut EventState) {
-        call_rhs(self, t, x, out, registers, ev)
-    }
-}
-
-fn call_rhs(
+/// Evaluates the right-hand side. The caller has checked [`rhs_fits`], and `x` and
+/// `out` hold `n_states` values each.
+#[inline]
+pub fn call_rhs(
     native: &NativeRhs,
     t: f64,
     x: &[f64],
@@ -105,7 +87,7 @@ fn call_rhs(
     let event_mode = u32::from(ev.event_mode);
     let (regs, n) = (registers.as_mut_ptr(), registers.len());
     let events = events_ptr(ev);
-    // SAFETY: as in `call_tape` (the caller checked `fits`); besides the register
+    // SAFETY: as in `call_tape` (the caller checked `rhs_fits`); besides the register
     // file the code reads `n_states` values at `x` and writes `n_states` at `out`, both
     // checked above.
     unsafe {

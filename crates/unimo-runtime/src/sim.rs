@@ -6,7 +6,7 @@
 use crate::eval::{eval_steps, BlockFailure, Workspace};
 use crate::exec::EventState;
 use crate::exec::{Instance, Run};
-use crate::native::RhsCall;
+use crate::native::{call_rhs, rhs_fits};
 use starts::LoopStarts;
 use std::time::Instant;
 use unimo_codegen::model::CompiledModel;
@@ -379,11 +379,18 @@ impl System for Ode<'_> {
             // The whole right-hand side in one native call (a plan of one explicit step).
             Some(native)
                 if self.work.profile.is_none()
-                    && native.fits(self.m.single_step_ops(), n, &self.regs, &self.ev) =>
+                    && rhs_fits(native, self.m.single_step_ops(), n, &self.regs, &self.ev) =>
             {
                 self.evaluations += 1;
                 let started = unimo_solve::fine_timing().then(Instant::now);
-                native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev);
+                call_rhs(
+                    native,
+                    t,
+                    &x[..n],
+                    &mut out[..n],
+                    &mut self.regs,
+                    &mut self.ev,
+                );
                 if let Some(at) = self.evaluated_at.as_mut() {
                     *at = None;
                 }
