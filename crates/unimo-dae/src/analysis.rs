@@ -316,9 +316,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         &graph,
         &pantelides,
         |v| priorities[v.index()],
-        |eqs, candidates| {
-            is_dynamic_set(&mut sys_cell.borrow_mut(), &priorities, eqs, candidates)
-        },
+        |eqs, candidates| is_dynamic_set(&mut sys_cell.borrow_mut(), &priorities, eqs, candidates),
         Some(&mut coefficient),
     );
     let mut dummies = selected.map_err(|e| struct_error(&sys, e))?;

@@ -166,7 +166,14 @@ pub fn select_dummy_derivatives_with_sets(
             .select(graph, &eqs, &candidates)
             .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
         if let Some(coefficient) = coefficient.as_mut() {
-            regularize(graph, &mut selector, &eqs, &candidates, &mut assignments, &mut **coefficient);
+            regularize(
+                graph,
+                &mut selector,
+                &eqs,
+                &candidates,
+                &mut assignments,
+                &mut **coefficient,
+            );
         }
         allowed.fill(false);
         for &(_, d) in &assignments {

@@ -93,10 +93,7 @@ pub(crate) fn regular_choice(
         .iter()
         .map(|&v| column(eqs, occurs, v, coefficient))
         .collect();
-    let scale = columns
-        .iter()
-        .flatten()
-        .fold(0.0f64, |s, x| s.max(x.abs()));
+    let scale = columns.iter().flatten().fold(0.0f64, |s, x| s.max(x.abs()));
     if scale == 0.0 {
         return None;
     }
