@@ -162,19 +162,14 @@ pub fn select_dummy_derivatives_with_sets(
                 d,
             )
         });
-        let mut assignments = selector
-            .select(graph, &eqs, &candidates)
-            .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
-        if let Some(coefficient) = coefficient.as_mut() {
-            regularize(
-                graph,
-                &mut selector,
-                &eqs,
-                &candidates,
-                &mut assignments,
-                &mut **coefficient,
-            );
-        }
+        let assignments = level_assignments(
+            graph,
+            &mut selector,
+            &eqs,
+            &candidates,
+            level,
+            &mut coefficient,
+        )?;
         allowed.fill(false);
         for &(_, d) in &assignments {
             result.is_dummy[d.index()] = true;
@@ -219,6 +214,32 @@ pub fn select_dummy_derivatives_with_sets(
     }
     classify_variables(graph, pantelides, &mut result);
     Ok(result)
+}
+
+/// A level's dummies: the structural choice, made regular where `coefficient` shows
+/// it singular.
+fn level_assignments(
+    graph: &BipartiteGraph,
+    selector: &mut LevelSelector,
+    eqs: &[EqId],
+    candidates: &[VarId],
+    level: u32,
+    coefficient: &mut Option<Coefficient<'_>>,
+) -> Result<Vec<(EqId, VarId)>, StructError> {
+    let mut assignments = selector
+        .select(graph, eqs, candidates)
+        .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
+    if let Some(coefficient) = coefficient.as_mut() {
+        regularize(
+            graph,
+            selector,
+            eqs,
+            candidates,
+            &mut assignments,
+            &mut **coefficient,
+        );
+    }
+    Ok(assignments)
 }
 
 /// Replaces, per connected component of the level, a numerically singular choice of
