@@ -302,13 +302,8 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
             priority(sys.dae.scalar(base).state_select)
         })
         .collect();
-    let mut dummies = st::select_dummy_derivatives_with_sets(
-        &graph,
-        &pantelides,
-        |v| priorities[v.index()],
-        |eqs, candidates| is_dynamic_set(&mut sys, &priorities, eqs, candidates),
-    )
-    .map_err(|e| struct_error(&sys, e))?;
+    let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities);
+    let mut dummies = selected.map_err(|e| struct_error(&sys, e))?;
     let state_sets = add_state_sets(&mut sys, &mut dummies);
     let graph = sys.graph.clone();
     let selectors: HashSet<ScalarId> = state_sets
@@ -475,6 +470,33 @@ fn single_step(
 /// level's equations in the candidates depends on the continuous variables (with
 /// constant coefficients, as in circuits and gears, a static choice is regular
 /// everywhere or nowhere).
+/// The dummy derivatives, with dynamic state sets and the equations' constant
+/// coefficients (a structurally valid but numerically singular choice is replaced).
+fn select_dummies(
+    sys: &mut DaeSystem<'_>,
+    graph: &st::BipartiteGraph,
+    pantelides: &st::PantelidesResult,
+    priorities: &[st::StateSelectPriority],
+) -> Result<st::DummyDerivatives, st::StructError> {
+    let sys_cell = std::cell::RefCell::new(sys);
+    let mut values = crate::params::ParameterValues::default();
+    let mut coefficient = |e: st::EqId, v: st::VarId| {
+        let mut guard = sys_cell.borrow_mut();
+        let sys = &mut **guard;
+        let r = sys.dae.residual(EqId(e.0));
+        let s = sys.scalar(v);
+        let d = partial(&mut sys.dae.arena, r, s);
+        values.of_expr(sys.dae, d).filter(|c| c.is_finite())
+    };
+    st::select_dummy_derivatives_with_sets(
+        graph,
+        pantelides,
+        |v| priorities[v.index()],
+        |eqs, candidates| is_dynamic_set(&mut sys_cell.borrow_mut(), priorities, eqs, candidates),
+        Some(&mut coefficient),
+    )
+}
+
 fn is_dynamic_set(
     sys: &mut DaeSystem<'_>,
     priorities: &[st::StateSelectPriority],

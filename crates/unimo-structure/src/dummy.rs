@@ -9,6 +9,7 @@ use crate::graph::BipartiteGraph;
 use crate::ids::{EqId, VarId};
 use crate::matching::{maximum_matching_where, AugmentingPathSearch, Matching};
 use crate::pantelides::PantelidesResult;
+use crate::regular::{regular_choice, Coefficient};
 
 /// How much a variable should be a state (Modelica's `stateSelect`), ordered from
 /// "make it algebraic first" to "must stay a state".
@@ -103,7 +104,7 @@ pub fn select_dummy_derivatives(
     pantelides: &PantelidesResult,
     priority: impl Fn(VarId) -> StateSelectPriority,
 ) -> Result<DummyDerivatives, StructError> {
-    select_dummy_derivatives_with_sets(graph, pantelides, priority, |_, _| false)
+    select_dummy_derivatives_with_sets(graph, pantelides, priority, |_, _| false, None)
 }
 
 /// [`select_dummy_derivatives`] with dynamic state selection: a connected component of
@@ -113,11 +114,17 @@ pub fn select_dummy_derivatives(
 /// candidates. The caller adds, per set, the set's states `s = A x` (`x` the
 /// candidates' integrals, `A` a selection switched at run time) and `der(s) = A der(x)`;
 /// without that the system is not index 1.
+///
+/// With `coefficient` (an equation's constant partial derivative with respect to a
+/// variable, where it has one), a level's choice that is structurally valid but
+/// numerically singular is replaced per connected component by the first regular one
+/// in the candidates' order ([`crate::regular`]).
 pub fn select_dummy_derivatives_with_sets(
     graph: &BipartiteGraph,
     pantelides: &PantelidesResult,
     priority: impl Fn(VarId) -> StateSelectPriority,
     mut dynamic: impl FnMut(&[EqId], &[VarId]) -> bool,
+    mut coefficient: Option<Coefficient<'_>>,
 ) -> Result<DummyDerivatives, StructError> {
     let chains = &pantelides.chains;
     let n_vars = graph.n_vars();
@@ -155,9 +162,14 @@ pub fn select_dummy_derivatives_with_sets(
                 d,
             )
         });
-        let assignments = selector
-            .select(graph, &eqs, &candidates)
-            .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
+        let assignments = level_assignments(
+            graph,
+            &mut selector,
+            &eqs,
+            &candidates,
+            level,
+            &mut coefficient,
+        )?;
         allowed.fill(false);
         for &(_, d) in &assignments {
             result.is_dummy[d.index()] = true;
@@ -202,6 +214,71 @@ pub fn select_dummy_derivatives_with_sets(
     }
     classify_variables(graph, pantelides, &mut result);
     Ok(result)
+}
+
+/// A level's dummies: the structural choice, made regular where `coefficient` shows
+/// it singular.
+fn level_assignments(
+    graph: &BipartiteGraph,
+    selector: &mut LevelSelector,
+    eqs: &[EqId],
+    candidates: &[VarId],
+    level: u32,
+    coefficient: &mut Option<Coefficient<'_>>,
+) -> Result<Vec<(EqId, VarId)>, StructError> {
+    let mut assignments = selector
+        .select(graph, eqs, candidates)
+        .map_err(|eqs| StructError::DummySelectionFailed { level, eqs })?;
+    if let Some(coefficient) = coefficient.as_mut() {
+        regularize(
+            graph,
+            selector,
+            eqs,
+            candidates,
+            &mut assignments,
+            &mut **coefficient,
+        );
+    }
+    Ok(assignments)
+}
+
+/// Replaces, per connected component of the level, a numerically singular choice of
+/// dummies by the first regular one ([`regular_choice`]).
+fn regularize(
+    graph: &BipartiteGraph,
+    selector: &mut LevelSelector,
+    eqs: &[EqId],
+    candidates: &[VarId],
+    assignments: &mut Vec<(EqId, VarId)>,
+    coefficient: Coefficient<'_>,
+) {
+    let occurs = |e: EqId, v: VarId| graph.contains_edge(e, v);
+    let comps = components(graph, eqs, candidates);
+    let mut comp_of: std::collections::HashMap<VarId, usize> = Default::default();
+    for (k, (_, vars)) in comps.iter().enumerate() {
+        comp_of.extend(vars.iter().map(|&v| (v, k)));
+    }
+    let mut chosen: Vec<Vec<VarId>> = vec![Vec::new(); comps.len()];
+    for &(_, d) in assignments.iter() {
+        chosen[comp_of[&d]].push(d);
+    }
+    let mut replaced: Vec<Vec<(EqId, VarId)>> = vec![Vec::new(); comps.len()];
+    let mut any = false;
+    for (k, (comp_eqs, comp_vars)) in comps.iter().enumerate() {
+        let Some(choice) = regular_choice(comp_eqs, comp_vars, &chosen[k], &occurs, coefficient)
+        else {
+            continue;
+        };
+        // A regular square matrix has a nonzero term in its determinant: a matching.
+        if let Ok(matched) = selector.select(graph, comp_eqs, &choice) {
+            replaced[k] = matched;
+            any = true;
+        }
+    }
+    if any {
+        assignments.retain(|(_, d)| replaced[comp_of[d]].is_empty());
+        assignments.extend(replaced.into_iter().flatten());
+    }
 }
 
 /// The variables that occur in an equation of the input (not only in equations made by

@@ -100,6 +100,7 @@ pub mod ids;
 pub mod matching;
 pub mod pantelides;
 pub mod pipeline;
+pub mod regular;
 pub mod structural_system;
 pub mod tearing;
 pub mod verify;

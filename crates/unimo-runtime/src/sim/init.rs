@@ -320,6 +320,26 @@ impl Simulator<'_> {
         rows: &[usize],
         f: &[f64],
     ) -> Result<Vec<f64>, SimError> {
+        // The perturbed evaluations leave their values behind (discrete values the
+        // initial equations assign, read by the plan in the next evaluation: a noise
+        // sample drawn from a perturbed seed; relations decided at a perturbed point):
+        // the registers and relations of the base point are restored afterwards, so
+        // that the next iterate is evaluated from them, not from the last column's.
+        let base = self.ode.regs.clone();
+        let relations = self.ode.ev.relations.clone();
+        let jac = self.perturbed_columns(regs, rows, f);
+        self.ode.regs.copy_from_slice(&base);
+        self.ode.ev.relations.copy_from_slice(&relations);
+        jac
+    }
+
+    /// The columns of [`Self::initial_jacobian`].
+    fn perturbed_columns(
+        &mut self,
+        regs: &[usize],
+        rows: &[usize],
+        f: &[f64],
+    ) -> Result<Vec<f64>, SimError> {
         let mut jac = vec![0.0; rows.len() * regs.len()];
         for (j, &reg) in regs.iter().enumerate() {
             let x = self.ode.regs[reg];
