@@ -3,12 +3,12 @@
 //! name is an element of the class.
 
 use super::{instance_key, part, Instantiator, Kind, MAX_DEPTH, MAX_SELF_NESTING};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::flat::Variability;
 use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
 use crate::tree::ClassId;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -30,12 +30,11 @@ impl Instantiator<'_, '_> {
                 self.stopped = true;
                 let def = &self.tree.get(class).def;
                 let (name, span) = (def.name.text.clone(), def.name.span);
-                self.error(
-                    FlatCode::TooDeep,
-                    format!("instances of `{name}` nested {MAX_SELF_NESTING} deep in each other (a recursive model?)"),
+                self.report(FlatError::SelfNesting {
+                    name: name.to_string(),
+                    limit: MAX_SELF_NESTING,
                     span,
-                    "this class contains itself",
-                );
+                });
             }
             return;
         }
@@ -75,12 +74,10 @@ impl Instantiator<'_, '_> {
         }
         if self.depth >= MAX_DEPTH {
             let span = self.tree.get(class).def.name.span;
-            self.error(
-                FlatCode::TooDeep,
-                format!("instances nested more than {MAX_DEPTH} deep (a recursive model?)"),
+            self.report(FlatError::TooDeep {
+                limit: MAX_DEPTH,
                 span,
-                "in this class",
-            );
+            });
             return;
         }
         self.depth += 1;
@@ -199,7 +196,7 @@ impl Instantiator<'_, '_> {
                     }
                     Some(Found::Builtin("ExternalObject")) => {} // an external object class
                     Some(Found::Builtin(_)) => {
-                        self.error(FlatCode::ExtendsPredefined, "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
+                        self.report(FlatError::ExtendsPredefined { span: x.base.span });
                     }
                     _ => {} // reported by the name check
                 }
@@ -314,14 +311,12 @@ impl Instantiator<'_, '_> {
                     .map_or(Span::default(), |b| b.expr.span);
                 let cname = self.tree.full_name(class);
                 self.diags.push(
-                    Diagnostic::error(
-                        FlatCode::UnknownModifier,
-                        format!("modifier of `{name}`, which `{cname}` does not have"),
-                    )
-                    .at(span, "value given here")
-                    .with_help(format!(
-                        "the modified element must be declared in `{cname}` or a class it extends"
-                    )),
+                    FlatError::ModifierOfMissing {
+                        name: name.to_string(),
+                        class: cname,
+                        span,
+                    }
+                    .into(),
                 );
             }
         }

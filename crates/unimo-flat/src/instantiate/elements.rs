@@ -2,7 +2,7 @@
 //! of one element of a component array picked out.
 
 use super::{int_expr, Instantiator};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::{self, Value};
 use crate::modif::{Mod, Scope};
 use unimo_source::Span;
@@ -16,12 +16,7 @@ impl Instantiator<'_, '_> {
         match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
             Ok(Some(n)) if n >= 0 => Some(n as usize),
             Ok(_) => {
-                self.error(
-                    FlatCode::NotKnownAtCompileTime,
-                    "an array dimension must be a non-negative Integer".into(),
-                    e.span,
-                    "here",
-                );
+                self.report(FlatError::BadDimension { span: e.span });
                 None
             }
             Err(err) => {
