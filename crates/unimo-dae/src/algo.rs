@@ -369,15 +369,7 @@ impl Lowerer<'_> {
         };
         let values = self.iterator_values(first)?;
         for v in values {
-            self.locals.push(Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let f = self.exec_for_indices(rest, body);
-            self.locals.pop();
-            match f? {
+            match self.with_iterator(first, v, |me| me.exec_for_indices(rest, body))? {
                 Flow::Next => {}
                 Flow::Break => break,
                 Flow::Return => return Ok(Flow::Return),

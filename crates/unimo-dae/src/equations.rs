@@ -120,15 +120,7 @@ impl Lowerer<'_> {
         };
         let mut out = Vec::new();
         for v in self.iterator_values(first)? {
-            self.locals.push(crate::lower::Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let r = self.for_rows(rest, body);
-            self.locals.pop();
-            out.extend(r?);
+            out.extend(self.with_iterator(first, v, |me| me.for_rows(rest, body))?);
         }
         Ok(out)
     }
@@ -307,18 +299,9 @@ impl Lowerer<'_> {
                     ));
                 }
                 for v in self.iterator_values(first)? {
-                    self.locals.push(crate::lower::Local {
-                        name: first.name.text.to_string(),
-                        value: Some(v),
-                        record: None,
-                        text: None,
-                    });
-                    let mut r = Ok(());
-                    for e in body {
-                        r = r.and_then(|_| self.when_body(e, actions));
-                    }
-                    self.locals.pop();
-                    r?;
+                    self.with_iterator(first, v, |me| {
+                        body.iter().try_for_each(|e| me.when_body(e, actions))
+                    })?;
                 }
                 Ok(())
             }

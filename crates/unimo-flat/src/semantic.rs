@@ -70,12 +70,7 @@ pub(crate) fn parameter_cycles(model: &FlatModel) -> Vec<Diagnostic> {
 /// `E2019` for a parameter or constant whose binding reads `time` or a variable that
 /// is not a parameter or constant.
 pub(crate) fn binding_variability(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let mut diags = Vec::new();
     for v in &model.vars {
         if !matches!(

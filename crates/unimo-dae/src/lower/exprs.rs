@@ -157,17 +157,27 @@ impl Lowerer<'_> {
         let values = self.iterator_values(first)?;
         let mut out = Vec::new();
         for v in values {
-            self.locals.push(Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let r = self.comprehension(body, rest);
-            self.locals.pop();
-            out.extend(r?);
+            out.extend(self.with_iterator(first, v, |me| me.comprehension(body, rest))?);
         }
         Ok(out)
+    }
+
+    /// Runs `f` with the iterator `index` bound to `value` (a local while `f` runs).
+    pub(crate) fn with_iterator<T>(
+        &mut self,
+        index: &ForIndex,
+        value: Tensor,
+        f: impl FnOnce(&mut Self) -> T,
+    ) -> T {
+        self.locals.push(Local {
+            name: index.name.text.to_string(),
+            value: Some(value),
+            record: None,
+            text: None,
+        });
+        let r = f(self);
+        self.locals.pop();
+        r
     }
 
     pub(crate) fn iterator_values(&mut self, index: &ForIndex) -> DaeResult<Vec<Tensor>> {

@@ -10,18 +10,13 @@ use crate::eval::var_key;
 use crate::flat::{
     for_each_call, for_each_equation_expr, for_each_value_ref, FlatModel, FlatType, Variability,
 };
-use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use rustc_hash::FxHashSet as HashSet;
 use unimo_source::Diagnostic;
 use unimo_syntax::ast::{ComponentRef, Equation, EquationKind, Expr, ExprKind, StatementKind};
 
 /// `E2019` for every constant bound to an expression that reads a parameter.
 pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let mut diags = Vec::new();
     for v in &model.vars {
         if v.variability != Variability::Constant {
@@ -136,12 +131,7 @@ fn exprs_outside_when(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
 /// `E2032` for `pre(x)` outside `when` clauses, where `x` is a Real variable that
 /// varies continuously (declared neither `discrete` nor assigned in a `when`).
 pub(crate) fn pre_of_continuous(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let discrete = assigned_in_when(model);
     let mut diags = Vec::new();
     exprs_outside_when(&model.equations, &mut |e| {
