@@ -171,12 +171,7 @@ impl Instantiator<'_, '_> {
         } = &def.body
         {
             if let Some(original) = self.tree.extended_original(class) {
-                let ext = ext
-                    .modification
-                    .as_ref()
-                    .map(|cm| Mod::from_class_mod(cm, scope))
-                    .unwrap_or_default();
-                let base_mod = m.over(&own_redeclares.over(&ext));
+                let base_mod = base_modifier(m, own_redeclares, ext.modification.as_ref(), scope);
                 self.class_body_inner(original, prefix, &base_mod, variability, top, false);
             }
         }
@@ -186,12 +181,8 @@ impl Instantiator<'_, '_> {
                 let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
                 match self.tree.lookup_dotted(Some(class), &parts, true) {
                     Some(Found::Class(b)) => {
-                        let ext = x
-                            .modification
-                            .as_ref()
-                            .map(|cm| Mod::from_class_mod(cm, scope))
-                            .unwrap_or_default();
-                        let base_mod = m.over(&own_redeclares.over(&ext));
+                        let base_mod =
+                            base_modifier(m, own_redeclares, x.modification.as_ref(), scope);
                         self.class_body_inner(b, prefix, &base_mod, variability, top, false);
                     }
                     Some(Found::Builtin("ExternalObject")) => {} // an external object class
@@ -321,6 +312,20 @@ impl Instantiator<'_, '_> {
             }
         }
     }
+}
+
+/// The modifier a base class is instantiated with: the `extends` clause's modification
+/// under the class's own redeclarations, under the modifier `m` of the instance.
+fn base_modifier(
+    m: &Mod,
+    own_redeclares: &Mod,
+    modification: Option<&ClassModification>,
+    scope: &Scope,
+) -> Mod {
+    let ext = modification
+        .map(|cm| Mod::from_class_mod(cm, scope))
+        .unwrap_or_default();
+    m.over(&own_redeclares.over(&ext))
 }
 
 /// `redeclare T x(...)` elements of a class, as modifiers of the elements they replace.

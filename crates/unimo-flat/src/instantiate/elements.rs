@@ -5,6 +5,7 @@ use super::{int_expr, Instantiator};
 use crate::error::FlatError;
 use crate::eval::{self, Value};
 use crate::modif::{Mod, Scope};
+use smol_str::SmolStr;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
@@ -31,12 +32,15 @@ impl Instantiator<'_, '_> {
     /// reference gets the subscripts, a constant is evaluated and picked).
     pub(super) fn element_mod(&mut self, m: &Mod, index: &[i64]) -> Mod {
         let mut out = m.clone();
-        out.children = m
-            .children
-            .iter()
-            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
-            .collect();
+        out.children = self.element_children(m, index);
         out
+    }
+
+    /// The children of `m` as modifiers of element `index`.
+    fn element_children(&mut self, m: &Mod, index: &[i64]) -> Vec<(SmolStr, Mod)> {
+        (m.children.iter())
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect()
     }
 
     fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
@@ -52,11 +56,7 @@ impl Instantiator<'_, '_> {
                 });
             }
         }
-        out.children = m
-            .children
-            .iter()
-            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
-            .collect();
+        out.children = self.element_children(m, index);
         out
     }
 
