@@ -72,6 +72,11 @@ fn native(bencher: divan::Bencher, which: &str) {
     let stats =
         unimo_codegen::compile_model(&mut m.compiled, &options, execute_shim).expect("native code");
     assert!(stats.functions > 0);
+    bench_rhs(bencher, &m);
+}
+
+/// One evaluation of the right-hand side of `m` at t = 1 and the test state.
+fn bench_rhs(bencher: divan::Bencher, m: &unimo_cli::LoadedModel) {
     let mut ev = RhsEvaluator::new(&m.compiled);
     let n = m.compiled.states.len();
     let x = state(n);
@@ -98,15 +103,7 @@ fn native_compile(bencher: divan::Bencher, which: &str) {
 #[divan::bench(args = ["rober", "hires", "chain1000"])]
 fn compiled(bencher: divan::Bencher, which: &str) {
     let m = load(which);
-    let mut ev = RhsEvaluator::new(&m.compiled);
-    let n = m.compiled.states.len();
-    let x = state(n);
-    let mut out = vec![0.0; n];
-    bencher.bench_local(|| {
-        ev.rhs(1.0, divan::black_box(&x), &mut out)
-            .expect("evaluates");
-        divan::black_box(&out);
-    });
+    bench_rhs(bencher, &m);
 }
 
 #[divan::bench(args = ["rober", "hires", "chain1000"])]

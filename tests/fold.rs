@@ -7,7 +7,7 @@ mod common;
 
 use unimo_cli::LoadedModel;
 use unimo_dae::FoldOptions;
-use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_runtime::sim::{simulate, SimResult};
 use unimo_solve::Method;
 
 fn load(file: &str, model: &str, fold: &FoldOptions) -> LoadedModel {
@@ -27,22 +27,32 @@ fn tunable_all() -> FoldOptions {
 }
 
 fn run(m: &LoadedModel, stop: f64) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: stop / 200.0,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, stop, stop / 200.0);
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     r
 }
 
 /// (plan operations, zero crossings, folded parameters)
+/// Models `smooth` and `rough` of `file` folded: `smooth` has fewer operations and fewer
+/// root functions. Returns it with its operation count.
+fn cheaper_than(file: &str, smooth: &str, rough: &str) -> (LoadedModel, usize) {
+    let smooth = load(file, smooth, &FoldOptions::default());
+    let rough = load(file, rough, &FoldOptions::default());
+    let (ops_s, roots_s, _) = cost(&smooth);
+    let (ops_r, roots_r, _) = cost(&rough);
+    assert!(ops_s < ops_r, "{ops_s} >= {ops_r}");
+    assert!(roots_s < roots_r, "{roots_s} >= {roots_r}");
+    (smooth, ops_s)
+}
+
+/// The names of the parameters folded into constants.
+fn folded(m: &LoadedModel) -> Vec<&str> {
+    (m.dae.folded_parameters.iter())
+        .map(|&s| m.dae.scalar(s).name.as_str())
+        .collect()
+}
+
 fn cost(m: &LoadedModel) -> (usize, usize, usize) {
     (
         m.compiled.plan_ops(),
@@ -121,23 +131,11 @@ fn tunable_parameters_and_their_followers_stay_parameters() {
         ..FoldOptions::default()
     };
     let m = load(file, "Folding.Switches", &fold);
-    let folded: Vec<&str> = m
-        .dae
-        .folded_parameters
-        .iter()
-        .map(|&s| m.dae.scalar(s).name.as_str())
-        .collect();
-    assert_eq!(folded, ["useSpring", "limit", "c", "g"]);
+    assert_eq!(folded(&m), ["useSpring", "limit", "c", "g"]);
     assert_eq!(m.compiled.roots.len(), 1, "mu tunable: abs(v) > 1e-3 stays");
     // fixed = false parameters and those bound to them are computed at initialization.
     let m = load(file, "Folding.Initial", &FoldOptions::default());
-    let folded: Vec<&str> = m
-        .dae
-        .folded_parameters
-        .iter()
-        .map(|&s| m.dae.scalar(s).name.as_str())
-        .collect();
-    assert_eq!(folded, ["k"]);
+    assert_eq!(folded(&m), ["k"]);
     let r = run(&m, 1.0);
     let x = r.names.iter().position(|n| n == "x").unwrap();
     let last = r.rows.last().unwrap();
@@ -148,12 +146,7 @@ fn tunable_parameters_and_their_followers_stay_parameters() {
 #[test]
 fn a_frictionless_ellipsoid_costs_less_than_one_with_friction() {
     let file = "tests/paper_a/Extremes.mo";
-    let smooth = load(file, "Extremes.Frictionless", &FoldOptions::default());
-    let rough = load(file, "Extremes.Base", &FoldOptions::default());
-    let (ops_s, roots_s, _) = cost(&smooth);
-    let (ops_r, roots_r, _) = cost(&rough);
-    assert!(ops_s < ops_r, "{ops_s} >= {ops_r}");
-    assert!(roots_s < roots_r, "{roots_s} >= {roots_r}");
+    let (smooth, ops_s) = cheaper_than(file, "Extremes.Frictionless", "Extremes.Base");
     // The same results as the unfolded model: 3 units of the regularising time hold the
     // first flight, bounces and impacts.
     let kept = load(file, "Extremes.Frictionless", &tunable_all());
@@ -165,12 +158,7 @@ fn a_frictionless_ellipsoid_costs_less_than_one_with_friction() {
 #[test]
 fn frictionless_balls_cost_less_than_balls_with_friction() {
     let file = "tests/fold/ThreeBalls.mo";
-    let smooth = load(file, "ThreeBalls.Frictionless", &FoldOptions::default());
-    let rough = load(file, "ThreeBalls.WithFriction", &FoldOptions::default());
-    let (ops_s, roots_s, _) = cost(&smooth);
-    let (ops_r, roots_r, _) = cost(&rough);
-    assert!(ops_s < ops_r, "{ops_s} >= {ops_r}");
-    assert!(roots_s < roots_r, "{roots_s} >= {roots_r}");
+    let (smooth, _) = cheaper_than(file, "ThreeBalls.Frictionless", "ThreeBalls.WithFriction");
     // To the first impacts of ball 1 on the table (t = 0.1 and 0.27 of the regularising
     // time). Later the two differ at the tolerance: the relative normal acceleration of
     // balls 2 and 3, at rest apart on the table, is round-off (|relan| ~ 1e-39), and its
@@ -220,16 +208,7 @@ fn the_cost_report_shares_out_measured_step_times() {
         &FoldOptions::default(),
     );
     let sink = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
-    let o = SimOptions {
-        start: 0.0,
-        stop: 0.5,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: 0.01,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 0.5, 0.01);
     let r = unimo_runtime::sim::Simulator::new(&m.compiled)
         .profile(sink.clone())
         .run(&o);

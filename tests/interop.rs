@@ -17,12 +17,7 @@ fn simulate_to(model: &str, out: &Path, extra: &[&str]) {
     let mut args = vec!["simulate", model, "--output", &out_s];
     args.extend_from_slice(extra);
     let o = unimo(&args);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    common::assert_success(&o);
 }
 
 /// The CSV as (header, columns).

@@ -387,12 +387,7 @@ fn a_package_file_of_a_library_checks_clean() {
         .arg(msl.join("Modelica/Blocks/package.mo"))
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::assert_success(&out);
 }
 
 /// The flat model of every example stands alone (it is what an FMU carries in

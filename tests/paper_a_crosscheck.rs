@@ -9,7 +9,7 @@ mod common;
 
 use unimo_reference::scenes::{fly_slide_roll, slide_roll_switch};
 use unimo_reference::{simulate as reference, EventKind, Phase, RunOptions};
-use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_runtime::sim::{simulate, SimResult};
 use unimo_solve::Method;
 
 use common::load;
@@ -48,16 +48,7 @@ fn model_events(r: &SimResult) -> Vec<(f64, &'static str)> {
 
 fn run_model(file: &str, tau_stop: f64, method: Method, rtol: f64) -> SimResult {
     let m = load(file, None);
-    let o = SimOptions {
-        start: 0.0,
-        stop: tau_stop,
-        rtol,
-        atol: rtol / 100.0,
-        method,
-        interval: tau_stop / 50.0,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(method, rtol, 0.0, tau_stop, tau_stop / 50.0);
     let r = simulate(&m.compiled, &o);
     assert!(
         r.error.is_none(),

@@ -58,13 +58,15 @@ fn run(
     r
 }
 
-fn value(r: &SimResult, name: &str) -> f64 {
-    let k = r
-        .names
-        .iter()
+/// The index of the output `name` in `r`'s rows.
+fn column_of(r: &SimResult, name: &str) -> usize {
+    (r.names.iter())
         .position(|n| n == name)
-        .unwrap_or_else(|| panic!("no {name}"));
-    r.rows.last().unwrap()[k]
+        .unwrap_or_else(|| panic!("no {name}"))
+}
+
+fn value(r: &SimResult, name: &str) -> f64 {
+    r.rows.last().unwrap()[column_of(r, name)]
 }
 
 /// Significant correct digits: -log10 of the largest relative error.
@@ -230,7 +232,7 @@ fn stiff_penalty_ball_never_gains_energy() {
         o.every_step = true;
         let r = simulate(&m.compiled, &o);
         assert!(r.error.is_none());
-        let k = r.names.iter().position(|n| n == "E").unwrap();
+        let k = column_of(&r, "E");
         let e: Vec<f64> = r.rows.iter().map(|row| row[k]).collect();
         let e0 = e[0];
         let max = e.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -248,19 +250,10 @@ fn stiff_penalty_ball_never_gains_energy() {
 #[test]
 fn pendulum_keeps_its_constraint() {
     let m = load("models/Pendulum.mo");
-    let o = SimOptions {
-        start: 0.0,
-        stop: 10.0,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Auto,
-        interval: 0.01,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(Method::Auto, 1e-8, 0.0, 10.0, 0.01);
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none());
-    let k = r.names.iter().position(|n| n == "drift").unwrap();
+    let k = column_of(&r, "drift");
     let drift = r.rows.iter().map(|row| row[k].abs()).fold(0.0f64, f64::max);
     assert!(drift < 1e-12, "constraint drift {drift:e}");
 }
@@ -292,16 +285,7 @@ fn run_pruned(file: &str, var: &str, rtol: f64) -> (SimResult, usize) {
     let mut plan = m.analysis.plan.clone();
     let pruned = unimo_dae::prune::prune(&m.dae, &mut plan, &[s]);
     let compiled = unimo_codegen::model::compile(&m.dae, &plan);
-    let o = SimOptions {
-        start: 0.0,
-        stop: 1.0,
-        rtol,
-        atol: rtol / 100.0,
-        method: Method::Bdf,
-        interval: 0.5,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(Method::Bdf, rtol, 0.0, 1.0, 0.5);
     let r = simulate(&compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     (r, pruned)
@@ -310,7 +294,7 @@ fn run_pruned(file: &str, var: &str, rtol: f64) -> (SimResult, usize) {
 #[test]
 fn pruning_keeps_what_initialization_reads() {
     let (r, pruned) = run_pruned("tests/simulate/PruneKeepsInitialization.mo", "y", 1e-8);
-    let k = r.names.iter().position(|n| n == "y").unwrap();
+    let k = column_of(&r, "y");
     let y0 = r.rows[0][k];
     let y1 = r.rows.last().unwrap()[k];
     assert!((y0 - 3.0).abs() < 1e-12, "y(0) = {y0}, pruned {pruned}");
@@ -326,16 +310,7 @@ fn pruning_leaves_out_the_events_of_what_is_left_out() {
     let file = "tests/simulate/PruneLeavesOutEvents.mo";
     let m = load(file);
     let id = |name: &str| m.dae.ids().find(|&s| m.dae.name(s) == name).unwrap();
-    let o = SimOptions {
-        start: 0.0,
-        stop: 3.0,
-        rtol: 1e-8,
-        atol: 1e-10,
-        method: Method::Bdf,
-        interval: 0.01,
-        every_step: false,
-        output_rtol: 0.0,
-    };
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 3.0, 0.01);
     let mut outcomes = Vec::new();
     for wanted in [vec![id("x")], vec![id("x"), id("above")]] {
         let mut plan = m.analysis.plan.clone();
@@ -343,7 +318,7 @@ fn pruning_leaves_out_the_events_of_what_is_left_out() {
         let compiled = unimo_codegen::model::compile(&m.dae, &plan);
         let r = simulate(&compiled, &o);
         assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
-        let k = r.names.iter().position(|n| n == "x").unwrap();
+        let k = column_of(&r, "x");
         let x: Vec<f64> = r.rows.iter().map(|row| row[k]).collect();
         outcomes.push((pruned, compiled.roots.len(), r.stats.events, x, r.times));
     }
@@ -368,7 +343,7 @@ fn pruning_leaves_out_the_events_of_what_is_left_out() {
 #[test]
 fn pruning_keeps_fixed_starts_of_dummy_states() {
     let (r, pruned) = run_pruned("tests/simulate/PruneKeepsFixedDummyState.mo", "s_rel", 1e-9);
-    let k = r.names.iter().position(|n| n == "s_rel").unwrap();
+    let k = column_of(&r, "s_rel");
     let d = 0.1f64;
     let w = (1.0 - d * d / 4.0).sqrt();
     let exact =
@@ -422,10 +397,7 @@ fn structural_if_bindings_of_different_sizes_take_their_branch() {
 fn newton_damps_steps_across_saturations() {
     let m = load("tests/simulate/LimitedOpAmp.mo");
     let r = run(&m, Method::Bdf, 1e-6, 1e-8, 1.0, 50);
-    let (kin, kout) = (
-        r.names.iter().position(|n| n == "vin").unwrap(),
-        r.names.iter().position(|n| n == "vout").unwrap(),
-    );
+    let (kin, kout) = (column_of(&r, "vin"), column_of(&r, "vout"));
     let gain = 15000.0 / (1.0 + 15000.0 * 0.5);
     for row in &r.rows {
         let want = gain * row[kin];
@@ -473,7 +445,7 @@ fn terminal_fires_at_the_end() {
     let at_end = value(&r, "atEnd");
     assert!((at_end - (-1.0f64).exp()).abs() < 1e-7, "atEnd = {at_end}");
     assert_eq!(value(&r, "n"), 5.0);
-    let k = r.names.iter().position(|n| n == "atEnd").unwrap();
+    let k = column_of(&r, "atEnd");
     let before: Vec<f64> = r.rows[..r.rows.len() - 1]
         .iter()
         .map(|row| row[k])
@@ -540,11 +512,7 @@ fn unimplemented_builtins_are_reported_as_not_supported() {
 fn switched_equation_in_a_loop_is_not_divided_by_zero() {
     let m = load("tests/simulate/SwitchedLoop.mo");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
-    let (kx, kd, kf) = (
-        r.names.iter().position(|n| n == "x").unwrap(),
-        r.names.iter().position(|n| n == "D").unwrap(),
-        r.names.iter().position(|n| n == "F").unwrap(),
-    );
+    let (kx, kd, kf) = (column_of(&r, "x"), column_of(&r, "D"), column_of(&r, "F"));
     // before the switch F = 0 and x decays; after it D = der(x) = 0
     assert_eq!(r.rows[0][kf], 0.0);
     let last = r.rows.last().unwrap();
@@ -791,10 +759,7 @@ fn when_clauses_of_one_instant_see_each_other() {
             .unwrap()
             .1[k]
     };
-    assert_eq!(
-        r.rows[0][r.names.iter().position(|n| n == "s[2]").unwrap()],
-        4.0
-    );
+    assert_eq!(r.rows[0][column_of(&r, "s[2]")], 4.0);
     assert_eq!((at("s[1]", 0.05), at("s[2]", 0.05)), (4.0, 7.0));
     assert_eq!((at("s[1]", 0.15), at("s[2]", 0.15)), (7.0, 11.0));
     assert_eq!(at("r", 0.15), 4.0);
@@ -886,10 +851,7 @@ fn a_parameter_computed_at_initialization_is_not_its_start_value() {
     let m = load("tests/simulate/FixedFalseParameter.mo");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
     let (l1, l2) = (1.0 + 2f64.sqrt(), 1.0 - 2f64.sqrt());
-    let (kx, ky) = (
-        r.names.iter().position(|n| n == "x").unwrap(),
-        r.names.iter().position(|n| n == "y").unwrap(),
-    );
+    let (kx, ky) = (column_of(&r, "x"), column_of(&r, "y"));
     for (t, row) in r.times.iter().zip(&r.rows) {
         let x = ((l1 * t).exp() + (l2 * t).exp()) / 2.0;
         let y = ((l2 * t).exp() - (l1 * t).exp()) / 2f64.sqrt();
@@ -995,8 +957,8 @@ fn candidates_of_one_priority_are_selected_at_run_time() {
 fn a_bistable_loop_keeps_its_branch_until_the_fold() {
     let m = load("tests/simulate/Multivibrator.mo");
     let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.2, 20_000);
-    let kv = r.names.iter().position(|n| n == "v").unwrap();
-    let kout = r.names.iter().position(|n| n == "vout").unwrap();
+    let kv = column_of(&r, "v");
+    let kout = column_of(&r, "vout");
     let mut switches = Vec::new();
     for w in r.rows.windows(2) {
         if (w[0][kout] > 0.0) != (w[1][kout] > 0.0) {
@@ -1036,11 +998,11 @@ fn index_reduction_through_a_discrete_equation() {
 fn initialization_starts_from_homotopys_simplified_model() {
     let m = load("tests/simulate/HomotopyStart.mo");
     let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.1, 2);
-    let k = r.names.iter().position(|n| n == "vout").unwrap();
+    let k = column_of(&r, "vout");
     for row in &r.rows {
         assert_eq!(row[k], -15.0, "{:?}", r.rows);
     }
-    let k = r.names.iter().position(|n| n == "vin").unwrap();
+    let k = column_of(&r, "vin");
     assert!((r.rows[0][k] + 7.5).abs() < 1e-12, "{:?}", r.rows[0]);
 }
 
@@ -1065,12 +1027,7 @@ fn rows_between_grid_points_follow_the_solution() {
         ];
         args.extend_from_slice(extra);
         let o = common::unimo(&args);
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        common::assert_success(&o);
         let text = std::fs::read_to_string(&csv).unwrap();
         let rows: Vec<(f64, f64)> = text
             .lines()

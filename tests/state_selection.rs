@@ -7,7 +7,7 @@
 
 mod common;
 
-use unimo_runtime::sim::{simulate, SimOptions, SimResult};
+use unimo_runtime::sim::{simulate, SimResult};
 use unimo_solve::Method;
 
 const CASES: [&str; 3] = [
@@ -283,16 +283,7 @@ fn contradicting_fixed_starts_name_the_constraint() {
     ];
     for (model, needles) in cases {
         let m = load(&MECHANISMS, model);
-        let o = SimOptions {
-            start: 0.0,
-            stop: 0.1,
-            rtol: 1e-8,
-            atol: 1e-10,
-            method: Method::Bdf,
-            interval: 0.01,
-            every_step: false,
-            output_rtol: 0.0,
-        };
+        let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 0.1, 0.01);
         let r = simulate(&m.compiled, &o);
         let e = r.error.unwrap_or_else(|| panic!("{model} simulated"));
         assert_eq!(e.code(), "E4001", "{model}");

@@ -20,6 +20,16 @@ pub fn unimo(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Asserts that a finished command exited with 0, showing its stderr when not.
+pub fn assert_success(out: &Output) {
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// The exit code, stdout and stderr of a finished command.
 pub fn code_and_text(out: Output) -> (Option<i32>, String, String) {
     (

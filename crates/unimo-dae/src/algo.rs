@@ -4,7 +4,6 @@
 //! merges with `if`-expressions; `for` is unrolled; `while` must fold to a constant.
 
 use crate::dae::{Assertion, WhenAction, WhenBranch, WhenClause};
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, ScalarId};
 use crate::lower::{broadcast, unsupported, Local, Lowerer, MAX_INLINE_DEPTH_PUB};
@@ -173,11 +172,7 @@ impl Lowerer<'_> {
                         Flow::Return => return Ok(Flow::Return),
                     }
                 }
-                Err(DaeError::new(
-                    DaeCode::EndlessLoop,
-                    "a `while` loop ran a million times",
-                    span,
-                ))
+                Err(DaeError::EndlessLoop { span })
             }
         }
     }
@@ -374,15 +369,7 @@ impl Lowerer<'_> {
         };
         let values = self.iterator_values(first)?;
         for v in values {
-            self.locals.push(Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let f = self.exec_for_indices(rest, body);
-            self.locals.pop();
-            match f? {
+            match self.with_iterator(first, v, |me| me.exec_for_indices(rest, body))? {
                 Flow::Next => {}
                 Flow::Break => break,
                 Flow::Return => return Ok(Flow::Return),
@@ -411,14 +398,10 @@ impl Lowerer<'_> {
                 value
             } else {
                 let Some(mut cur) = current else {
-                    return Err(DaeError::new(
-                        DaeCode::UnassignedLocal,
-                        format!(
-                            "elements of `{}` are assigned before its size is known",
-                            target.parts[0].name.text
-                        ),
+                    return Err(DaeError::AssignedBeforeSized {
+                        name: target.parts[0].name.text.to_string(),
                         span,
-                    ));
+                    });
                 };
                 let positions = self.positions(&cur.dims, &subs)?;
                 let v = broadcast(value, &[positions.len()], span)?;
@@ -442,18 +425,16 @@ impl Lowerer<'_> {
         // A model variable (algorithm section).
         let key = unimo_flat::eval::var_key(target);
         let Some((first, dims)) = self.vars.get(&key).cloned() else {
-            return Err(DaeError::new(
-                DaeCode::NoSuchScalar,
-                format!("`{key}` is not a variable that can be assigned"),
+            return Err(DaeError::NotAssignable {
+                name: key.to_string(),
                 span,
-            ));
+            });
         };
         if self.assigned.is_none() {
-            return Err(DaeError::new(
-                DaeCode::FunctionAssignsModel,
-                format!("a function assigns `{key}`, which is not one of its variables"),
+            return Err(DaeError::FunctionAssignsModel {
+                name: key.to_string(),
                 span,
-            ));
+            });
         }
         if let Some(k) = self.dynamic_index(&dims, &subs)? {
             return self.assign_dynamic(first, dims[0], k, value, span);
@@ -534,19 +515,16 @@ impl Lowerer<'_> {
                     let t = t?;
                     let mut out = Vec::new();
                     for &x in &t.data {
-                        let k = self.const_value(x).ok_or_else(|| {
-                            DaeError::new(
-                                DaeCode::NotKnownAtCompileTime,
-                                "an assigned element's index must be known at compile time",
-                                e.span,
-                            )
-                        })? as i64;
+                        let k = self
+                            .const_value(x)
+                            .ok_or(DaeError::AssignedIndexNotConstant { span: e.span })?
+                            as i64;
                         if k < 1 || k as usize > n {
-                            return Err(DaeError::new(
-                                DaeCode::IndexOutOfBounds,
-                                format!("index {k} is out of bounds 1..{n}"),
-                                e.span,
-                            ));
+                            return Err(DaeError::IndexOutOfBounds {
+                                index: k,
+                                size: n,
+                                span: e.span,
+                            });
                         }
                         out.push(k as usize - 1);
                     }
@@ -585,9 +563,7 @@ impl Lowerer<'_> {
             // Its effect is recorded while inlining; a function without outputs then
             // has nothing to return, which is no error here.
             match self.call_outputs(e) {
-                Err(err)
-                    if err.code == DaeCode::UnassignedLocal
-                        && err.message.contains("no output") => {}
+                Err(err) if matches!(err.innermost(), DaeError::NoOutput { .. }) => {}
                 r => {
                     r?;
                 }
@@ -609,11 +585,7 @@ impl Lowerer<'_> {
                         })
                     }
                     WhenAction::Reinit { .. } => {
-                        return Err(DaeError::new(
-                            DaeCode::ReinitOutsideWhen,
-                            "`reinit` is only allowed inside `when`",
-                            e.span,
-                        ))
+                        return Err(DaeError::ReinitOutsideWhen { span: e.span })
                     }
                     _ => {
                         return Err(unsupported("`terminate` outside `when`", e.span));
@@ -645,11 +617,7 @@ impl Lowerer<'_> {
             "reinit" => {
                 let (Some(target), Some(value)) = (args.positional.first(), args.positional.get(1))
                 else {
-                    return Err(DaeError::new(
-                        DaeCode::WrongArguments,
-                        "`reinit` needs two arguments",
-                        span,
-                    ));
+                    return Err(DaeError::ReinitArguments { span });
                 };
                 let t = self.expr(target)?;
                 let v = self.expr(value)?;
@@ -662,11 +630,7 @@ impl Lowerer<'_> {
                     ));
                 }
                 let crate::expr::Node::Var(s) = self.dae.arena.node(t.data[0]) else {
-                    return Err(DaeError::new(
-                        DaeCode::ReinitOfNonState,
-                        "`reinit` needs a state variable",
-                        target.span,
-                    ));
+                    return Err(DaeError::ReinitNeedsVariable { span: target.span });
                 };
                 WhenAction::Reinit {
                     state: s,
@@ -675,11 +639,7 @@ impl Lowerer<'_> {
             }
             "assert" => {
                 let Some(c) = args.positional.first() else {
-                    return Err(DaeError::new(
-                        DaeCode::WrongArguments,
-                        "`assert` needs a condition",
-                        span,
-                    ));
+                    return Err(DaeError::AssertWithoutCondition { span });
                 };
                 let condition = self.scalar(c)?;
                 let message = match args.positional.get(1).map(|m| &m.kind) {
@@ -740,11 +700,10 @@ impl Lowerer<'_> {
         span: Span,
     ) -> DaeResult<Vec<Tensor>> {
         if self.inline_depth >= MAX_INLINE_DEPTH_PUB {
-            return Err(DaeError::new(
-                DaeCode::InliningTooDeep,
-                format!("`{}` calls itself too deeply to be inlined", f.name),
+            return Err(DaeError::InliningTooDeep {
+                function: f.name.to_string(),
                 span,
-            ));
+            });
         }
         if f.external && f.external_call.is_none() {
             return Err(unsupported(format!("external function `{}`", f.name), span));
@@ -757,11 +716,10 @@ impl Lowerer<'_> {
         let skip = |k: usize| f.inputs[k].base == "String";
         for (k, a) in args.positional.iter().enumerate() {
             if k >= given.len() {
-                return Err(DaeError::new(
-                    DaeCode::WrongArguments,
-                    format!("too many arguments for `{}`", f.name),
-                    a.span,
-                ));
+                return Err(DaeError::TooManyArguments {
+                    function: f.name.to_string(),
+                    span: a.span,
+                });
             }
             if skip(k) {
                 given[k] = Some(Tensor::default());
@@ -772,11 +730,11 @@ impl Lowerer<'_> {
         }
         for a in &args.named {
             let Some(k) = f.inputs.iter().position(|i| i.name == a.name.text.as_str()) else {
-                return Err(DaeError::new(
-                    DaeCode::WrongArguments,
-                    format!("`{}` has no input `{}`", f.name, a.name.text),
-                    a.name.span,
-                ));
+                return Err(DaeError::NoSuchInput {
+                    function: f.name.to_string(),
+                    input: a.name.text.to_string(),
+                    span: a.name.span,
+                });
             };
             given[k] = Some(if skip(k) {
                 texts[k] = self.text_value(&a.value);
@@ -796,13 +754,7 @@ impl Lowerer<'_> {
         self.assigned = saved_assigned;
         self.when_actions = saved_actions;
         self.exits = saved_exits;
-        r.map_err(|e| {
-            if e.notes().iter().any(|n| n.starts_with("while inlining")) {
-                e
-            } else {
-                e.note(format!("while inlining `{}`", f.name))
-            }
-        })
+        r.map_err(|e| e.while_inlining(&f.name))
     }
 
     /// The text of a String expression where it is known at compile time: a literal,
@@ -870,11 +822,11 @@ impl Lowerer<'_> {
                 None => match &input.default {
                     Some(d) => self.expr(d)?,
                     None => {
-                        return Err(DaeError::new(
-                            DaeCode::WrongArguments,
-                            format!("input `{}` of `{}` is not given", input.name, f.name),
+                        return Err(DaeError::InputNotGiven {
+                            input: input.name.to_string(),
+                            function: f.name.to_string(),
                             span,
-                        ))
+                        })
                     }
                 },
             };
@@ -930,21 +882,18 @@ impl Lowerer<'_> {
                 .rev()
                 .find(|l| l.name == o.name)
                 .and_then(|l| l.value.clone())
-                .ok_or_else(|| {
-                    DaeError::new(
-                        DaeCode::UnassignedLocal,
-                        format!("output `{}` of `{}` is never assigned", o.name, f.name),
-                        span,
-                    )
+                .ok_or_else(|| DaeError::OutputNeverAssigned {
+                    output: o.name.to_string(),
+                    function: f.name.to_string(),
+                    span,
                 })?;
             outs.push(v);
         }
         if outs.is_empty() {
-            return Err(DaeError::new(
-                DaeCode::UnassignedLocal,
-                format!("`{}` has no output to use in an expression", f.name),
+            return Err(DaeError::NoOutput {
+                function: f.name.to_string(),
                 span,
-            ));
+            });
         }
         Ok(outs)
     }

@@ -5,8 +5,7 @@
 
 use crate::dae::{Dae, EqId, Equation, ScalarKind, StateSelect, WhenAction};
 use crate::diff::{partial, solve_linear};
-use crate::error::DaeCode;
-use crate::error::DaeError;
+use crate::error::{DaeError, SingularReport};
 use crate::expr::{ExprId, Node, ScalarId};
 use crate::linearity::{affine_while_frozen, degree, frozen_between_events, Degree};
 use crate::plan::{Block, Plan, PlanStats, PlanStep, StateSet};
@@ -759,76 +758,47 @@ fn struct_error(sys: &DaeSystem<'_>, e: st::StructError) -> DaeError {
                         .map(|&v| sys.dae.scalar(sys.scalar(v)).origin)
                 })
                 .unwrap_or_default();
-            let mut err = DaeError::new(
-                DaeCode::StructurallySingular,
-                format!(
-                    "the model is structurally singular: {} equation(s) too many for their variables, {} variable(s) not determined",
-                    over.eqs.len().saturating_sub(over.vars.len()).max(usize::from(!over.eqs.is_empty())),
-                    under.vars.len().saturating_sub(under.eqs.len()).max(usize::from(!under.vars.is_empty()))
-                ),
-                span,
-            )
-            .label(if over.eqs.is_empty() { "declared here" } else { "this equation is part of the over-determined set" });
-            if !over.eqs.is_empty() {
-                let list: Vec<String> = over.eqs.iter().take(8).map(|&e| name_eq(e)).collect();
-                err = err.note(format!("over-determined equations: {}", list.join("; ")));
-                let vars: Vec<String> = over.vars.iter().take(8).map(|&v| name_var(v)).collect();
-                err = err.note(if vars.is_empty() {
-                    "they involve no unknown once aliases and constants are substituted".to_owned()
-                } else {
-                    format!("they only involve: {}", vars.join(", "))
-                });
-            }
-            if !under.vars.is_empty() {
-                let vars: Vec<String> = under.vars.iter().take(8).map(|&v| name_var(v)).collect();
-                err = err.note(format!("under-determined variables: {}", vars.join(", ")));
-                if std::env::var_os("UNIMO_DEBUG_STRUCTURE").is_some() {
+            let debug = std::env::var_os("UNIMO_DEBUG_STRUCTURE")
+                .is_some()
+                .then(|| {
                     let all: Vec<String> = under.vars.iter().map(|&v| name_var(v)).collect();
                     let eqs: Vec<String> = under.eqs.iter().map(|&e| name_eq(e)).collect();
-                    err = err.note(format!(
-                        "all: {}\n eqs: {}",
-                        all.join(", "),
-                        eqs.join("\n ")
-                    ));
-                }
+                    format!("all: {}\n eqs: {}", all.join(", "), eqs.join("\n "))
+                });
+            let report = SingularReport {
+                too_many: (over.eqs.len().saturating_sub(over.vars.len()))
+                    .max(usize::from(!over.eqs.is_empty())),
+                undetermined: (under.vars.len().saturating_sub(under.eqs.len()))
+                    .max(usize::from(!under.vars.is_empty())),
+                over_equations: over.eqs.iter().take(8).map(|&e| name_eq(e)).collect(),
+                over_variables: over.vars.iter().take(8).map(|&v| name_var(v)).collect(),
+                under_variables: under.vars.iter().take(8).map(|&v| name_var(v)).collect(),
+                debug,
+            };
+            DaeError::StructurallySingular {
+                report: Box::new(report),
+                span,
             }
-            err.help("remove a redundant equation or add one for an undetermined variable")
         }
-        st::StructError::IndexReductionFailed { eq, reason } => DaeError::new(
-            DaeCode::CannotDifferentiate,
-            format!(
-                "index reduction must differentiate `{}` but cannot: {reason}",
-                name_eq(eq)
-            ),
-            span_of(eq),
-        )
-        .label("this constraint"),
-        st::StructError::DifferentiationLimit { eq, limit } => DaeError::new(
-            DaeCode::DifferentiationLimit,
-            format!(
-                "index reduction would differentiate `{}` more than {limit} times",
-                name_eq(eq)
-            ),
-            span_of(eq),
-        )
-        .help("the model is probably structurally singular or of very high index"),
-        st::StructError::DummySelectionFailed { level, eqs } => DaeError::new(
-            DaeCode::NoDummyDerivatives,
-            format!(
-                "no dummy derivatives can be chosen at level {level} for: {}",
-                eqs.iter()
-                    .take(6)
-                    .map(|&e| name_eq(e))
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            ),
-            eqs.first().map(|&e| span_of(e)).unwrap_or_default(),
-        ),
-        other => DaeError::new(
-            DaeCode::InternalStructure,
-            format!("internal structural error: {other}"),
-            Default::default(),
-        ),
+        st::StructError::IndexReductionFailed { eq, reason } => DaeError::CannotDifferentiate {
+            equation: name_eq(eq),
+            reason,
+            span: span_of(eq),
+        },
+        st::StructError::DifferentiationLimit { eq, limit } => DaeError::DifferentiationLimit {
+            equation: name_eq(eq),
+            limit,
+            span: span_of(eq),
+        },
+        st::StructError::DummySelectionFailed { level, eqs } => DaeError::NoDummyDerivatives {
+            level,
+            equations: eqs.iter().take(6).map(|&e| name_eq(e)).collect(),
+            span: eqs.first().map(|&e| span_of(e)).unwrap_or_default(),
+        },
+        other => DaeError::InternalStructure {
+            detail: other.to_string(),
+            span: unimo_source::Span::default(),
+        },
     }
 }
 

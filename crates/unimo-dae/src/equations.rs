@@ -4,12 +4,11 @@
 //! point [`lower`].
 
 use crate::dae::*;
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, Node, ScalarId};
 use crate::fold::FoldOptions;
 use crate::lower::{broadcast, unsupported, Lowerer};
-use crate::tensor::{self, Tensor};
+use crate::tensor::Tensor;
 use unimo_flat::FlatModel;
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::{self, EquationKind, Expr, ExprKind};
@@ -86,11 +85,7 @@ impl Lowerer<'_> {
                         });
                         Ok(Vec::new())
                     }
-                    Some(WhenAction::Reinit { .. }) => Err(DaeError::new(
-                        DaeCode::ReinitOutsideWhen,
-                        "`reinit` is only allowed inside `when`",
-                        span,
-                    )),
+                    Some(WhenAction::Reinit { .. }) => Err(DaeError::ReinitOutsideWhen { span }),
                     Some(_) => Err(unsupported("`terminate` outside `when`", span)),
                     None => {
                         self.warn_unexecuted(func, span);
@@ -98,11 +93,7 @@ impl Lowerer<'_> {
                     }
                 }
             }
-            EquationKind::Connect { .. } => Err(DaeError::new(
-                DaeCode::Unsupported,
-                "a `connect` survived flattening",
-                span,
-            )),
+            EquationKind::Connect { .. } => Err(DaeError::ConnectAfterFlattening { span }),
             EquationKind::For { indices, body } => self.for_rows(indices, body),
             EquationKind::If {
                 branches,
@@ -129,15 +120,7 @@ impl Lowerer<'_> {
         };
         let mut out = Vec::new();
         for v in self.iterator_values(first)? {
-            self.locals.push(crate::lower::Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let r = self.for_rows(rest, body);
-            self.locals.pop();
-            out.extend(r?);
+            out.extend(self.with_iterator(first, v, |me| me.for_rows(rest, body))?);
         }
         Ok(out)
     }
@@ -166,8 +149,12 @@ impl Lowerer<'_> {
             broadcast(r, &l.dims.clone(), span)?
         };
         if l.data.len() != r.data.len() {
-            return Err(tensor::size_error(&l.dims, &r.dims, span)
-                .label("the two sides of this equation differ in size"));
+            return Err(DaeError::SizesDiffer {
+                left: l.dims,
+                right: r.dims,
+                equation: true,
+                span,
+            });
         }
         Ok(l.data
             .into_iter()
@@ -208,17 +195,12 @@ impl Lowerer<'_> {
         let n = other.len();
         for (k, b) in bodies.iter().enumerate() {
             if b.len() != n {
-                return Err(DaeError::new(
-                    DaeCode::UnequalIfBranches,
-                    format!(
-                        "the branches of this if-equation have different numbers of equations ({} in branch {}, {} in the else branch)",
-                        b.len(),
-                        k + 1,
-                        n
-                    ),
+                return Err(DaeError::UnequalIfBranches {
+                    count: b.len(),
+                    branch: k + 1,
+                    else_count: n,
                     span,
-                )
-                .help("with a condition that is not a parameter, every branch needs the same number of equations (spec 8.3.4); add an else branch"));
+                });
             }
         }
         let mut rows = Vec::with_capacity(n);
@@ -317,26 +299,13 @@ impl Lowerer<'_> {
                     ));
                 }
                 for v in self.iterator_values(first)? {
-                    self.locals.push(crate::lower::Local {
-                        name: first.name.text.to_string(),
-                        value: Some(v),
-                        record: None,
-                        text: None,
-                    });
-                    let mut r = Ok(());
-                    for e in body {
-                        r = r.and_then(|_| self.when_body(e, actions));
-                    }
-                    self.locals.pop();
-                    r?;
+                    self.with_iterator(first, v, |me| {
+                        body.iter().try_for_each(|e| me.when_body(e, actions))
+                    })?;
                 }
                 Ok(())
             }
-            EquationKind::When { .. } => Err(DaeError::new(
-                DaeCode::InvalidInWhen,
-                "`when` cannot be nested inside `when`",
-                span,
-            )),
+            EquationKind::When { .. } => Err(DaeError::NestedWhen { span }),
             EquationKind::Connect { .. } => Err(unsupported("`connect` inside `when`", span)),
         }
     }
@@ -361,11 +330,7 @@ impl Lowerer<'_> {
                     let v = broadcast(v, &t.dims, span)?;
                     for (&x, &e) in t.data.iter().zip(&v.data) {
                         let Node::Var(s) = self.dae.arena.node(x) else {
-                            return Err(DaeError::new(
-                                DaeCode::ReinitOfNonState,
-                                "`reinit` needs a state variable",
-                                target.span,
-                            ));
+                            return Err(DaeError::ReinitNeedsVariable { span: target.span });
                         };
                         actions.push((WhenAction::Reinit { state: s, value: e }, span));
                     }
@@ -402,11 +367,7 @@ impl Lowerer<'_> {
             let v = broadcast(v, &tt.dims, span)?;
             for (&x, &e) in tt.data.iter().zip(&v.data) {
                 let Node::Var(s) = self.dae.arena.node(x) else {
-                    return Err(DaeError::new(
-                        DaeCode::InvalidInWhen,
-                        "the left side of an equation in `when` must be a variable",
-                        t.span,
-                    ));
+                    return Err(DaeError::WhenTargetNotVariable { span: t.span });
                 };
                 actions.push((
                     WhenAction::Assign {
@@ -544,15 +505,10 @@ impl Lowerer<'_> {
         for (s, span) in reinits {
             let sc = &self.dae.scalars[s.index()];
             if sc.derivative.is_none() || sc.kind != ScalarKind::Continuous {
-                self.errors.push(
-                    DaeError::new(
-                        DaeCode::ReinitOfNonState,
-                        format!("`reinit` of `{}`, which is not a state", sc.name),
-                        span,
-                    )
-                    .label("this reinit")
-                    .help("only a variable that appears differentiated (`der(x)`) can be reinitialized (spec 8.3.6)"),
-                );
+                self.errors.push(DaeError::ReinitOfNonState {
+                    name: sc.name.to_string(),
+                    span,
+                });
             }
         }
     }

@@ -228,12 +228,20 @@ impl ExprArena {
             }
         }
         // Constants last; otherwise a canonical order so `a + b` and `b + a` share.
-        let (a, b) = if self.as_const(a).is_some() || (self.as_const(b).is_none() && b < a) {
+        let (a, b) = self.canonical(a, b, false);
+        self.intern(Node::Add(a, b))
+    }
+
+    /// The operands of a commutative node in one order: a constant first
+    /// (`constant_first`) or last, otherwise the smaller id first.
+    fn canonical(&self, a: ExprId, b: ExprId, constant_first: bool) -> (ExprId, ExprId) {
+        let (ca, cb) = (self.as_const(a).is_some(), self.as_const(b).is_some());
+        let (late, early) = if constant_first { (cb, ca) } else { (ca, cb) };
+        if late || (!early && b < a) {
             (b, a)
         } else {
             (a, b)
-        };
-        self.intern(Node::Add(a, b))
+        }
     }
 
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
@@ -273,11 +281,7 @@ impl ExprArena {
             return self.neg(m);
         }
         // Constants first.
-        let (a, b) = if self.as_const(b).is_some() || (self.as_const(a).is_none() && b < a) {
-            (b, a)
-        } else {
-            (a, b)
-        };
+        let (a, b) = self.canonical(a, b, true);
         self.intern(Node::Mul(a, b))
     }
 
@@ -629,6 +633,12 @@ impl ExprArena {
             out.push('(');
         }
         let w = |x: ExprId, p: u8, out: &mut String| self.write_prec(x, name, out, p, limit);
+        // `a op b` with the precedences its operands are written at.
+        let infix = |(a, pa): (ExprId, u8), op: &str, (b, pb): (ExprId, u8), out: &mut String| {
+            w(a, pa, out)?;
+            out.push_str(op);
+            w(b, pb, out)
+        };
         match self.node(id) {
             Node::Const(b) => {
                 let x = f64::from_bits(b);
@@ -646,42 +656,18 @@ impl ExprArena {
             Node::HomotopyStart => out.push_str("$homotopyStart"),
             Node::External(site, k) => write!(out, "external({site}, {k})")?,
             Node::Add(a, b) => self.write_sum(a, b, name, out, limit)?,
-            Node::Mul(a, b) => {
-                w(a, 8, out)?;
-                out.push_str(" * ");
-                w(b, 9, out)?;
-            }
-            Node::Div(a, b) => {
-                w(a, 8, out)?;
-                out.push_str(" / ");
-                w(b, 9, out)?;
-            }
-            Node::Pow(a, b) => {
-                w(a, 10, out)?;
-                out.push_str(" ^ ");
-                w(b, 10, out)?;
-            }
+            Node::Mul(a, b) => infix((a, 8), " * ", (b, 9), out)?,
+            Node::Div(a, b) => infix((a, 8), " / ", (b, 9), out)?,
+            Node::Pow(a, b) => infix((a, 10), " ^ ", (b, 10), out)?,
             Node::Neg(a) => {
                 out.push('-');
                 w(a, 8, out)?;
             }
             Node::Fn1(f, a) => self.write_call(f.name(), &[a], name, out, limit)?,
             Node::Fn2(f, a, b) => self.write_call(f.name(), &[a, b], name, out, limit)?,
-            Node::Rel(op, a, b) => {
-                w(a, 6, out)?;
-                write!(out, " {} ", op.symbol())?;
-                w(b, 6, out)?;
-            }
-            Node::And(a, b) => {
-                w(a, 3, out)?;
-                out.push_str(" and ");
-                w(b, 4, out)?;
-            }
-            Node::Or(a, b) => {
-                w(a, 2, out)?;
-                out.push_str(" or ");
-                w(b, 3, out)?;
-            }
+            Node::Rel(op, a, b) => infix((a, 6), &format!(" {} ", op.symbol()), (b, 6), out)?,
+            Node::And(a, b) => infix((a, 3), " and ", (b, 4), out)?,
+            Node::Or(a, b) => infix((a, 2), " or ", (b, 3), out)?,
             Node::Not(a) => {
                 out.push_str("not ");
                 w(a, 5, out)?;

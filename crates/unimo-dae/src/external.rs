@@ -6,7 +6,6 @@
 //! after the parameters and evaluates the nodes (`unimo_runtime::tables`). An external
 //! function unimo does not provide is a coded error naming it.
 
-use crate::error::DaeCode;
 use crate::error::DaeError;
 use crate::expr::{ExprId, Node};
 use crate::lower::Local;
@@ -272,17 +271,11 @@ impl Lowerer<'_> {
         span: Span,
     ) -> Result<(), DaeError> {
         let Some(kind) = foreign(&ext.function) else {
-            return Err(DaeError::new(
-                DaeCode::MissingExternal,
-                format!(
-                    "external function `{}` (`{}`) is not provided by unimo",
-                    f.name, ext.function
-                ),
+            return Err(DaeError::ExternalNotProvided {
+                function: f.name.to_string(),
+                foreign: ext.function.to_string(),
                 span,
-            )
-            .help(
-                "unimo implements the MSL's tables in Rust; other external C code cannot be linked",
-            ));
+            });
         };
         let value = match kind {
             Foreign::Destructor => return Ok(()),
@@ -301,14 +294,10 @@ impl Lowerer<'_> {
             Foreign::HashString => {
                 let text = ext.args.first().and_then(|a| self.text_value(a));
                 let Some(text) = text else {
-                    return Err(DaeError::new(
-                        DaeCode::MissingExternal,
-                        format!(
-                            "`{}` needs a String known at compile time (a literal or getInstanceName())",
-                            f.name
-                        ),
+                    return Err(DaeError::ExternalStringNotKnown {
+                        function: f.name.to_string(),
                         span,
-                    ));
+                    });
                 };
                 let h = crate::random::hash_string(&text);
                 self.dae.arena.constant(f64::from(h))
@@ -351,15 +340,12 @@ impl Lowerer<'_> {
     ) -> Result<(), DaeError> {
         let state = self.foreign_arg(ext, 0, span)?;
         if state.data.len() < n {
-            return Err(DaeError::new(
-                DaeCode::MissingExternal,
-                format!(
-                    "`{}` needs a state vector of {n} Integers, not {}",
-                    f.name,
-                    state.data.len()
-                ),
+            return Err(DaeError::StateVectorSize {
+                function: f.name.to_string(),
+                needed: n,
+                given: state.data.len(),
                 span,
-            ));
+            });
         }
         let words = &state.data[..n];
         let number = self.ext_node(func(0), words);
@@ -373,11 +359,11 @@ impl Lowerer<'_> {
             _ => None,
         };
         let (Some(state_out), Some(result)) = (name(1), name(2)) else {
-            return Err(DaeError::new(
-                DaeCode::MissingExternal,
-                format!("`{}` must pass its outputs to `{}`", f.name, ext.function),
+            return Err(DaeError::ExternalOutputs {
+                function: f.name.to_string(),
+                foreign: ext.function.to_string(),
                 span,
-            ));
+            });
         };
         self.assign_outputs([
             (state_out, Tensor::vector(next)),
@@ -415,13 +401,13 @@ impl Lowerer<'_> {
         at.iter()
             .map(|&k| {
                 let t = self.foreign_arg(ext, k, span)?;
-                t.data.first().copied().ok_or_else(|| {
-                    DaeError::new(
-                        DaeCode::MissingExternal,
-                        format!("an empty argument of `{}`", ext.function),
+                t.data
+                    .first()
+                    .copied()
+                    .ok_or_else(|| DaeError::EmptyExternalArgument {
+                        foreign: ext.function.to_string(),
                         span,
-                    )
-                })
+                    })
             })
             .collect()
     }
@@ -433,13 +419,13 @@ impl Lowerer<'_> {
         k: usize,
         span: Span,
     ) -> Result<Tensor, DaeError> {
-        let a = ext.args.get(k).ok_or_else(|| {
-            DaeError::new(
-                DaeCode::MissingExternal,
-                format!("`{}` is called with too few arguments", ext.function),
+        let a = ext
+            .args
+            .get(k)
+            .ok_or_else(|| DaeError::TooFewExternalArguments {
+                foreign: ext.function.to_string(),
                 span,
-            )
-        })?;
+            })?;
         self.expr(a)
     }
 
@@ -459,11 +445,7 @@ impl Lowerer<'_> {
             _ => (0, 0),
         };
         if rows == 0 || cols == 0 {
-            return Err(DaeError::new(
-                DaeCode::EmptyTable,
-                "the table is empty: tables read from files (`tableOnFile = true`) are not supported yet; give the table as a matrix".to_owned(),
-                span,
-            ));
+            return Err(DaeError::EmptyTable { span });
         }
         let columns = arg(self, at[1])?.data;
         let smoothness = arg(self, at[2])?.data[0];
@@ -506,17 +488,12 @@ impl Lowerer<'_> {
         let Some(missing) = self.unprovided_external(name) else {
             return;
         };
-        let warning = DaeError::new(
-            DaeCode::CallNotExecuted,
-            format!(
-                "the call of `{name}` is not executed: it calls the external function \
-                 `{missing}`, which unimo does not provide (its effects, such as a file \
-                 written or a message printed, do not happen)"
-            ),
+        let warning = DaeError::CallNotExecuted {
+            function: name.to_owned(),
+            missing: missing.to_string(),
             span,
-        )
-        .label("not executed");
-        self.dae.warnings.push(warning.to_diagnostic());
+        };
+        self.dae.warnings.push(warning.into());
     }
 
     /// The first external C function (depth first, in call order) that `name` or a

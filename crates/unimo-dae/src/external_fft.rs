@@ -6,7 +6,7 @@
 //! (so that every push is computed before it). The runtime (`unimo_runtime::fft`)
 //! computes the transform ([`crate::fft::real_fft`]) once per distinct input.
 
-use crate::error::{DaeCode, DaeError};
+use crate::error::DaeError;
 use crate::expr::ExprId;
 use crate::external::ExtFn;
 use crate::lower::Lowerer;
@@ -33,14 +33,11 @@ impl Lowerer<'_> {
         };
         let (Some(amplitudes), Some(phases), Some(info)) = (name(4), name(5), ext.output.clone())
         else {
-            return Err(DaeError::new(
-                DaeCode::MissingExternal,
-                format!(
-                    "`{}` must pass its outputs to `{}` as rawRealFFT does",
-                    f.name, ext.function
-                ),
+            return Err(DaeError::FftOutputs {
+                function: f.name.to_string(),
+                foreign: ext.function.to_string(),
                 span,
-            ));
+            });
         };
         let site = self.fft_sites;
         self.fft_sites += 1;

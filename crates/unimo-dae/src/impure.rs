@@ -21,7 +21,7 @@
 //! by the model's equations).
 
 use crate::dae::{Scalar, ScalarKind, ScalarType, WhenAction};
-use crate::error::{DaeCode, DaeError};
+use crate::error::DaeError;
 use crate::expr::{ExprId, Node, RelOp, ScalarId};
 use crate::external::ExtFn;
 use crate::lower::Lowerer;
@@ -53,15 +53,12 @@ impl Lowerer<'_> {
         span: Span,
     ) -> Result<(), DaeError> {
         if state.len() < ENTRIES {
-            return Err(DaeError::new(
-                DaeCode::MissingExternal,
-                format!(
-                    "`{}` needs a state vector of {ENTRIES} Integers, not {}",
-                    f.name,
-                    state.len()
-                ),
+            return Err(DaeError::StateVectorSize {
+                function: f.name.to_string(),
+                needed: ENTRIES,
+                given: state.len(),
                 span,
-            ));
+            });
         }
         self.impure.seed = Some(state);
         Ok(())
@@ -93,16 +90,7 @@ impl Lowerer<'_> {
 
     fn expand_impure(&mut self) -> Result<(), DaeError> {
         let span = self.impure.calls[0].1;
-        let unsupported = |what: &str| {
-            DaeError::new(
-                DaeCode::MissingExternal,
-                format!(
-                    "external function `Modelica.Math.Random.Utilities.impureRandom` \
-                     (`ModelicaRandom_impureRandom_xorshift1024star`) {what}"
-                ),
-                span,
-            )
-        };
+        let unsupported = |what: &'static str| DaeError::ImpureRandom { what, span };
         let placeholders: Vec<ExprId> = self.impure.calls.iter().map(|c| c.0).collect();
         let in_equations: Vec<ExprId> = (self.dae.equations.iter())
             .chain(&self.dae.initial_equations)

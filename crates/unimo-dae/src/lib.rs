@@ -121,25 +121,9 @@ fn differentiated_input(dae: &Dae, plan: &plan::Plan) -> Option<DaeError> {
                     .is_some_and(|u| dae.scalar(u).input)
         })?;
     let u = dae.scalar(dae.scalar(d).derivative_of?);
-    Some(
-        DaeError::new(
-            error::DaeCode::DifferentiatedInput,
-            format!(
-                "the model needs `{}`, the derivative of the top-level input `{}`, which is not given",
-                dae.scalar(d).name,
-                u.name
-            ),
-            u.origin,
-        )
-        .label("a top-level input")
-        .note(
-            "index reduction differentiated an equation that reads this input (a derivative of an \
-             output that follows the input algebraically, or a constraint through it)",
-        )
-        .help(format!(
-            "give `{}` an equation inside the model (drop `input`), or pass it through a state \
-             (`der(uf) = (u - uf)/T`) and use the filtered value",
-            u.name
-        )),
-    )
+    Some(DaeError::DifferentiatedInput {
+        derivative: dae.scalar(d).name.to_string(),
+        input: u.name.to_string(),
+        span: u.origin,
+    })
 }

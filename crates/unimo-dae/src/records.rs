@@ -4,7 +4,6 @@
 //! functions' record inputs, outputs and locals (with field access and field
 //! assignment) lower through this layout.
 
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::lower::{unsupported, Lowerer};
 use crate::tensor::Tensor;
@@ -28,12 +27,9 @@ impl<'m> Lowerer<'m> {
             .records
             .iter()
             .find(|r| r.name == name)
-            .ok_or_else(|| {
-                DaeError::new(
-                    DaeCode::NoSuchScalar,
-                    format!("`{name}` is not a known record"),
-                    span,
-                )
+            .ok_or_else(|| DaeError::UnknownRecord {
+                name: name.to_string(),
+                span,
             })
     }
 
@@ -93,11 +89,11 @@ impl<'m> Lowerer<'m> {
             }
             offset += len;
         }
-        Err(DaeError::new(
-            DaeCode::NoSuchScalar,
-            format!("record `{}` has no field `{field}`", r.name),
+        Err(DaeError::NoRecordField {
+            record: r.name.to_string(),
+            field: field.to_string(),
             span,
-        ))
+        })
     }
 
     /// Size of a function's record variable (a record, not an array of records).
@@ -142,11 +138,10 @@ impl<'m> Lowerer<'m> {
                 }
             };
             let Some(part) = part else {
-                return Err(DaeError::new(
-                    DaeCode::NoSuchScalar,
-                    format!("`{path}` is not a variable of the flat model"),
+                return Err(DaeError::NoSuchRecordPart {
+                    name: path.to_string(),
                     span,
-                ));
+                });
             };
             data.extend(part.data);
         }
@@ -166,33 +161,32 @@ impl<'m> Lowerer<'m> {
         };
         let mut given: Vec<Option<&Expr>> = vec![None; r.fields.len()];
         if args.positional.len() > r.fields.len() {
-            return Err(DaeError::new(
-                DaeCode::WrongArguments,
-                format!("too many arguments for record `{name}`"),
+            return Err(DaeError::RecordConstructorArity {
+                record: name.to_string(),
                 span,
-            ));
+            });
         }
         for (k, a) in args.positional.iter().enumerate() {
             given[k] = Some(a);
         }
         for a in &args.named {
             let Some(k) = r.fields.iter().position(|f| f.name == a.name.text.as_str()) else {
-                return Err(DaeError::new(
-                    DaeCode::WrongArguments,
-                    format!("record `{name}` has no field `{}`", a.name.text),
-                    a.name.span,
-                ));
+                return Err(DaeError::RecordConstructorField {
+                    record: name.to_string(),
+                    field: a.name.text.to_string(),
+                    span: a.name.span,
+                });
             };
             given[k] = Some(&a.value);
         }
         let mut data = Vec::new();
         for (f, g) in r.fields.iter().zip(given) {
             let Some(e) = g.or(f.default.as_ref()) else {
-                return Err(DaeError::new(
-                    DaeCode::WrongArguments,
-                    format!("field `{}` of record `{name}` is not given", f.name),
+                return Err(DaeError::RecordFieldNotGiven {
+                    field: f.name.to_string(),
+                    record: name.to_string(),
                     span,
-                ));
+                });
             };
             let v = self.expr(e)?;
             let len = self.field_len(f, span)?;
@@ -274,11 +268,10 @@ impl<'m> Lowerer<'m> {
             let positions = self.positions(&slot.dims, &subs)?;
             let v = as_vector(value, positions.len(), span)?;
             let Some(cur) = self.locals[k].value.as_mut() else {
-                return Err(DaeError::new(
-                    DaeCode::UnassignedLocal,
-                    format!("`{}` is used before it is assigned", self.locals[k].name),
+                return Err(DaeError::UsedBeforeAssigned {
+                    name: self.locals[k].name.to_string(),
                     span,
-                ));
+                });
             };
             for (p, e) in positions.into_iter().zip(v.data) {
                 cur.data[offset + p] = e;
@@ -287,11 +280,10 @@ impl<'m> Lowerer<'m> {
         }
         let v = as_vector(value, slot.len, span)?;
         let Some(cur) = self.locals[k].value.as_mut() else {
-            return Err(DaeError::new(
-                DaeCode::UnassignedLocal,
-                format!("`{}` is used before it is assigned", self.locals[k].name),
+            return Err(DaeError::UsedBeforeAssigned {
+                name: self.locals[k].name.to_string(),
                 span,
-            ));
+            });
         };
         cur.data[offset..offset + slot.len].copy_from_slice(&v.data);
         Ok(())
@@ -312,9 +304,8 @@ fn as_vector(v: Tensor, len: usize, span: Span) -> DaeResult<Tensor> {
 
 /// A field access through something that is not a record (`a.re.x`).
 fn not_a_record(p: &RefPart, span: Span) -> DaeError {
-    DaeError::new(
-        DaeCode::NoSuchScalar,
-        format!("`{}` is not a record", p.name.text),
+    DaeError::NotARecord {
+        name: p.name.text.to_string(),
         span,
-    )
+    }
 }

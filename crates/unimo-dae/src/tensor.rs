@@ -1,7 +1,6 @@
 //! Arrays of scalar expressions during lowering (row-major), and the array operators
 //! of Modelica (spec 10.6) on them: elementwise arithmetic, products, slicing.
 
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId};
 use unimo_source::Span;
@@ -37,14 +36,10 @@ impl Tensor {
         if self.data.len() == 1 && self.dims.iter().all(|&d| d == 1) {
             Ok(self.data[0])
         } else {
-            Err(DaeError::new(
-                DaeCode::SizeMismatch,
-                format!(
-                    "a scalar is needed here, found an array of size {}",
-                    fmt_dims(&self.dims)
-                ),
+            Err(DaeError::ScalarNeeded {
+                dims: self.dims.clone(),
                 span,
-            ))
+            })
         }
     }
 
@@ -88,16 +83,12 @@ impl Tensor {
 pub use unimo_flat::flat::fmt_dims;
 
 pub fn size_error(a: &[usize], b: &[usize], span: Span) -> DaeError {
-    DaeError::new(
-        DaeCode::SizeMismatch,
-        format!(
-            "array sizes do not match: {} and {}",
-            fmt_dims(a),
-            fmt_dims(b)
-        ),
+    DaeError::SizesDiffer {
+        left: a.to_vec(),
+        right: b.to_vec(),
+        equation: false,
         span,
-    )
-    .label("in this expression")
+    }
 }
 
 /// Elementwise `f(a, b)`, with a scalar broadcast against an array when `broadcast`.
@@ -191,11 +182,10 @@ pub fn multiply(arena: &mut ExprArena, a: &Tensor, b: &Tensor, span: Span) -> Da
 /// `transpose(a)` of a matrix.
 pub fn transpose(a: &Tensor, span: Span) -> DaeResult<Tensor> {
     let [r, c] = a.dims[..] else {
-        return Err(DaeError::new(
-            DaeCode::SizeMismatch,
-            format!("transpose needs a matrix, found {}", fmt_dims(&a.dims)),
+        return Err(DaeError::TransposeNeedsMatrix {
+            dims: a.dims.clone(),
             span,
-        ));
+        });
     };
     let mut data = Vec::with_capacity(r * c);
     for j in 0..c {
@@ -216,15 +206,11 @@ pub fn concatenate(items: &[Tensor], k: usize, span: Span) -> DaeResult<Tensor> 
     };
     let nd = first.dims.len();
     if k >= nd {
-        return Err(DaeError::new(
-            DaeCode::SizeMismatch,
-            format!(
-                "cannot concatenate along dimension {} of {}",
-                k + 1,
-                fmt_dims(&first.dims)
-            ),
+        return Err(DaeError::ConcatenationDimension {
+            dimension: k + 1,
+            dims: first.dims.clone(),
             span,
-        ));
+        });
     }
     for t in items {
         let same = t.dims.len() == nd && (0..nd).all(|d| d == k || t.dims[d] == first.dims[d]);

@@ -3,7 +3,7 @@
 //! equations are counted by the size of their left side, `if`-equations by one branch,
 //! `when`-equations by their body, algorithms by the variables they assign.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{FlatModel, Variability};
 use rustc_hash::FxHashMap as HashMap;
@@ -530,21 +530,16 @@ pub fn check(model: &FlatModel, span: unimo_source::Span) -> Option<Diagnostic> 
     } else {
         (b.equations - b.unknowns, "too many equations")
     };
-    let mut d = Diagnostic::error(
-        FlatCode::Unbalanced,
-        format!(
-            "model `{}` is not balanced: {} equations for {} unknowns ({what}, {more} off)",
-            model.name, b.equations, b.unknowns
-        ),
+    Some(
+        FlatError::Unbalanced {
+            model: model.name.clone(),
+            equations: b.equations,
+            unknowns: b.unknowns,
+            what,
+            off: more,
+            orphans: orphans.iter().map(|o| o.to_string()).collect(),
+            span,
+        }
+        .into(),
     )
-    .at(span, "this model");
-    if !orphans.is_empty() && b.equations < b.unknowns {
-        d = d.with_note(format!(
-            "unknowns that no equation mentions: {}",
-            orphans.join(", ")
-        ));
-    }
-    Some(d.with_help(
-        "each unknown needs one equation; parameters, constants and top-level inputs are known",
-    ))
 }

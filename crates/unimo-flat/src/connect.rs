@@ -2,7 +2,7 @@
 //! variables sum to zero with inside connectors counted `+` and outside ones `-`, and an
 //! unconnected flow variable is zero.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::FlatModel;
 use crate::instantiate::Connect;
@@ -292,11 +292,11 @@ pub fn equations(
         if ma.is_empty() || mb.is_empty() {
             let which = if ma.is_empty() { ka } else { kb };
             diags.push(
-                Diagnostic::error(
-                    FlatCode::ConnectorMismatch,
-                    format!("`{which}` is not a connector instance"),
-                )
-                .at(c.span, "in this connect"),
+                FlatError::NotAConnectorInstance {
+                    name: which.to_string(),
+                    span: c.span,
+                }
+                .into(),
             );
             continue;
         }
@@ -421,15 +421,13 @@ fn members_mismatch(
         .copied()
         .collect();
     Some(
-        Diagnostic::error(
-            FlatCode::ConnectorMismatch,
-            format!("connectors `{ka}` and `{kb}` do not match"),
-        )
-        .at(c.span, "in this connect")
-        .with_note(format!(
-            "variables on one side only: {}",
-            missing.join(", ")
-        )),
+        FlatError::ConnectorsDiffer {
+            a: ka.to_string(),
+            b: kb.to_string(),
+            one_sided: missing.iter().map(|m| m.to_string()).collect(),
+            span: c.span,
+        }
+        .into(),
     )
 }
 
@@ -516,12 +514,13 @@ fn pair_mismatch(
 ) -> Option<Diagnostic> {
     if xa.flow != xb.flow || !same_shape || !same_kind(&xa.ty, &xb.ty) {
         return Some(
-            Diagnostic::error(
-                FlatCode::ConnectorMismatch,
-                format!("`{}` and `{}` cannot be connected", xa.name, xb.name),
-            )
-            .at(c.span, "in this connect")
-            .with_note(mismatch(xa, xb)),
+            FlatError::CannotConnect {
+                a: xa.name.clone(),
+                b: xb.name.clone(),
+                why: mismatch(xa, xb),
+                span: c.span,
+            }
+            .into(),
         );
     }
     let both_outputs = xa.causality == Some(unimo_syntax::ast::Causality::Output)
@@ -530,12 +529,12 @@ fn pair_mismatch(
         && !c.b_outside;
     if both_outputs {
         return Some(
-            Diagnostic::error(
-                FlatCode::OutputsConnected,
-                format!("two outputs connected: `{}` and `{}`", xa.name, xb.name),
-            )
-            .at(c.span, "in this connect")
-            .with_help("an output may drive several inputs, but two outputs cannot be connected"),
+            FlatError::OutputsConnected {
+                a: xa.name.clone(),
+                b: xb.name.clone(),
+                span: c.span,
+            }
+            .into(),
         );
     }
     None

@@ -2,13 +2,13 @@
 //! and for the back end's layout), and record bindings split into field bindings
 //! (`parameter Complex p = Complex(1, 2)` gives `p.re = 1`, `p.im = 2`).
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::instantiate::Instantiator;
 use crate::lookup::Found;
 use crate::modif::{Bound, Mod};
 use crate::tree::ClassId;
 use smol_str::SmolStr;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 /// A field of a record class, as the constructor takes it.
@@ -98,16 +98,13 @@ impl Instantiator<'_, '_> {
                 let mut out = Vec::new();
                 if args.positional.len() > inputs.len() {
                     self.diags.push(
-                        Diagnostic::error(
-                            FlatCode::UnknownModifier,
-                            format!(
-                                "record constructor `{}` takes {} arguments, {} given",
-                                func.to_dotted(),
-                                inputs.len(),
-                                args.positional.len()
-                            ),
-                        )
-                        .at(args.span, "these arguments"),
+                        FlatError::RecordConstructorArity {
+                            record: func.to_dotted(),
+                            expected: inputs.len(),
+                            given: args.positional.len(),
+                            span: args.span,
+                        }
+                        .into(),
                     );
                     return Mod { binding: None, ..m };
                 }
@@ -117,23 +114,13 @@ impl Instantiator<'_, '_> {
                 for a in &args.named {
                     if !inputs.iter().any(|f| f.name == a.name.text) {
                         self.diags.push(
-                            Diagnostic::error(
-                                FlatCode::UnknownModifier,
-                                format!(
-                                    "record `{}` has no field `{}` to construct",
-                                    func.to_dotted(),
-                                    a.name.text
-                                ),
-                            )
-                            .at(a.name.span, "no such field")
-                            .with_help(format!(
-                                "its fields: {}",
-                                inputs
-                                    .iter()
-                                    .map(|f| f.name.as_str())
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            )),
+                            FlatError::NoRecordField {
+                                record: func.to_dotted(),
+                                field: a.name.text.to_string(),
+                                fields: inputs.iter().map(|f| f.name.to_string()).collect(),
+                                span: a.name.span,
+                            }
+                            .into(),
                         );
                         continue;
                     }
@@ -214,14 +201,11 @@ impl Instantiator<'_, '_> {
     /// A record parameter whose binding could not be split into field bindings.
     pub(crate) fn unsplit_record_parameter(&mut self, name: &str, span: Span) {
         self.diags.push(
-            Diagnostic::error(
-                FlatCode::NotKnownAtCompileTime,
-                format!(
-                    "the binding of record parameter `{name}` is no record constructor, no other record and no value known at translation"
-                ),
-            )
-            .at(span, "this binding")
-            .with_help("write a constructor call (`Complex(1, 2)`), a function call whose arguments are known at translation, or bind the fields one by one"),
+            FlatError::UnsplitRecordParameter {
+                name: name.to_owned(),
+                span,
+            }
+            .into(),
         );
     }
 }

@@ -4,14 +4,14 @@
 //! instantiator keeps, per instance, the class each redeclared name stands for, and
 //! resolves component types, function calls and package constants through it.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval;
 use crate::instantiate::{instance_key, Instantiator};
 use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
 use crate::tree::ClassId;
 use smol_str::SmolStr;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -61,15 +61,11 @@ impl Instantiator<'_, '_> {
             match inherited {
                 Some(false) => self.not_replaceable(&cd.name.text, cd.name.span),
                 None => self.diags.push(
-                    Diagnostic::error(
-                        FlatCode::InvalidRedeclare,
-                        format!(
-                            "`redeclare` of `{}`, which no base class declares",
-                            cd.name.text
-                        ),
-                    )
-                    .at(cd.name.span, "redeclared here")
-                    .with_help("a redeclaration replaces a replaceable element of a base class"),
+                    FlatError::RedeclareWithoutBase {
+                        name: cd.name.text.to_string(),
+                        span: cd.name.span,
+                    }
+                    .into(),
                 ),
                 Some(true) => {}
             }
@@ -217,14 +213,11 @@ impl Instantiator<'_, '_> {
 
     fn not_replaceable(&mut self, name: &str, span: Span) {
         self.diags.push(
-            Diagnostic::error(
-                FlatCode::InvalidRedeclare,
-                format!("`{name}` is redeclared but not `replaceable`"),
-            )
-            .at(span, "redeclared here")
-            .with_help(format!(
-                "declare it `replaceable {name} ...` in the class that has it"
-            )),
+            FlatError::NotReplaceable {
+                name: name.to_owned(),
+                span,
+            }
+            .into(),
         );
     }
 
@@ -239,15 +232,12 @@ impl Instantiator<'_, '_> {
         if e.is_final && (m.binding.is_some() || !m.children.is_empty()) {
             let span = m.binding.as_ref().map_or(d.name.span, |b| b.expr.span);
             self.diags.push(
-                Diagnostic::error(
-                    FlatCode::FinalModified,
-                    format!(
-                        "`{}` is declared `final` and cannot be modified",
-                        d.name.text
-                    ),
-                )
-                .at(span, "modified here")
-                .with_label(d.name.span, "declared `final` here"),
+                FlatError::FinalModified {
+                    name: d.name.text.to_string(),
+                    span,
+                    declared: d.name.span,
+                }
+                .into(),
             );
         }
     }
@@ -355,15 +345,13 @@ impl Instantiator<'_, '_> {
             let _ = new;
             let cname = self.tree.full_name(constraint);
             self.diags.push(
-                Diagnostic::error(
-                    FlatCode::InvalidRedeclare,
-                    format!(
-                        "`{what}` is redeclared as a class without {}, which `{cname}` has",
-                        missing.join(", ")
-                    ),
-                )
-                .at(span, "redeclared here")
-                .with_help("a redeclared class must have every element of the class it replaces (or of its constraining class)"),
+                FlatError::RedeclaredClassLacks {
+                    name: what.to_string(),
+                    missing: missing.iter().map(|m| m.to_string()).collect(),
+                    constraint: cname,
+                    span,
+                }
+                .into(),
             );
         }
     }

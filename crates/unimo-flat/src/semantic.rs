@@ -4,7 +4,7 @@
 //! variability than their variable (spec 3.8: a parameter's binding reads parameters
 //! and constants only, never `time` or a time-varying variable).
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{for_each_ref, for_each_value_ref, FlatModel, Variability};
 use rustc_hash::FxHashMap as HashMap;
@@ -50,18 +50,18 @@ pub(crate) fn parameter_cycles(model: &FlatModel) -> Vec<Diagnostic> {
         names.push(first.name.as_str());
         let span = first.binding.as_ref().map_or(first.origin, |b| b.span);
         diags.push(
-            Diagnostic::error(
-                FlatCode::CyclicBinding,
-                if cycle.len() == 1 {
-                    format!("parameter `{}` depends on itself", first.name)
-                } else {
-                    format!(
-                        "the bindings of parameters depend on each other in a cycle: {}",
-                        names.join(" -> ")
-                    )
-                },
-            )
-            .at(span, "this binding is part of the cycle"),
+            if cycle.len() == 1 {
+                FlatError::SelfDependentBinding {
+                    name: first.name.clone(),
+                    span,
+                }
+            } else {
+                FlatError::BindingCycle {
+                    names: names.iter().map(|n| n.to_string()).collect(),
+                    span,
+                }
+            }
+            .into(),
         );
     }
     diags
@@ -70,12 +70,7 @@ pub(crate) fn parameter_cycles(model: &FlatModel) -> Vec<Diagnostic> {
 /// `E2019` for a parameter or constant whose binding reads `time` or a variable that
 /// is not a parameter or constant.
 pub(crate) fn binding_variability(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let mut diags = Vec::new();
     for v in &model.vars {
         if !matches!(
@@ -114,16 +109,13 @@ pub(crate) fn binding_variability(model: &FlatModel) -> Vec<Diagnostic> {
                 "parameter"
             };
             diags.push(
-                Diagnostic::error(
-                    FlatCode::BindingVariability,
-                    format!("the binding of {kind} `{}` reads {c}", v.name),
-                )
-                .at(b.span, "varies in time")
-                .with_help(format!(
-                    "a {kind}'s value is fixed before the simulation starts: bind it to \
-                     parameters and constants, or declare `{}` without the `{kind}` prefix",
-                    v.name
-                )),
+                FlatError::BindingVaries {
+                    kind,
+                    name: v.name.clone(),
+                    reads: c.to_string(),
+                    span: b.span,
+                }
+                .into(),
             );
         }
     }

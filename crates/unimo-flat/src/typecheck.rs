@@ -6,7 +6,7 @@
 //! compared: a function call or an expression this check cannot size is left to the
 //! back end.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key_into;
 use crate::flat::{FlatModel, FlatType};
 use rustc_hash::FxHashMap as HashMap;
@@ -233,11 +233,13 @@ impl Checker<'_> {
         });
         for (op, ty, needs, span) in found {
             self.diags.push(
-                Diagnostic::error(
-                    FlatCode::OperatorType,
-                    format!("`{op}` needs {needs}; this one is of type {ty}"),
-                )
-                .at(span, "wrong type"),
+                FlatError::OperatorType {
+                    operator: op,
+                    needs,
+                    ty: ty.to_string(),
+                    span,
+                }
+                .into(),
             );
         }
     }
@@ -258,14 +260,13 @@ impl Checker<'_> {
         });
         for (name, n, d, span) in found {
             self.diags.push(
-                Diagnostic::error(
-                    FlatCode::TooManySubscripts,
-                    format!(
-                        "`{name}` has {d} dimension{}, {n} subscripts given",
-                        if d == 1 { "" } else { "s" }
-                    ),
-                )
-                .at(span, "too many subscripts"),
+                FlatError::TooManySubscripts {
+                    name,
+                    dims: d,
+                    given: n,
+                    span,
+                }
+                .into(),
             );
         }
     }
@@ -286,13 +287,8 @@ impl Checker<'_> {
             _ => None,
         };
         if let Some(what) = differ {
-            self.diags.push(
-                Diagnostic::error(
-                    FlatCode::SideMismatch,
-                    format!("the two sides have different {what}"),
-                )
-                .at(span, "in this equation"),
-            );
+            self.diags
+                .push(FlatError::SidesDiffer { what, span }.into());
         }
     }
 

@@ -239,22 +239,28 @@ pub fn write(h: &Header<'_>, c: &Compiled) -> String {
     x
 }
 
+/// A variable's opening tag `<element` with its name, value reference, causality,
+/// variability and, where it has them, `initial` and description (FMI 2.0 and 3.0 alike).
+fn write_variable_attributes(x: &mut String, element: &str, v: &Variable) {
+    let (causality, variability, initial) = attributes(v);
+    let _ = write!(
+        x,
+        r#"    <{element} name="{}" valueReference="{}" causality="{causality}" variability="{variability}""#,
+        escape(&v.name),
+        v.scalar
+    );
+    if let Some(i) = initial {
+        let _ = write!(x, r#" initial="{i}""#);
+    }
+    if !v.description.is_empty() {
+        let _ = write!(x, r#" description="{}""#, escape(&v.description));
+    }
+}
+
 fn write_fmi2_variables(x: &mut String, c: &Compiled) {
     let _ = writeln!(x, "  <ModelVariables>");
     for v in &c.variables {
-        let (causality, variability, initial) = attributes(v);
-        let _ = write!(
-            x,
-            r#"    <ScalarVariable name="{}" valueReference="{}" causality="{causality}" variability="{variability}""#,
-            escape(&v.name),
-            v.scalar
-        );
-        if let Some(i) = initial {
-            let _ = write!(x, r#" initial="{i}""#);
-        }
-        if !v.description.is_empty() {
-            let _ = write!(x, r#" description="{}""#, escape(&v.description));
-        }
+        write_variable_attributes(x, "ScalarVariable", v);
         let element = match v.ty {
             ScalarType::Real => "Real",
             ScalarType::Boolean => "Boolean",
@@ -321,24 +327,12 @@ fn write_fmi3_variables(x: &mut String, c: &Compiled) {
         r#"    <Float64 name="time" valueReference="{time}" causality="independent" variability="continuous" description="Simulation time"/>"#
     );
     for v in &c.variables {
-        let (causality, variability, initial) = attributes(v);
         let element = match v.ty {
             ScalarType::Real => "Float64",
             ScalarType::Boolean => "Boolean",
             ScalarType::Integer | ScalarType::Enumeration(_) => "Int32",
         };
-        let _ = write!(
-            x,
-            r#"    <{element} name="{}" valueReference="{}" causality="{causality}" variability="{variability}""#,
-            escape(&v.name),
-            v.scalar
-        );
-        if let Some(i) = initial {
-            let _ = write!(x, r#" initial="{i}""#);
-        }
-        if !v.description.is_empty() {
-            let _ = write!(x, r#" description="{}""#, escape(&v.description));
-        }
+        write_variable_attributes(x, element, v);
         start_unit_derivative(x, v, 0);
         let _ = writeln!(x, "/>");
     }

@@ -4,6 +4,7 @@
 //! [`Diagnostic`] is plain data (severity, code, message, labelled spans, notes); only
 //! the CLI turns it into text.
 
+mod coded;
 mod diagnostic;
 mod source;
 

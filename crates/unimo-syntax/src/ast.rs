@@ -22,20 +22,34 @@ pub struct Name {
 }
 
 impl Name {
+    /// A name with no parts at `span` (a placeholder the parser fills in).
+    pub(crate) fn empty(span: Span) -> Name {
+        Name {
+            global: false,
+            parts: Vec::new(),
+            span,
+        }
+    }
+
     /// The name as written, parts joined by dots.
     pub fn to_dotted(&self) -> String {
-        let mut s = String::new();
-        if self.global {
+        dotted(self.global, self.parts.iter().map(|p| p.text.as_str()))
+    }
+}
+
+/// Parts joined by dots, with a leading dot for a global name.
+fn dotted<'a>(global: bool, parts: impl Iterator<Item = &'a str>) -> String {
+    let mut s = String::new();
+    if global {
+        s.push('.');
+    }
+    for (i, p) in parts.enumerate() {
+        if i > 0 {
             s.push('.');
         }
-        for (i, p) in self.parts.iter().enumerate() {
-            if i > 0 {
-                s.push('.');
-            }
-            s.push_str(&p.text);
-        }
-        s
+        s.push_str(p);
     }
+    s
 }
 
 /// One parsed file.
@@ -239,6 +253,28 @@ pub struct Element {
     pub span: Span,
 }
 
+impl Element {
+    /// An element with no prefixes whose kind the parser fills in next (an empty
+    /// import stands in until then).
+    pub(crate) fn unfilled(visibility: Visibility, span: Span) -> Element {
+        Element {
+            visibility,
+            redeclare: false,
+            is_final: false,
+            inner: false,
+            outer: false,
+            replaceable: false,
+            kind: ElementKind::Import(Import {
+                kind: ImportKind::Qualified(Name::empty(span)),
+                comment: Comment::default(),
+                span,
+            }),
+            constrainedby: None,
+            span,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ElementKind {
     Import(Import),
@@ -314,6 +350,18 @@ pub struct ComponentClause {
     pub type_name: Name,
     pub type_dims: Vec<Subscript>,
     pub components: Vec<ComponentDecl>,
+}
+
+impl ComponentClause {
+    /// A clause without prefixes, type or components (a placeholder the parser fills in).
+    pub(crate) fn empty(span: Span) -> ComponentClause {
+        ComponentClause {
+            prefix: TypePrefix::default(),
+            type_name: Name::empty(span),
+            type_dims: Vec::new(),
+            components: Vec::new(),
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -608,17 +656,7 @@ pub struct ComponentRef {
 impl ComponentRef {
     /// The reference as written, without subscripts (`a.b.c`).
     pub fn to_dotted(&self) -> String {
-        let mut s = String::new();
-        if self.global {
-            s.push('.');
-        }
-        for (i, p) in self.parts.iter().enumerate() {
-            if i > 0 {
-                s.push('.');
-            }
-            s.push_str(&p.name.text);
-        }
-        s
+        dotted(self.global, self.parts.iter().map(|p| p.name.text.as_str()))
     }
 
     /// A reference without subscripts seen as a name.

@@ -3,7 +3,6 @@
 //! `array`, `vector`, `matrix`, `cat`; the built-ins unimo does not support refused.
 
 use super::{unsupported, Lowerer};
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::ExprArena;
 use crate::tensor::{self, Tensor};
@@ -30,13 +29,7 @@ impl Lowerer<'_> {
                         .dims
                         .get((k - 1).max(0) as usize)
                         .copied()
-                        .ok_or_else(|| {
-                            DaeError::new(
-                                DaeCode::SizeMismatch,
-                                format!("dimension {k} does not exist"),
-                                span,
-                            )
-                        })?;
+                        .ok_or(DaeError::NoSuchDimension { dimension: k, span })?;
                     Tensor::scalar(self.a().constant(n as f64))
                 } else {
                     let data = x

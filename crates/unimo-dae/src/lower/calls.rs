@@ -2,7 +2,6 @@
 //! `pre`, `edge`, `smooth`, ...), reductions.
 
 use super::{unsupported, Lowerer};
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{Fn1, Fn2, Node, RelOp};
 use crate::tensor::{self, Tensor};
@@ -28,12 +27,9 @@ impl Lowerer<'_> {
                 .map(|p| p.text.to_string())
                 .unwrap_or_default();
             return self.builtin(&last, args, span).and_then(|r| {
-                r.ok_or_else(|| {
-                    DaeError::new(
-                        DaeCode::UnknownFunction,
-                        format!("`{name}` is not a known function"),
-                        span,
-                    )
+                r.ok_or_else(|| DaeError::UnknownFunction {
+                    name: name.to_string(),
+                    span,
                 })
             });
         }
@@ -48,11 +44,10 @@ impl Lowerer<'_> {
         }
         match self.builtin(&name, args, span)? {
             Some(t) => Ok(t),
-            None => Err(DaeError::new(
-                DaeCode::UnknownFunction,
-                format!("`{name}` is not a known function"),
+            None => Err(DaeError::UnknownFunction {
+                name: name.to_string(),
                 span,
-            )),
+            }),
         }
     }
 
@@ -64,11 +59,10 @@ impl Lowerer<'_> {
     ) -> DaeResult<Tensor> {
         match args.positional.get(k) {
             Some(e) => self.expr(e),
-            None => Err(DaeError::new(
-                DaeCode::WrongArguments,
-                format!("argument {} is missing", k + 1),
+            None => Err(DaeError::ArgumentMissing {
+                position: k + 1,
                 span,
-            )),
+            }),
         }
     }
 
@@ -106,11 +100,10 @@ impl Lowerer<'_> {
                         Node::Var(s) => data.push(self.dae.arena.pre(s)),
                         Node::Const(_) => data.push(v),
                         _ => {
-                            return Err(DaeError::new(
-                                DaeCode::PreOfNonVariable,
-                                "`pre` needs a variable",
+                            return Err(DaeError::NeedsVariable {
+                                operator: "pre".to_owned(),
                                 span,
-                            ))
+                            })
                         }
                     }
                 }
@@ -121,11 +114,10 @@ impl Lowerer<'_> {
                 let mut data = Vec::new();
                 for &v in &x.data {
                     let Node::Var(s) = self.dae.arena.node(v) else {
-                        return Err(DaeError::new(
-                            DaeCode::PreOfNonVariable,
-                            format!("`{name}` needs a variable"),
+                        return Err(DaeError::NeedsVariable {
+                            operator: name.to_string(),
                             span,
-                        ));
+                        });
                     };
                     let p = self.dae.arena.pre(s);
                     data.push(if name == "edge" {
@@ -208,15 +200,10 @@ impl Lowerer<'_> {
         }
         let named = crate::dae::CollisionWorldArgs::from_flat(&flat);
         let Some(named) = named.filter(|_| self.dae.collision_world.is_none()) else {
-            return Err(DaeError::new(
-                DaeCode::CollisionArguments,
-                format!(
-                    "`collisionGaps` takes {} scalar arguments and appears once per model; \
-                     use one `Unimo.Collision.CollisionWorld`",
-                    crate::dae::COLLISION_WORLD_ARGS
-                ),
+            return Err(DaeError::CollisionWorldArguments {
+                count: crate::dae::COLLISION_WORLD_ARGS,
                 span,
-            ));
+            });
         };
         self.dae.collision_world = Some(crate::dae::CollisionWorld { args: named, span });
         let g = crate::dae::COLLISION_GAPS_SITE;
@@ -237,16 +224,11 @@ impl Lowerer<'_> {
             flat.extend(self.expr(e)?.data);
         }
         let Some(named) = crate::dae::CollisionBodyArgs::from_flat(&flat) else {
-            return Err(DaeError::new(
-                DaeCode::CollisionArguments,
-                format!(
-                    "`collisionBody` takes {} scalar arguments, got {}; use \
-                     `Unimo.Collision.CollisionBody` instead of calling it directly",
-                    crate::dae::COLLISION_BODY_ARGS,
-                    flat.len()
-                ),
+            return Err(DaeError::CollisionBodyArity {
+                expected: crate::dae::COLLISION_BODY_ARGS,
+                given: flat.len(),
                 span,
-            ));
+            });
         };
         // The codes of the shape and the damping law (the library passes its
         // enumerations; a direct call may pass anything).
@@ -265,15 +247,12 @@ impl Lowerer<'_> {
         for (arg, what, count, valid) in checks {
             if let Some(code) = self.const_value(arg) {
                 if !valid(code) {
-                    return Err(DaeError::new(
-                        DaeCode::CollisionArguments,
-                        format!(
-                            "`collisionBody`: {code} is not a {what} code (1..{count}); \
-                             use `Unimo.Collision.CollisionBody`, whose enumerations \
-                             give valid codes"
-                        ),
+                    return Err(DaeError::CollisionCode {
+                        code,
+                        what,
+                        count,
                         span,
-                    ));
+                    });
                 }
             }
         }
@@ -290,13 +269,10 @@ impl Lowerer<'_> {
 
     /// `sum(e for i in r)` and friends.
     fn reduction(&mut self, name: &str, args: &CallArgs, span: Span) -> DaeResult<Tensor> {
-        let body = args.positional.first().ok_or_else(|| {
-            DaeError::new(
-                DaeCode::WrongArguments,
-                "a reduction needs an expression",
-                span,
-            )
-        })?;
+        let body = args
+            .positional
+            .first()
+            .ok_or(DaeError::ReductionWithoutExpression { span })?;
         let items = self.comprehension(body, &args.iterators)?;
         let stacked = Tensor::stack(items, span)?;
         match name {
@@ -314,11 +290,10 @@ impl Lowerer<'_> {
             "min" | "max" => {
                 let f = Fn2::from_name(name).expect("min and max have a compiled form");
                 let Some((&first, rest)) = t.data.split_first() else {
-                    return Err(DaeError::new(
-                        DaeCode::SizeMismatch,
-                        format!("`{name}` of an empty array"),
+                    return Err(DaeError::ReductionOfEmpty {
+                        function: name.to_string(),
                         span,
-                    ));
+                    });
                 };
                 rest.iter().fold(first, |acc, &x| ar.fn2(f, acc, x))
             }

@@ -3,7 +3,6 @@
 
 use super::array_builtins::as_matrix;
 use super::{unsupported, Local, Lowerer};
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, RelOp};
 use crate::tensor::{self, Tensor};
@@ -20,12 +19,7 @@ impl Lowerer<'_> {
         let x = self.scalar(e)?;
         match self.const_value(x) {
             Some(v) if v == v.trunc() => Ok(v as i64),
-            _ => Err(DaeError::new(
-                DaeCode::NotKnownAtCompileTime,
-                "a constant integer is needed here",
-                e.span,
-            )
-            .help("sizes, indices and ranges must be known at compile time")),
+            _ => Err(DaeError::ConstantIntegerNeeded { span: e.span }),
         }
     }
 
@@ -39,11 +33,7 @@ impl Lowerer<'_> {
             ExprKind::Ref(r) => self.reference(r),
             ExprKind::End => match self.end_stack.last() {
                 Some(&n) => Ok(Tensor::scalar(self.a().constant(n as f64))),
-                None => Err(DaeError::new(
-                    DaeCode::SizeMismatch,
-                    "`end` outside a subscript",
-                    span,
-                )),
+                None => Err(DaeError::EndOutsideSubscript { span }),
             },
             ExprKind::Call { func, args } => self.call(func, args, span),
             ExprKind::Unary { op, operand } => {
@@ -133,13 +123,8 @@ impl Lowerer<'_> {
     ) -> DaeResult<Vec<f64>> {
         let c = |me: &mut Self, e: &Expr| -> DaeResult<f64> {
             let x = me.scalar(e)?;
-            me.const_value(x).ok_or_else(|| {
-                DaeError::new(
-                    DaeCode::NotKnownAtCompileTime,
-                    "a range bound must be known at compile time",
-                    e.span,
-                )
-            })
+            me.const_value(x)
+                .ok_or(DaeError::RangeBoundNotConstant { span: e.span })
         };
         let a = c(self, start)?;
         let h = match step {
@@ -148,22 +133,14 @@ impl Lowerer<'_> {
         };
         let b = c(self, stop)?;
         if h == 0.0 {
-            return Err(DaeError::new(
-                DaeCode::SizeMismatch,
-                "a range step of zero",
-                start.span,
-            ));
+            return Err(DaeError::ZeroRangeStep { span: start.span });
         }
         let n = ((b - a) / h + 1e-10).floor();
         if n < 0.0 {
             return Ok(Vec::new());
         }
         if n > 1e7 {
-            return Err(DaeError::new(
-                DaeCode::SizeMismatch,
-                "a range with more than 1e7 elements",
-                start.span,
-            ));
+            return Err(DaeError::RangeTooLong { span: start.span });
         }
         Ok((0..=n as usize).map(|k| a + k as f64 * h).collect())
     }
@@ -180,17 +157,27 @@ impl Lowerer<'_> {
         let values = self.iterator_values(first)?;
         let mut out = Vec::new();
         for v in values {
-            self.locals.push(Local {
-                name: first.name.text.to_string(),
-                value: Some(v),
-                record: None,
-                text: None,
-            });
-            let r = self.comprehension(body, rest);
-            self.locals.pop();
-            out.extend(r?);
+            out.extend(self.with_iterator(first, v, |me| me.comprehension(body, rest))?);
         }
         Ok(out)
+    }
+
+    /// Runs `f` with the iterator `index` bound to `value` (a local while `f` runs).
+    pub(crate) fn with_iterator<T>(
+        &mut self,
+        index: &ForIndex,
+        value: Tensor,
+        f: impl FnOnce(&mut Self) -> T,
+    ) -> T {
+        self.locals.push(Local {
+            name: index.name.text.to_string(),
+            value: Some(value),
+            record: None,
+            text: None,
+        });
+        let r = f(self);
+        self.locals.pop();
+        r
     }
 
     pub(crate) fn iterator_values(&mut self, index: &ForIndex) -> DaeResult<Vec<Tensor>> {
@@ -228,11 +215,7 @@ impl Lowerer<'_> {
             ElemMul => tensor::elementwise(ar, a, b, true, span, ExprArena::mul),
             Div | ElemDiv => {
                 if op == Div && !b.is_scalar() {
-                    return Err(DaeError::new(
-                        DaeCode::SizeMismatch,
-                        "division by an array",
-                        span,
-                    ));
+                    return Err(DaeError::DivisionByArray { span });
                 }
                 tensor::elementwise(ar, a, b, true, span, ExprArena::div)
             }

@@ -4,7 +4,6 @@
 //! meaning.
 
 use crate::dae::*;
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprArena, ExprId, ScalarId};
 use crate::tensor::{self, Tensor};
@@ -69,11 +68,10 @@ pub struct Lowerer<'m> {
 }
 
 pub(crate) fn unsupported(what: impl Into<String>, span: Span) -> DaeError {
-    DaeError::new(
-        DaeCode::Unsupported,
-        format!("not supported yet: {}", what.into()),
+    DaeError::Unsupported {
+        what: what.into(),
         span,
-    )
+    }
 }
 
 impl<'m> Lowerer<'m> {

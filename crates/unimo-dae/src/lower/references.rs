@@ -2,10 +2,9 @@
 //! package constants, subscripts (constant or computed) picking elements.
 
 use super::{unsupported, Local, Lowerer};
-use crate::error::DaeCode;
 use crate::error::{DaeError, DaeResult};
 use crate::expr::{ExprId, RelOp, ScalarId};
-use crate::tensor::{self, Tensor};
+use crate::tensor::Tensor;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
@@ -39,11 +38,10 @@ impl Lowerer<'_> {
                     return Err(unsupported("subscripts on a record", r.span));
                 }
                 let Some(v) = l.value.clone() else {
-                    return Err(DaeError::new(
-                        DaeCode::UnassignedLocal,
-                        format!("`{name}` is used before it is assigned"),
-                        r.span,
-                    ));
+                    return Err(DaeError::UsedBeforeAssigned {
+                        name: name.to_string(),
+                        span: r.span,
+                    });
                 };
                 return self.subscript(v, &r.parts[0].subscripts, r.span);
             }
@@ -90,12 +88,10 @@ impl Lowerer<'_> {
             if let Some(t) = self.through_component_array(r)? {
                 return Ok(t);
             }
-            return Err(DaeError::new(
-                DaeCode::NoSuchScalar,
-                format!("`{key}` is not a variable of the flat model"),
-                r.span,
-            )
-            .help("string variables are not lowered"));
+            return Err(DaeError::NoSuchVariable {
+                name: key.to_string(),
+                span: r.span,
+            });
         };
         let subs = r
             .parts
@@ -166,11 +162,10 @@ impl Lowerer<'_> {
                 path.push_str(&unimo_syntax::print::subscripts(&c.parts[j].subscripts));
                 if !self.instance_exists(&path) {
                     if range.is_some() {
-                        return Err(DaeError::new(
-                            DaeCode::NoSuchScalar,
-                            format!("`{path}` is not an instance of the flat model"),
-                            r.span,
-                        ));
+                        return Err(DaeError::NoSuchInstance {
+                            name: path.to_string(),
+                            span: r.span,
+                        });
                     }
                     break;
                 }
@@ -273,11 +268,11 @@ impl Lowerer<'_> {
             };
             let k = k as i64;
             if k < 1 || k as usize > *d {
-                return Err(DaeError::new(
-                    DaeCode::IndexOutOfBounds,
-                    format!("index {k} is out of bounds 1..{d}"),
-                    e.span,
-                ));
+                return Err(DaeError::IndexOutOfBounds {
+                    index: k,
+                    size: *d,
+                    span: e.span,
+                });
             }
             pos = pos * d + (k as usize - 1);
         }
@@ -307,14 +302,10 @@ impl Lowerer<'_> {
                 return Ok(Tensor::scalar(c));
             }
         }
-        Err(DaeError::new(
-            DaeCode::NoSuchScalar,
-            format!(
-                "`{}` is not a variable or enumeration literal",
-                names.join(".")
-            ),
-            r.span,
-        ))
+        Err(DaeError::NotVariableOrLiteral {
+            name: names.join("."),
+            span: r.span,
+        })
     }
 
     /// Applies subscripts: scalar indices drop a dimension, `:` and vectors keep it.
@@ -328,15 +319,11 @@ impl Lowerer<'_> {
             return Ok(t);
         }
         if subs.len() > t.dims.len() {
-            return Err(DaeError::new(
-                DaeCode::SizeMismatch,
-                format!(
-                    "{} subscripts on an array of size {}",
-                    subs.len(),
-                    tensor::fmt_dims(&t.dims)
-                ),
+            return Err(DaeError::TooManySubscripts {
+                count: subs.len(),
+                dims: t.dims.clone(),
                 span,
-            ));
+            });
         }
         let first_dim = t.dims[0];
         let rows = t.rows();
@@ -374,11 +361,11 @@ impl Lowerer<'_> {
         if let Some(k) = self.const_value(i) {
             let k = k as i64;
             if k < 1 || k as usize > n {
-                return Err(DaeError::new(
-                    DaeCode::IndexOutOfBounds,
-                    format!("index {k} is out of bounds 1..{n}"),
+                return Err(DaeError::IndexOutOfBounds {
+                    index: k,
+                    size: n,
                     span,
-                ));
+                });
             }
             return Ok(rows[k as usize - 1].clone());
         }

@@ -86,7 +86,7 @@ impl Lowerer<'_> {
                     v.variability,
                     Variability::Parameter | Variability::Constant
                 );
-                if parameter && e.code == DaeCode::NotKnownAtCompileTime {
+                if parameter && e.code() == DaeCode::NotKnownAtCompileTime {
                     deferred.push((v, first, dims.clone(), e));
                 } else {
                     self.errors.push(e);

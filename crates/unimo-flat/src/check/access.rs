@@ -8,7 +8,7 @@ use super::elements::{
 };
 use super::walk::{composition_exprs, for_each_equation};
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::flat::for_each_call;
 use crate::lookup::Found;
 use crate::tree::ClassId;
@@ -16,10 +16,12 @@ use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
 fn protected_access(name: &str, span: Span, declared: Span) -> Diagnostic {
-    Diagnostic::error(FlatCode::ProtectedAccess, format!("`{name}` is protected: it cannot be accessed from outside"))
-        .at(span, "protected element")
-        .with_label(declared, "declared protected here")
-        .with_note("Modelica specification, section 4.1: protected elements are not accessible through dot notation")
+    FlatError::ProtectedAccess {
+        name: name.to_owned(),
+        span,
+        declared,
+    }
+    .into()
 }
 
 impl Ctx<'_, '_> {
@@ -181,14 +183,13 @@ impl Ctx<'_, '_> {
                             Some(info) => {
                                 if info.protected {
                                     self.out.push(
-                                    Diagnostic::error(
-                                        FlatCode::ProtectedModified,
-                                        format!("`{}` is protected: it cannot be modified from outside", p.text),
-                                    )
-                                    .at(p.span, "modifier of a protected element")
-                                    .with_label(info.name_span, "declared protected here")
-                                    .with_note("Modelica specification, section 4.1"),
-                                );
+                                        FlatError::ProtectedModified {
+                                            name: p.text.to_string(),
+                                            span: p.span,
+                                            declared: info.name_span,
+                                        }
+                                        .into(),
+                                    );
                                 }
                                 any_array |= is_array(self.tree, &info);
                                 t = component_type(self.tree, &info);
@@ -220,12 +221,11 @@ impl Ctx<'_, '_> {
             }
             if *each && resolved && !any_array {
                 self.out.push(
-                    Diagnostic::error(
-                        FlatCode::EachOnScalar,
-                        format!("`each` on `{}`, which is not an element of an array", name.to_dotted()),
-                    )
-                    .at(*span, "no array here")
-                    .with_note("Modelica specification, section 7.2.5: `each` applies a modifier to every element of an array"),
+                    FlatError::EachOnScalar {
+                        name: name.to_dotted(),
+                        span: *span,
+                    }
+                    .into(),
                 );
             }
             if let Some(cm) = modification.as_ref().and_then(|m| m.class_mod.as_ref()) {
@@ -260,17 +260,13 @@ impl Ctx<'_, '_> {
             return;
         }
         self.out.push(
-            Diagnostic::error(
-                FlatCode::UnknownModifier,
-                format!("`{a}` is not an attribute of {}", base.name()),
-            )
-            .at(attr.span, "no such attribute")
-            .with_help(format!(
-                "attributes of {}: {}",
-                base.name(),
-                allowed.join(", ")
-            ))
-            .with_note("Modelica specification, section 4.9"),
+            FlatError::NotAttributeOfType {
+                attribute: a.to_owned(),
+                base: base.name(),
+                allowed,
+                span: attr.span,
+            }
+            .into(),
         );
     }
 }

@@ -6,11 +6,11 @@
 use super::elements::find_component;
 use super::walk::{composition_exprs, for_each_statement};
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::flat::for_each_call;
 use crate::lookup::Found;
 use crate::tree::ClassId;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Ctx<'_, '_> {
@@ -48,22 +48,24 @@ impl Ctx<'_, '_> {
             return;
         };
         let p = info.prefix;
-        let (code, what, section) = match (p.variability, p.causality) {
-            (Some(Variability::Constant), _) => (FlatCode::AssignsConstant, "the constant", "3.8"),
-            (Some(Variability::Parameter), _) if !initial => {
-                (FlatCode::AssignsConstant, "the parameter", "3.8")
-            }
-            (_, Some(Causality::Input)) if function => {
-                (FlatCode::AssignsInput, "the function's input", "12.2")
-            }
+        let (name, declared) = (name.text.to_string(), info.name_span);
+        let constant = |what| FlatError::AssignsConstant {
+            what,
+            name: name.clone(),
+            span,
+            declared,
+        };
+        let e = match (p.variability, p.causality) {
+            (Some(Variability::Constant), _) => constant("the constant"),
+            (Some(Variability::Parameter), _) if !initial => constant("the parameter"),
+            (_, Some(Causality::Input)) if function => FlatError::AssignsInput {
+                name,
+                span,
+                declared,
+            },
             _ => return,
         };
-        self.out.push(
-            Diagnostic::error(code, format!("assignment to {what} `{}`", name.text))
-                .at(span, "assigned here")
-                .with_label(info.name_span, "declared here")
-                .with_note(format!("Modelica specification, section {section}")),
-        );
+        self.out.push(e.into());
     }
 
     /// `E2029`: a function declared `pure` calls a function declared `impure`.
@@ -92,18 +94,13 @@ impl Ctx<'_, '_> {
                 continue;
             }
             self.out.push(
-                Diagnostic::error(
-                    FlatCode::PureCallsImpure,
-                    format!(
-                        "the function `{}`, declared `pure`, calls the impure function `{}`",
-                        def.name.text,
-                        f.to_dotted()
-                    ),
-                )
-                .at(f.span, "impure call")
-                .with_label(callee.name.span, "declared `impure` here")
-                .with_help("declare the calling function `impure`")
-                .with_note("Modelica specification, section 12.3"),
+                FlatError::PureCallsImpure {
+                    function: def.name.text.to_string(),
+                    callee: f.to_dotted(),
+                    span: f.span,
+                    declared: callee.name.span,
+                }
+                .into(),
             );
         }
     }

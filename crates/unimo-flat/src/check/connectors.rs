@@ -8,9 +8,8 @@ use super::elements::{
     Base, ComponentInfo,
 };
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::tree::ClassId;
-use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
 impl Ctx<'_, '_> {
@@ -38,23 +37,15 @@ impl Ctx<'_, '_> {
             [_] => return,
             many => format!("{} flow variables", many.len()),
         };
-        let mut d = Diagnostic::error(
-            FlatCode::StreamFlowCount,
-            format!(
-                "stream connector `{}` has {problem}: it needs exactly one scalar flow variable",
-                def.name.text
-            ),
-        )
-        .at(def.name.span, "this connector")
-        .with_label(stream.name_span, "a stream variable");
-        for f in &flows {
-            d = d.with_label(f.name_span, "a flow variable");
-        }
         self.out.push(
-            d.with_help(
-                "the stream variables are carried by the one flow (e.g. `flow Real m_flow;`)",
-            )
-            .with_note("Modelica specification, section 15.1"),
+            FlatError::StreamFlowCount {
+                name: def.name.text.to_string(),
+                problem,
+                span: def.name.span,
+                stream: stream.name_span,
+                flows: flows.iter().map(|f| f.name_span).collect(),
+            }
+            .into(),
         );
     }
 
@@ -123,16 +114,13 @@ impl Ctx<'_, '_> {
             return;
         }
         self.out.push(
-            Diagnostic::error(
-                FlatCode::UnbalancedConnector,
-                format!(
-                    "connector `{}` has {flows} scalar flow variable(s) and {potentials} potential one(s)",
-                    def.name.text
-                ),
-            )
-            .at(def.name.span, "unbalanced connector")
-            .with_help("each potential variable (neither flow, stream, input, output, parameter nor constant) needs a flow variable")
-            .with_note("Modelica specification, section 9.3.1"),
+            FlatError::UnbalancedConnector {
+                name: def.name.text.to_string(),
+                flows,
+                potentials,
+                span: def.name.span,
+            }
+            .into(),
         );
     }
 
@@ -160,17 +148,13 @@ impl Ctx<'_, '_> {
                     continue;
                 }
                 self.out.push(
-                    Diagnostic::error(
-                        FlatCode::MisplacedPrefix,
-                        format!(
-                            "connector component `{}` may not be declared `{word}`",
-                            d.name.text
-                        ),
-                    )
-                    .at(d.name.span, format!("a {word} of a connector type"))
-                    .with_label(self.tree.get(c).def.name.span, "the connector class")
-                    .with_help("declare the connector's own elements `parameter` instead")
-                    .with_note("Modelica specification, section 9.3"),
+                    FlatError::ConstantConnector {
+                        word,
+                        name: d.name.text.to_string(),
+                        span: d.name.span,
+                        connector: self.tree.get(c).def.name.span,
+                    }
+                    .into(),
                 );
             }
         }

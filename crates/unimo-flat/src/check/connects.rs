@@ -7,10 +7,9 @@ use super::elements::{
 };
 use super::walk::for_each_equation;
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::lookup::Found;
 use crate::tree::ClassId;
-use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
 /// Whether two references are the same text (names and subscripts, spans aside).
@@ -37,12 +36,11 @@ impl Ctx<'_, '_> {
         for (a, b, span) in &connects {
             if same_reference(a, b) {
                 self.out.push(
-                    Diagnostic::error(
-                        FlatCode::ConnectToItself,
-                        format!("`{}` is connected to itself", unimo_syntax::print::cref(a)),
-                    )
-                    .at(*span, "both sides are the same connector")
-                    .with_note("Modelica specification, section 9.1: a connect equation relates two different connectors"),
+                    FlatError::ConnectToItself {
+                        name: unimo_syntax::print::cref(a),
+                        span: *span,
+                    }
+                    .into(),
                 );
                 continue;
             }
@@ -98,18 +96,17 @@ impl Ctx<'_, '_> {
                 continue;
             }
             self.out.push(
-                Diagnostic::error(
-                    FlatCode::ConnectorMismatch,
-                    format!(
-                        "`{}.{name}` and `{}.{name}` cannot be connected: {vx} and {vy}",
-                        unimo_syntax::print::cref(a),
-                        unimo_syntax::print::cref(b)
-                    ),
-                )
-                .at(span, "in this connect")
-                .with_label(x.name_span, format!("{vx} here"))
-                .with_label(y.name_span, format!("{vy} here"))
-                .with_note("Modelica specification, section 9.3: a connect equation matches parameters with parameters and constants with constants"),
+                FlatError::VariabilitiesDiffer {
+                    a: unimo_syntax::print::cref(a),
+                    b: unimo_syntax::print::cref(b),
+                    member: name.to_string(),
+                    kind_a: vx,
+                    kind_b: vy,
+                    span,
+                    declared_a: x.name_span,
+                    declared_b: y.name_span,
+                }
+                .into(),
             );
             return;
         }
@@ -146,18 +143,13 @@ impl Ctx<'_, '_> {
             _ => return,
         };
         self.out.push(
-            Diagnostic::error(
-                FlatCode::ConnectNonConnector,
-                format!(
-                    "`{}` is not a connector: it is {what}",
-                    unimo_syntax::print::cref(r)
-                ),
-            )
-            .at(r.span, "not a connector")
-            .with_label(cur.name_span, "declared here")
-            .with_note(
-                "Modelica specification, section 9.1: both arguments of `connect` are connectors",
-            ),
+            FlatError::ConnectNonConnector {
+                name: unimo_syntax::print::cref(r),
+                what,
+                span: r.span,
+                declared: cur.name_span,
+            }
+            .into(),
         );
     }
 }

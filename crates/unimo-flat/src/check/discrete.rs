@@ -10,7 +10,7 @@
 //! `GenerateEvents`, an annotation the flat model does not keep): the check errs on the
 //! side of accepting.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{FlatModel, FlatType, FlatVar, Variability};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -203,35 +203,26 @@ impl Vars<'_> {
             return;
         };
         let d = if v.ty == FlatType::Real {
-            Diagnostic::error(
-                FlatCode::DiscreteGivenContinuous,
-                format!(
-                    "`{}` is declared `discrete` but no when clause assigns it: it is given a continuous-time value",
-                    v.name
-                ),
-            )
-            .at(span, why)
-            .with_label(v.origin, "declared `discrete` here")
-            .with_help("assign it in a `when` clause, or drop the `discrete` prefix")
-            .with_note("Modelica specification, section 4.5.3: a Real declared `discrete` must be assigned in a when clause")
+            FlatError::DiscreteRealContinuous {
+                name: v.name.clone(),
+                why,
+                span,
+                declared: v.origin,
+            }
         } else {
             let ty = match &v.ty {
                 FlatType::Enumeration { name, .. } => format!("enumeration {name}"),
                 other => format!("{other:?}"),
             };
-            Diagnostic::error(
-                FlatCode::DiscreteGivenContinuous,
-                format!(
-                    "`{}` ({ty}) is discrete-time but is given a continuous-time value outside a when clause",
-                    v.name
-                ),
-            )
-            .at(span, why)
-            .with_label(v.origin, "declared here")
-            .with_help("assign it in a `when` clause, or give it a discrete-time expression (a relation such as `x > 0`, `integer(x)`, `pre(...)`)")
-            .with_note("Modelica specification, section 3.8.4: a discrete-valued equation holds discrete-time expressions only")
+            FlatError::DiscreteValuedContinuous {
+                name: v.name.clone(),
+                ty,
+                why,
+                span,
+                declared: v.origin,
+            }
         };
-        out.push(d);
+        out.push(d.into());
     }
 
     fn equations(&self, eqs: &[Equation], out: &mut Vec<Diagnostic>) {

@@ -5,23 +5,18 @@
 //! type's default start).
 
 use super::walk::{for_each_equation, for_each_statement};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{
     for_each_call, for_each_equation_expr, for_each_value_ref, FlatModel, FlatType, Variability,
 };
-use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use rustc_hash::FxHashSet as HashSet;
 use unimo_source::Diagnostic;
 use unimo_syntax::ast::{ComponentRef, Equation, EquationKind, Expr, ExprKind, StatementKind};
 
 /// `E2019` for every constant bound to an expression that reads a parameter.
 pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let mut diags = Vec::new();
     for v in &model.vars {
         if v.variability != Variability::Constant {
@@ -41,20 +36,13 @@ pub(crate) fn constant_bindings(model: &FlatModel) -> Vec<Diagnostic> {
         if let Some(j) = culprit {
             let p = &model.vars[j];
             diags.push(
-                Diagnostic::error(
-                    FlatCode::BindingVariability,
-                    format!(
-                        "the binding of constant `{}` reads the parameter `{}`",
-                        v.name, p.name
-                    ),
-                )
-                .at(b.span, "not a constant expression")
-                .with_label(p.origin, "declared a parameter here")
-                .with_help(format!(
-                    "declare `{}` a parameter, or bind it to constants only",
-                    v.name
-                ))
-                .with_note("Modelica specification, section 3.8.1"),
+                FlatError::ConstantReadsParameter {
+                    name: v.name.clone(),
+                    parameter: p.name.clone(),
+                    span: b.span,
+                    declared: p.origin,
+                }
+                .into(),
             );
         }
     }
@@ -143,12 +131,7 @@ fn exprs_outside_when(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
 /// `E2032` for `pre(x)` outside `when` clauses, where `x` is a Real variable that
 /// varies continuously (declared neither `discrete` nor assigned in a `when`).
 pub(crate) fn pre_of_continuous(model: &FlatModel) -> Vec<Diagnostic> {
-    let index: HashMap<&str, usize> = model
-        .vars
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v.name.as_str(), k))
-        .collect();
+    let index = model.var_positions();
     let discrete = assigned_in_when(model);
     let mut diags = Vec::new();
     exprs_outside_when(&model.equations, &mut |e| {
@@ -171,14 +154,12 @@ pub(crate) fn pre_of_continuous(model: &FlatModel) -> Vec<Diagnostic> {
                 return;
             }
             diags.push(
-                Diagnostic::error(
-                    FlatCode::PreOfContinuous,
-                    format!("`pre({})` of a continuous-time variable outside a when clause", v.name),
-                )
-                .at(r.span, "varies continuously")
-                .with_label(v.origin, "declared here")
-                .with_help("`pre` of a Real is the value before an event: assign it in a `when` clause or declare it `discrete`")
-                .with_note("Modelica specification, section 3.7.5"),
+                FlatError::PreOfContinuous {
+                    name: v.name.clone(),
+                    span: r.span,
+                    declared: v.origin,
+                }
+                .into(),
             );
         })
     });
@@ -216,19 +197,11 @@ pub(crate) fn unbound_parameters(model: &FlatModel) -> Vec<Diagnostic> {
             continue;
         }
         diags.push(
-            Diagnostic::warning(
-                FlatCode::UnboundParameter,
-                format!(
-                    "parameter `{}` has neither a value nor a start value: it takes its type's default",
-                    v.name
-                ),
-            )
-            .at(v.origin, "declared without a value")
-            .with_help(format!(
-                "give it a value (`{} = ...` in the declaration or a modifier), or `fixed = false` with an initial equation",
-                v.name
-            ))
-            .with_note("Modelica specification, section 8.6"),
+            FlatError::UnboundParameter {
+                name: v.name.clone(),
+                span: v.origin,
+            }
+            .into(),
         );
     }
     diags

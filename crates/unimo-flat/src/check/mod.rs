@@ -93,6 +93,10 @@ pub(crate) struct Ctx<'t, 'p> {
 }
 
 impl Ctx<'_, '_> {
+    fn report(&mut self, e: crate::error::FlatError) {
+        self.out.push(e.into());
+    }
+
     /// Every class check on one class (not its nested classes).
     fn class(&mut self, id: ClassId) {
         self.restrictions(id);

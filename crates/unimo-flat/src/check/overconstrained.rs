@@ -5,10 +5,9 @@
 use super::elements::{component_class, component_type, find_component};
 use super::walk::for_each_equation;
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::lookup::Found;
 use crate::tree::ClassId;
-use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
 /// The operators of `Connections` whose arguments are overdetermined variables (the
@@ -91,17 +90,14 @@ impl Ctx<'_, '_> {
             _ => return,
         };
         self.out.push(
-            Diagnostic::error(
-                FlatCode::Overconstrained,
-                format!(
-                    "`Connections.{op}` of `{}`, a variable {what}",
-                    unimo_syntax::print::cref(r)
-                ),
-            )
-            .at(r.span, "not an overdetermined variable")
-            .with_label(cur.name_span, "declared here")
-            .with_help("the operators of `Connections` take variables of an overdetermined type or record: one with a function `equalityConstraint`")
-            .with_note("Modelica specification, section 9.4"),
+            FlatError::NotOverdetermined {
+                operator: op.to_owned(),
+                name: unimo_syntax::print::cref(r),
+                what,
+                span: r.span,
+                declared: cur.name_span,
+            }
+            .into(),
         );
     }
 

@@ -5,10 +5,9 @@
 use super::elements::{base_of, component_type, find_component, Base};
 use super::walk::composition_exprs;
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::flat::for_each_value_ref;
 use crate::tree::ClassId;
-use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
 impl Ctx<'_, '_> {
@@ -39,21 +38,15 @@ impl Ctx<'_, '_> {
             };
             let (first, member) = (&r.parts[0].name.text, &r.parts[1].name);
             self.out.push(
-                Diagnostic::error(
-                    FlatCode::UnknownName,
-                    format!(
-                        "unknown name `{}`: `{first}` is of type {}, which has no elements",
-                        unimo_syntax::print::cref(&r),
-                        base.name()
-                    ),
-                )
-                .at(member.span, "not an element")
-                .with_label(info.name_span, "declared here")
-                .with_help(format!(
-                    "attributes such as `{}` are set by modifiers (`{first}({} = ...)`), not read as elements",
-                    member.text, member.text
-                ))
-                .with_note("Modelica specification, section 4.9: the attributes of predefined types"),
+                FlatError::ElementOfPredefined {
+                    reference: unimo_syntax::print::cref(&r),
+                    first: first.to_string(),
+                    base: base.name(),
+                    member: member.text.to_string(),
+                    span: member.span,
+                    declared: info.name_span,
+                }
+                .into(),
             );
         }
     }

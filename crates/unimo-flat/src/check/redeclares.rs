@@ -5,7 +5,7 @@
 
 use super::elements::{component_class, find_component, ComponentInfo};
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::lookup::Found;
 use crate::tree::ClassId;
 use unimo_source::{Diagnostic, Span};
@@ -72,15 +72,12 @@ fn class_element(
 }
 
 fn final_redeclared(name: &str, at: Span, declared: Span) -> Diagnostic {
-    Diagnostic::error(
-        FlatCode::FinalModified,
-        format!("`{name}` is declared `final` and cannot be redeclared"),
-    )
-    .at(at, "redeclared here")
-    .with_label(declared, "declared `final` here")
-    .with_note(
-        "Modelica specification, section 7.2.6: a final element cannot be modified or redeclared",
-    )
+    FlatError::FinalRedeclared {
+        name: name.to_owned(),
+        span: at,
+        declared,
+    }
+    .into()
 }
 
 impl Ctx<'_, '_> {
@@ -204,17 +201,13 @@ impl Ctx<'_, '_> {
         }
         if let Some(how) = dims_differ(&old.dims, &new) {
             self.out.push(
-                Diagnostic::error(
-                    FlatCode::InvalidRedeclare,
-                    format!(
-                        "`{}` is redeclared with {how}",
-                        d.name.text
-                    ),
-                )
-                .at(d.name.span, "redeclared here")
-                .with_label(old.name_span, "declared here")
-                .with_help("a redeclared component keeps the dimensions of the one it replaces")
-                .with_note("Modelica specification, section 7.3.2: the new declaration must be a subtype of the constraining one, arrays of the same sizes"),
+                FlatError::RedeclaredDimensions {
+                    name: d.name.text.to_string(),
+                    how,
+                    span: d.name.span,
+                    declared: old.name_span,
+                }
+                .into(),
             );
         }
     }

@@ -8,9 +8,8 @@ use super::elements::{
     ComponentInfo,
 };
 use super::Ctx;
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::tree::ClassId;
-use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::*;
 
 /// One component clause's declaration as written in the class checked.
@@ -42,18 +41,6 @@ fn info_of(owner: ClassId, d: &Declared<'_>) -> ComponentInfo {
     ComponentInfo::new(owner, d.element, d.clause, d.decl)
 }
 
-fn restriction(message: String, span: Span, label: &str, section: &str) -> Diagnostic {
-    Diagnostic::error(FlatCode::ClassRestriction, message)
-        .at(span, label.to_owned())
-        .with_note(format!("Modelica specification, section {section}"))
-}
-
-fn prefix_error(message: String, span: Span, label: &str, section: &str) -> Diagnostic {
-    Diagnostic::error(FlatCode::MisplacedPrefix, message)
-        .at(span, label.to_owned())
-        .with_note(format!("Modelica specification, section {section}"))
-}
-
 impl Ctx<'_, '_> {
     /// `E2027`/`E2028`: the declarations the kind of class `id` does not allow.
     pub(super) fn restrictions(&mut self, id: ClassId) {
@@ -72,33 +59,23 @@ impl Ctx<'_, '_> {
                 ClassKind::Package | ClassKind::Operator
                     if d.clause.prefix.variability != Some(Variability::Constant) =>
                 {
-                    self.out.push(restriction(
-                        format!(
-                            "a {kind} may declare only classes and constants, not `{}`",
-                            name.text
-                        ),
-                        name.span,
-                        "not a constant",
-                        "4.7",
-                    ));
+                    self.report(FlatError::PackageComponent {
+                        kind,
+                        name: name.text.to_string(),
+                        span: name.span,
+                    });
                 }
-                ClassKind::Type => self.out.push(restriction(
-                    format!("a type may not declare components: `{}`", name.text),
-                    name.span,
-                    "a component in a type",
-                    "4.7",
-                )),
+                ClassKind::Type => self.report(FlatError::TypeComponent {
+                    name: name.text.to_string(),
+                    span: name.span,
+                }),
                 ClassKind::Record => self.record_component(&d, &info),
                 ClassKind::Connector if d.element.visibility == Visibility::Protected => {
-                    self.out.push(restriction(
-                        format!(
-                            "a connector has only public elements: `{}` is protected",
-                            name.text
-                        ),
-                        name.span,
-                        "protected element of a connector",
-                        "4.7",
-                    ));
+                    self.report(FlatError::ProtectedInterfaceElement {
+                        kind: "connector",
+                        name: name.text.to_string(),
+                        span: name.span,
+                    });
                 }
                 ClassKind::Function => self.function_component(&d, &info),
                 ClassKind::Model | ClassKind::Block | ClassKind::Class
@@ -108,12 +85,12 @@ impl Ctx<'_, '_> {
                         Some(Connection::Stream) => "stream",
                         _ => "flow",
                     };
-                    self.out.push(prefix_error(
-                        format!("`{word}` outside a connector: `{}`", name.text),
-                        name.span,
-                        &format!("`{word}` in a {kind}"),
-                        "4.4.2.2",
-                    ));
+                    self.report(FlatError::FlowOutsideConnector {
+                        word,
+                        kind,
+                        name: name.text.to_string(),
+                        span: name.span,
+                    });
                 }
                 ClassKind::Block => self.block_connector(&d, &info),
                 _ => {}
@@ -134,32 +111,26 @@ impl Ctx<'_, '_> {
             _ => None,
         };
         if let Some(prefix) = bad_prefix {
-            self.out.push(prefix_error(
-                format!(
-                    "a record's element `{}` may not be declared `{prefix}`",
-                    name.text
-                ),
-                name.span,
-                &format!("`{prefix}` in a record"),
-                "4.7",
-            ));
+            self.report(FlatError::ElementPrefix {
+                kind: "record",
+                prefix,
+                name: name.text.to_string(),
+                section: "4.7",
+                span: name.span,
+            });
         }
         if d.element.visibility == Visibility::Protected {
-            self.out.push(restriction(
-                format!(
-                    "a record has only public elements: `{}` is protected",
-                    name.text
-                ),
-                name.span,
-                "protected element of a record",
-                "4.7",
-            ));
+            self.report(FlatError::ProtectedInterfaceElement {
+                kind: "record",
+                name: name.text.to_string(),
+                span: name.span,
+            });
         }
         self.no_model_components(info, "record", name);
     }
 
     /// A record's or function's component of a model, block or connector class.
-    fn no_model_components(&mut self, info: &ComponentInfo, kind: &str, name: &Ident) {
+    fn no_model_components(&mut self, info: &ComponentInfo, kind: &'static str, name: &Ident) {
         let Some(c) = component_class(self.tree, info) else {
             return;
         };
@@ -168,20 +139,14 @@ impl Ctx<'_, '_> {
             ck,
             ClassKind::Model | ClassKind::Block | ClassKind::Connector
         ) {
-            self.out.push(
-                restriction(
-                    format!(
-                        "a {kind} may not have a component of the {} `{}`: `{}`",
-                        ck.keyword(),
-                        self.tree.full_name(c),
-                        name.text
-                    ),
-                    name.span,
-                    &format!("a {} in a {kind}", ck.keyword()),
-                    "4.7",
-                )
-                .with_label(self.tree.get(c).def.name.span, "declared here"),
-            );
+            self.report(FlatError::ModelComponentIn {
+                kind,
+                class_kind: ck.keyword(),
+                class: self.tree.full_name(c),
+                name: name.text.to_string(),
+                span: name.span,
+                declared: self.tree.get(c).def.name.span,
+            });
         }
     }
 
@@ -197,15 +162,13 @@ impl Ctx<'_, '_> {
             None => None,
         };
         if let Some(prefix) = bad_prefix {
-            self.out.push(prefix_error(
-                format!(
-                    "a function's element `{}` may not be declared `{prefix}`",
-                    name.text
-                ),
-                name.span,
-                &format!("`{prefix}` in a function"),
-                "12.2",
-            ));
+            self.report(FlatError::ElementPrefix {
+                kind: "function",
+                prefix,
+                name: name.text.to_string(),
+                section: "12.2",
+                span: name.span,
+            });
         }
         match (protected, p.causality) {
             (true, Some(c)) => {
@@ -214,29 +177,17 @@ impl Ctx<'_, '_> {
                 } else {
                     "output"
                 };
-                self.out.push(prefix_error(
-                    format!(
-                        "a function's protected element `{}` may not be an {word}",
-                        name.text
-                    ),
-                    name.span,
-                    &format!("protected {word}"),
-                    "12.2",
-                ));
+                self.report(FlatError::ProtectedFunctionInterface {
+                    word,
+                    name: name.text.to_string(),
+                    span: name.span,
+                });
             }
             (false, None) if p.variability.is_none() => {
-                self.out.push(
-                    prefix_error(
-                        format!(
-                            "a function's public element `{}` must be an input or an output",
-                            name.text
-                        ),
-                        name.span,
-                        "neither input nor output",
-                        "12.2",
-                    )
-                    .with_help("declare local variables of a function under `protected`"),
-                );
+                self.report(FlatError::PublicFunctionLocal {
+                    name: name.text.to_string(),
+                    span: name.span,
+                });
             }
             _ => {}
         }
@@ -265,19 +216,11 @@ impl Ctx<'_, '_> {
         });
         if let Some(v) = acausal {
             let name = &d.decl.name;
-            self.out.push(
-                restriction(
-                    format!(
-                        "the public connector `{}` of a block has a variable that is neither input nor output",
-                        name.text
-                    ),
-                    name.span,
-                    "connector of a block",
-                    "4.7",
-                )
-                .with_label(v.name_span, "neither input nor output")
-                .with_help("use a model for physical connectors, or give the connector's variables `input`/`output`"),
-            );
+            self.report(FlatError::AcausalBlockConnector {
+                name: name.text.to_string(),
+                span: name.span,
+                variable: v.name_span,
+            });
         }
     }
 
@@ -308,16 +251,13 @@ impl Ctx<'_, '_> {
                 "stream"
             };
             self.out.push(
-                Diagnostic::error(
-                    FlatCode::FlowNotReal,
-                    format!(
-                        "`{word}` on `{}`, of type {}: {word} variables are Real",
-                        d.decl.name.text,
-                        base.map_or("?", Base::name)
-                    ),
-                )
-                .at(d.clause.type_name.span, "not a Real type")
-                .with_note("Modelica specification, section 9.3: flow and stream variables are subtypes of Real"),
+                FlatError::FlowNotReal {
+                    word,
+                    name: d.decl.name.text.to_string(),
+                    base: base.map_or("?", Base::name),
+                    span: d.clause.type_name.span,
+                }
+                .into(),
             );
         }
     }
@@ -334,33 +274,17 @@ impl Ctx<'_, '_> {
             })
             .collect();
         if let Some(a) = algorithms.iter().find(|a| a.initial) {
-            self.out.push(restriction(
-                "a function may not have an initial algorithm".to_owned(),
-                a.span,
-                "initial algorithm in a function",
-                "12.2",
-            ));
+            self.report(FlatError::InitialAlgorithmInFunction { span: a.span });
         } else if algorithms.len() > 1 {
-            self.out.push(
-                restriction(
-                    "a function has at most one algorithm section".to_owned(),
-                    algorithms[1].span,
-                    "second algorithm section",
-                    "12.2",
-                )
-                .with_label(algorithms[0].span, "first algorithm section"),
-            );
+            self.report(FlatError::SecondAlgorithm {
+                span: algorithms[1].span,
+                first: algorithms[0].span,
+            });
         } else if let (Some(a), Some(x)) = (algorithms.first(), &composition.external) {
-            self.out.push(
-                restriction(
-                    "a function has an algorithm section or an external clause, not both"
-                        .to_owned(),
-                    x.span,
-                    "external clause",
-                    "12.2",
-                )
-                .with_label(a.span, "algorithm section"),
-            );
+            self.report(FlatError::AlgorithmAndExternal {
+                span: x.span,
+                algorithm: a.span,
+            });
         }
     }
 }

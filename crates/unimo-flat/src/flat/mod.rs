@@ -191,6 +191,13 @@ pub fn quote(name: &str) -> String {
 }
 
 impl FlatModel {
+    /// Each variable's position in `vars`, by name.
+    pub(crate) fn var_positions(&self) -> rustc_hash::FxHashMap<&str, usize> {
+        (self.vars.iter().enumerate())
+            .map(|(k, v)| (v.name.as_str(), k))
+            .collect()
+    }
+
     /// Number of scalar variables by variability.
     pub fn count(&self, var: Variability) -> usize {
         self.vars

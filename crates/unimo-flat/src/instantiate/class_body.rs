@@ -3,12 +3,12 @@
 //! name is an element of the class.
 
 use super::{instance_key, part, Instantiator, Kind, MAX_DEPTH, MAX_SELF_NESTING};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::flat::Variability;
 use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
 use crate::tree::ClassId;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -30,12 +30,11 @@ impl Instantiator<'_, '_> {
                 self.stopped = true;
                 let def = &self.tree.get(class).def;
                 let (name, span) = (def.name.text.clone(), def.name.span);
-                self.error(
-                    FlatCode::TooDeep,
-                    format!("instances of `{name}` nested {MAX_SELF_NESTING} deep in each other (a recursive model?)"),
+                self.report(FlatError::SelfNesting {
+                    name: name.to_string(),
+                    limit: MAX_SELF_NESTING,
                     span,
-                    "this class contains itself",
-                );
+                });
             }
             return;
         }
@@ -75,12 +74,10 @@ impl Instantiator<'_, '_> {
         }
         if self.depth >= MAX_DEPTH {
             let span = self.tree.get(class).def.name.span;
-            self.error(
-                FlatCode::TooDeep,
-                format!("instances nested more than {MAX_DEPTH} deep (a recursive model?)"),
+            self.report(FlatError::TooDeep {
+                limit: MAX_DEPTH,
                 span,
-                "in this class",
-            );
+            });
             return;
         }
         self.depth += 1;
@@ -174,12 +171,7 @@ impl Instantiator<'_, '_> {
         } = &def.body
         {
             if let Some(original) = self.tree.extended_original(class) {
-                let ext = ext
-                    .modification
-                    .as_ref()
-                    .map(|cm| Mod::from_class_mod(cm, scope))
-                    .unwrap_or_default();
-                let base_mod = m.over(&own_redeclares.over(&ext));
+                let base_mod = base_modifier(m, own_redeclares, ext.modification.as_ref(), scope);
                 self.class_body_inner(original, prefix, &base_mod, variability, top, false);
             }
         }
@@ -189,17 +181,13 @@ impl Instantiator<'_, '_> {
                 let parts: Vec<&str> = x.base.parts.iter().map(|p| p.text.as_str()).collect();
                 match self.tree.lookup_dotted(Some(class), &parts, true) {
                     Some(Found::Class(b)) => {
-                        let ext = x
-                            .modification
-                            .as_ref()
-                            .map(|cm| Mod::from_class_mod(cm, scope))
-                            .unwrap_or_default();
-                        let base_mod = m.over(&own_redeclares.over(&ext));
+                        let base_mod =
+                            base_modifier(m, own_redeclares, x.modification.as_ref(), scope);
                         self.class_body_inner(b, prefix, &base_mod, variability, top, false);
                     }
                     Some(Found::Builtin("ExternalObject")) => {} // an external object class
                     Some(Found::Builtin(_)) => {
-                        self.error(FlatCode::ExtendsPredefined, "extending a predefined type is only allowed in a short class definition".into(), x.base.span, "here");
+                        self.report(FlatError::ExtendsPredefined { span: x.base.span });
                     }
                     _ => {} // reported by the name check
                 }
@@ -314,18 +302,30 @@ impl Instantiator<'_, '_> {
                     .map_or(Span::default(), |b| b.expr.span);
                 let cname = self.tree.full_name(class);
                 self.diags.push(
-                    Diagnostic::error(
-                        FlatCode::UnknownModifier,
-                        format!("modifier of `{name}`, which `{cname}` does not have"),
-                    )
-                    .at(span, "value given here")
-                    .with_help(format!(
-                        "the modified element must be declared in `{cname}` or a class it extends"
-                    )),
+                    FlatError::ModifierOfMissing {
+                        name: name.to_string(),
+                        class: cname,
+                        span,
+                    }
+                    .into(),
                 );
             }
         }
     }
+}
+
+/// The modifier a base class is instantiated with: the `extends` clause's modification
+/// under the class's own redeclarations, under the modifier `m` of the instance.
+fn base_modifier(
+    m: &Mod,
+    own_redeclares: &Mod,
+    modification: Option<&ClassModification>,
+    scope: &Scope,
+) -> Mod {
+    let ext = modification
+        .map(|cm| Mod::from_class_mod(cm, scope))
+        .unwrap_or_default();
+    m.over(&own_redeclares.over(&ext))
 }
 
 /// `redeclare T x(...)` elements of a class, as modifiers of the elements they replace.

@@ -5,13 +5,13 @@ use super::{
     annotation_is_true, duplicate, index_tuples, instance_key, int_expr, part, Instantiator, Kind,
     ATTRIBUTES,
 };
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::{self, EvalError, Value};
 use crate::flat::{FlatType, FlatVar, Variability};
 use crate::lookup::Found;
 use crate::modif::{Bound, Mod, Scope};
 use crate::tree::ClassId;
-use unimo_source::{Diagnostic, Span};
+use unimo_source::Span;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -170,16 +170,13 @@ impl Instantiator<'_, '_> {
         }
         let class_name = self.tree.full_name(c);
         self.diags.push(
-            Diagnostic::error(
-                FlatCode::PartialInstantiated,
-                format!(
-                    "component `{key}` is an instance of the partial class \
-                     `{class_name}`"
-                ),
-            )
-            .at(d.name.span, "instance of a partial class")
-            .with_label(self.tree.get(c).def.name.span, "declared `partial` here")
-            .with_help("use a class that extends it, or redeclare the component with one"),
+            FlatError::PartialComponent {
+                name: key.to_string(),
+                class: class_name,
+                span: d.name.span,
+                declared: self.tree.get(c).def.name.span,
+            }
+            .into(),
         );
         true
     }
@@ -278,12 +275,7 @@ impl Instantiator<'_, '_> {
         match eval::eval(&flat, self, &mut Vec::new()) {
             Ok(Value::Bool(false)) => return false,
             Ok(Value::Bool(true)) => {}
-            Ok(_) => self.error(
-                FlatCode::NotKnownAtCompileTime,
-                "the condition of a conditional component must be Boolean".into(),
-                cond.span,
-                "not Boolean",
-            ),
+            Ok(_) => self.report(FlatError::ConditionNotBoolean { span: cond.span }),
             Err(e) => self.eval_error(e, "condition of a conditional component"),
         }
         true
@@ -378,15 +370,10 @@ impl Instantiator<'_, '_> {
                     match size {
                         Some(vd) if vd.len() > dims.len() => dims.push(vd[dims.len()]),
                         _ => {
-                            let mut d = Diagnostic::error(
-                                FlatCode::NotKnownAtCompileTime,
-                                "the size of `[:]` must follow from a constant binding",
-                            )
-                            .at(*span, "unknown size");
-                            if let Some(what) = refused {
-                                d = d.with_note(format!("its binding cannot be evaluated: {what}"));
-                            }
-                            self.diags.push(d);
+                            self.report(FlatError::ColonSizeUnknown {
+                                span: *span,
+                                refused: refused.map(|what| what.to_string()),
+                            });
                         }
                     }
                 }
@@ -420,15 +407,13 @@ impl Instantiator<'_, '_> {
             if !ATTRIBUTES.contains(&attr.as_str()) {
                 let span = am.binding.as_ref().map_or(d.span, |b| b.expr.span);
                 self.diags.push(
-                    Diagnostic::error(
-                        FlatCode::UnknownModifier,
-                        format!("`{attr}` is not an attribute of `{name}`"),
-                    )
-                    .at(span, "value given here")
-                    .with_help(format!(
-                        "attributes of predefined types: {}",
-                        ATTRIBUTES.join(", ")
-                    )),
+                    FlatError::NotAnAttribute {
+                        attribute: attr.to_string(),
+                        name: name.to_string(),
+                        attributes: ATTRIBUTES,
+                        span,
+                    }
+                    .into(),
                 );
                 continue;
             }

@@ -2,9 +2,10 @@
 //! of one element of a component array picked out.
 
 use super::{int_expr, Instantiator};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::{self, Value};
 use crate::modif::{Mod, Scope};
+use smol_str::SmolStr;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
@@ -16,12 +17,7 @@ impl Instantiator<'_, '_> {
         match eval::eval(&flat, self, &mut Vec::new()).map(|v| v.as_int()) {
             Ok(Some(n)) if n >= 0 => Some(n as usize),
             Ok(_) => {
-                self.error(
-                    FlatCode::NotKnownAtCompileTime,
-                    "an array dimension must be a non-negative Integer".into(),
-                    e.span,
-                    "here",
-                );
+                self.report(FlatError::BadDimension { span: e.span });
                 None
             }
             Err(err) => {
@@ -36,12 +32,15 @@ impl Instantiator<'_, '_> {
     /// reference gets the subscripts, a constant is evaluated and picked).
     pub(super) fn element_mod(&mut self, m: &Mod, index: &[i64]) -> Mod {
         let mut out = m.clone();
-        out.children = m
-            .children
-            .iter()
-            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
-            .collect();
+        out.children = self.element_children(m, index);
         out
+    }
+
+    /// The children of `m` as modifiers of element `index`.
+    fn element_children(&mut self, m: &Mod, index: &[i64]) -> Vec<(SmolStr, Mod)> {
+        (m.children.iter())
+            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
+            .collect()
     }
 
     fn element_child(&mut self, m: &Mod, index: &[i64]) -> Mod {
@@ -57,11 +56,7 @@ impl Instantiator<'_, '_> {
                 });
             }
         }
-        out.children = m
-            .children
-            .iter()
-            .map(|(n, c)| (n.clone(), self.element_child(c, index)))
-            .collect();
+        out.children = self.element_children(m, index);
         out
     }
 

@@ -2,7 +2,7 @@
 //! unrolled, structural `if`s decided, model algorithms' parameter loops unrolled.
 
 use super::{Connect, Instantiator};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::{self, Value};
 use crate::modif::Scope;
 use unimo_syntax::ast::*;
@@ -153,24 +153,16 @@ impl Instantiator<'_, '_> {
             return;
         };
         let Some(range) = &first.range else {
-            self.error(
-                FlatCode::NotKnownAtCompileTime,
-                "a `for` equation needs an explicit range here".into(),
-                first.name.span,
-                "no range",
-            );
+            self.report(FlatError::ForWithoutRange {
+                span: first.name.span,
+            });
             return;
         };
         let flat = self.expr(range, scope, iters, &mut Vec::new());
         let values = match eval::eval(&flat, self, iters) {
             Ok(Value::Array(v)) => v,
             Ok(_) => {
-                self.error(
-                    FlatCode::NotKnownAtCompileTime,
-                    "a `for` range must be an array".into(),
-                    range.span,
-                    "not an array",
-                );
+                self.report(FlatError::ForRangeNotArray { span: range.span });
                 return;
             }
             Err(e) => {

@@ -5,10 +5,9 @@
 //! that name without inner has the same class; otherwise `E2013`.
 
 use super::{instance_key, part, Instantiator};
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::lookup::Found;
 use crate::modif::{Mod, Scope};
-use unimo_source::Diagnostic;
 use unimo_syntax::ast::*;
 
 impl Instantiator<'_, '_> {
@@ -57,7 +56,11 @@ impl Instantiator<'_, '_> {
         let outer_type = self.lookup_class_path(scope, &parts);
         match found {
             Some(inner) => {
-                let inner_type = self.inner_types.get(&instance_key(&inner)).copied().flatten();
+                let inner_type = self
+                    .inner_types
+                    .get(&instance_key(&inner))
+                    .copied()
+                    .flatten();
                 if let (Some(i), Some(o)) = (inner_type, outer_type) {
                     self.check_inner_subtype(i, o, &inner, d);
                 }
@@ -67,15 +70,11 @@ impl Instantiator<'_, '_> {
                 Ok(path) => {
                     self.outer_alias.insert(key, path);
                 }
-                Err(why) => self.diags.push(
-                    Diagnostic::error(
-                        FlatCode::MissingInner,
-                        format!("`outer {name}` has no matching `inner` declaration"),
-                    )
-                    .at(d.name.span, "declared `outer` here")
-                    .with_help(format!("declare `inner ... {name}` in an enclosing model"))
-                    .with_note(format!("no inner can be created by default: {why} (Modelica specification, section 5.4)")),
-                ),
+                Err(why) => self.report(FlatError::MissingInner {
+                    name: name.to_string(),
+                    why,
+                    span: d.name.span,
+                }),
             },
         }
     }
@@ -110,18 +109,12 @@ impl Instantiator<'_, '_> {
             _ => return,
         };
         let inner_span = path.last().map_or(d.name.span, |p| p.name.span);
-        self.diags.push(
-            Diagnostic::error(
-                FlatCode::InnerOuterMismatch,
-                format!(
-                    "the `inner {}` is not a subtype of the `outer` declaration: {why}",
-                    d.name.text
-                ),
-            )
-            .at(d.name.span, "declared `outer` here")
-            .with_label(inner_span, "the matching `inner`")
-            .with_note("Modelica specification, section 5.4: the inner component shall be a subtype of the corresponding outer component"),
-        );
+        self.report(FlatError::InnerOuterMismatch {
+            name: d.name.text.to_string(),
+            why: why.to_string(),
+            span: d.name.span,
+            inner: inner_span,
+        });
     }
 
     /// The inner component created at the top of the model for an `outer` without
@@ -163,15 +156,11 @@ impl Instantiator<'_, '_> {
             Found::Builtin(b) => b.to_owned(),
             Found::Component(_) => return Err("its type is not a class".to_owned()),
         };
-        self.diags.push(
-            Diagnostic::warning(
-                FlatCode::DefaultInner,
-                format!("no `inner {name}` for this `outer`: `inner {type_name} {name}` is added at the top of the model with default values"),
-            )
-            .at(d.name.span, "declared `outer` here")
-            .with_help(format!("declare `inner {type_name} {name};` in the model to set its values"))
-            .with_note("Modelica specification, section 5.4"),
-        );
+        self.report(FlatError::DefaultInner {
+            name: name.to_string(),
+            type_name: type_name.to_string(),
+            span: d.name.span,
+        });
         // Instantiated at the top (the type name looked up where the outer is
         // declared), outside the duplicate check of the instance being built.
         let top = Scope {

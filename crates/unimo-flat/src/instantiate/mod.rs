@@ -2,7 +2,7 @@
 //! variables with full names and merged attributes, equations with full references,
 //! `for` equations unrolled, structural `if`s decided, connections recorded.
 
-use crate::error::FlatCode;
+use crate::error::FlatError;
 use crate::eval::{self, EvalError, Value};
 use crate::flat::{FlatModel, FlatType, VarId};
 use crate::lookup::Found;
@@ -218,13 +218,13 @@ pub(super) fn instance_key_no_subs(path: &[RefPart]) -> String {
 
 /// `E2005`: `name` declared twice in the instance `owner`.
 fn duplicate(name: &str, owner: &str, second: Span, first: Span) -> Diagnostic {
-    Diagnostic::error(
-        FlatCode::DuplicateElement,
-        format!("`{name}` is declared twice in `{owner}`"),
-    )
-    .at(second, "second declaration")
-    .with_label(first, "first declared here (possibly in a base class)")
-    .with_help("rename one of them; an inherited element and a local one share one name space")
+    FlatError::DuplicateElement {
+        name: name.to_owned(),
+        owner: owner.to_owned(),
+        second,
+        first,
+    }
+    .into()
 }
 
 /// All index tuples of an array of the given dimensions, in row-major order.
@@ -310,49 +310,40 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         self.budget_used = self.budget_used.saturating_add(n);
         if self.budget_used > MAX_SCALARS {
             self.stopped = true;
-            self.diags.push(
-                Diagnostic::error(
-                    FlatCode::TooLarge,
-                    format!(
-                        "the model is too large (more than {MAX_SCALARS} scalars and instances)"
-                    ),
-                )
-                .at(span, "the limit was passed here")
-                .with_help("check the array sizes and `for` ranges"),
-            );
+            self.report(FlatError::TooLarge {
+                limit: MAX_SCALARS,
+                span,
+            });
             return false;
         }
         true
     }
 
-    fn error(&mut self, code: FlatCode, message: String, span: Span, label: &str) {
-        self.diags
-            .push(Diagnostic::error(code, message).at(span, label));
+    fn report(&mut self, e: FlatError) {
+        self.diags.push(e.into());
     }
 
+    /// `E2003`/`E2008`: a value needed at compile time (`context`) that cannot be
+    /// evaluated.
     fn eval_error(&mut self, e: EvalError, context: &str) {
-        let (span, what, code) = match e {
-            EvalError::NotConstant { span, what } => (
+        let context = context.to_owned();
+        self.report(match e {
+            EvalError::NotConstant { span, what } => FlatError::NotConstant {
+                context,
+                what: what.to_string(),
                 span,
-                format!("depends on {what}, which is not a known parameter or constant"),
-                FlatCode::NotKnownAtCompileTime,
-            ),
-            EvalError::Unsupported { span, what } => (
+            },
+            EvalError::Unsupported { span, what } => FlatError::CannotEvaluate {
+                context,
+                what: what.to_string(),
                 span,
-                format!("cannot evaluate {what}"),
-                FlatCode::NotKnownAtCompileTime,
-            ),
-            EvalError::Cycle { span, name } => (
+            },
+            EvalError::Cycle { span, name } => FlatError::EvaluationCycle {
+                context,
+                name: name.to_string(),
                 span,
-                format!("parameter `{name}` depends on itself"),
-                FlatCode::CyclicBinding,
-            ),
-        };
-        self.diags.push(
-            Diagnostic::error(code, format!("{context}: {what}"))
-                .at(span, "needed at compile time")
-                .with_help("sizes, `for` ranges and conditions of conditional components and structural `if`s must be parameters or constants"),
-        );
+            },
+        });
     }
 
     /// Instantiates the class `class` as the top-level model.
@@ -372,15 +363,10 @@ impl<'t, 'p> Instantiator<'t, 'p> {
         }
         if self.tree.get(class).def.partial {
             let span = self.tree.get(class).def.name.span;
-            self.error(
-                FlatCode::PartialInstantiated,
-                format!(
-                    "class `{}` is partial and cannot be simulated",
-                    self.model.name
-                ),
+            self.report(FlatError::PartialModel {
+                name: self.model.name.clone(),
                 span,
-                "declared `partial`",
-            );
+            });
         }
         let top = std::mem::take(&mut self.top_modifiers);
         self.class_body(class, &[], &top, None, true);

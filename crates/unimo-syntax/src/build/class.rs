@@ -126,11 +126,7 @@ impl Builder<'_> {
             }
         }
         ClassBody::Der {
-            base: base.unwrap_or_else(|| Name {
-                global: false,
-                parts: Vec::new(),
-                span: name_span,
-            }),
+            base: base.unwrap_or_else(|| Name::empty(name_span)),
             with_respect_to,
             comment,
         }
@@ -161,11 +157,7 @@ impl Builder<'_> {
         }
         ClassBody::Short {
             causality,
-            base: base.unwrap_or_else(|| Name {
-                global: false,
-                parts: Vec::new(),
-                span: name_span,
-            }),
+            base: base.unwrap_or_else(|| Name::empty(name_span)),
             dims,
             modification,
             comment,

@@ -28,25 +28,7 @@ impl Builder<'_> {
     ) -> Option<Element> {
         let span = self.span(&pair);
         let inner = pair.into_inner().next()?;
-        let mut e = Element {
-            visibility,
-            redeclare: false,
-            is_final: false,
-            inner: false,
-            outer: false,
-            replaceable: false,
-            kind: ElementKind::Import(Import {
-                kind: ImportKind::Qualified(Name {
-                    global: false,
-                    parts: Vec::new(),
-                    span,
-                }),
-                comment: Comment::default(),
-                span,
-            }),
-            constrainedby: None,
-            span,
-        };
+        let mut e = Element::unfilled(visibility, span);
         match inner.as_rule() {
             Rule::import_clause => e.kind = ElementKind::Import(self.import(inner)),
             Rule::extends_clause => e.kind = ElementKind::Extends(self.extends(inner)),
@@ -122,11 +104,7 @@ impl Builder<'_> {
             }
         }
         Import {
-            kind: kind.unwrap_or(ImportKind::Qualified(Name {
-                global: false,
-                parts: Vec::new(),
-                span,
-            })),
+            kind: kind.unwrap_or(ImportKind::Qualified(Name::empty(span))),
             comment,
             span,
         }
@@ -134,11 +112,7 @@ impl Builder<'_> {
 
     pub(crate) fn extends(&mut self, pair: Pair<'_, Rule>) -> Extends {
         let span = self.span(&pair);
-        let mut base = Name {
-            global: false,
-            parts: Vec::new(),
-            span,
-        };
+        let mut base = Name::empty(span);
         let mut modification = None;
         let mut annotation = None;
         for p in kids(pair) {
@@ -160,11 +134,7 @@ impl Builder<'_> {
     fn constraining(&mut self, pair: Pair<'_, Rule>) -> ConstrainingClause {
         let span = self.span(&pair);
         let mut it = kids(pair);
-        let base = it.next().map(|n| self.name(n)).unwrap_or(Name {
-            global: false,
-            parts: Vec::new(),
-            span,
-        });
+        let base = it.next().map(|n| self.name(n)).unwrap_or(Name::empty(span));
         let modification = it.next().map(|m| self.class_modification(m));
         ConstrainingClause {
             base,
@@ -200,16 +170,7 @@ impl Builder<'_> {
 
     fn component_clause(&mut self, pair: Pair<'_, Rule>) -> ComponentClause {
         let span = self.span(&pair);
-        let mut clause = ComponentClause {
-            prefix: TypePrefix::default(),
-            type_name: Name {
-                global: false,
-                parts: Vec::new(),
-                span,
-            },
-            type_dims: Vec::new(),
-            components: Vec::new(),
-        };
+        let mut clause = ComponentClause::empty(span);
         for p in kids(pair) {
             match p.as_rule() {
                 Rule::type_prefix => clause.prefix = self.type_prefix(p),
@@ -350,11 +311,7 @@ impl Builder<'_> {
             return Argument::Modify {
                 each,
                 is_final,
-                name: name.unwrap_or(Name {
-                    global: false,
-                    parts: Vec::new(),
-                    span,
-                }),
+                name: name.unwrap_or(Name::empty(span)),
                 modification,
                 description,
                 span,
@@ -365,16 +322,7 @@ impl Builder<'_> {
             each,
             is_final,
             replaceable,
-            element: element.unwrap_or(RedeclaredElement::Component(ComponentClause {
-                prefix: TypePrefix::default(),
-                type_name: Name {
-                    global: false,
-                    parts: Vec::new(),
-                    span,
-                },
-                type_dims: Vec::new(),
-                components: Vec::new(),
-            })),
+            element: element.unwrap_or(RedeclaredElement::Component(ComponentClause::empty(span))),
             constrainedby,
             span,
         }

@@ -112,11 +112,7 @@ impl Builder<'_> {
                 let args = it.next().map(|p| self.named_args(p)).unwrap_or_default();
                 Expr {
                     kind: ExprKind::PartialApplication {
-                        func: Box::new(func.unwrap_or(Name {
-                            global: false,
-                            parts: Vec::new(),
-                            span,
-                        })),
+                        func: Box::new(func.unwrap_or(Name::empty(span))),
                         args,
                     },
                     span,

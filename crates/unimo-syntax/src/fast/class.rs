@@ -73,11 +73,7 @@ impl<'a> P<'a, '_> {
             let first = self.pos;
             self.pos += 1;
             let name = self.ident()?;
-            let modification = if self.at(Sym::LParen) {
-                Some(self.class_modification()?)
-            } else {
-                None
-            };
+            let modification = self.parse_if(Sym::LParen, Self::class_modification)?;
             let extends = ClassExtends {
                 modification,
                 span: self.span_from(first),
@@ -99,11 +95,7 @@ impl<'a> P<'a, '_> {
             } else {
                 Vec::new()
             };
-            let modification = if self.at(Sym::LParen) {
-                Some(self.class_modification()?)
-            } else {
-                None
-            };
+            let modification = self.parse_if(Sym::LParen, Self::class_modification)?;
             let comment = self.comment()?;
             return Some((
                 name,
@@ -222,11 +214,7 @@ impl<'a> P<'a, '_> {
         } else {
             None
         };
-        let annotation = if self.at(Sym::KwAnnotation) {
-            Some(self.annotation()?)
-        } else {
-            None
-        };
+        let annotation = self.parse_if(Sym::KwAnnotation, Self::annotation)?;
         self.expect(Sym::Semi)?;
         Some(External {
             language,

@@ -21,25 +21,7 @@ impl<'a> P<'a, '_> {
 
     pub(crate) fn element(&mut self, visibility: Visibility) -> Option<Element> {
         let first = self.pos;
-        let mut e = Element {
-            visibility,
-            redeclare: false,
-            is_final: false,
-            inner: false,
-            outer: false,
-            replaceable: false,
-            kind: ElementKind::Import(Import {
-                kind: ImportKind::Qualified(Name {
-                    global: false,
-                    parts: Vec::new(),
-                    span: Span::default(),
-                }),
-                comment: Comment::default(),
-                span: Span::default(),
-            }),
-            constrainedby: None,
-            span: Span::default(),
-        };
+        let mut e = Element::unfilled(visibility, Span::default());
         if self.at(Sym::KwImport) {
             e.kind = ElementKind::Import(self.import()?);
         } else if self.at(Sym::KwExtends) {
@@ -110,16 +92,8 @@ impl<'a> P<'a, '_> {
         let first = self.pos;
         self.expect(Sym::KwExtends)?;
         let base = self.name()?;
-        let modification = if self.at(Sym::LParen) {
-            Some(self.class_modification()?)
-        } else {
-            None
-        };
-        let annotation = if self.at(Sym::KwAnnotation) {
-            Some(self.annotation()?)
-        } else {
-            None
-        };
+        let modification = self.parse_if(Sym::LParen, Self::class_modification)?;
+        let annotation = self.parse_if(Sym::KwAnnotation, Self::annotation)?;
         Some(Extends {
             base,
             modification,
@@ -132,11 +106,7 @@ impl<'a> P<'a, '_> {
         let first = self.pos;
         self.expect(Sym::KwConstrainedby)?;
         let base = self.name()?;
-        let modification = if self.at(Sym::LParen) {
-            Some(self.class_modification()?)
-        } else {
-            None
-        };
+        let modification = self.parse_if(Sym::LParen, Self::class_modification)?;
         Some(ConstrainingClause {
             base,
             modification,
@@ -214,11 +184,7 @@ impl<'a> P<'a, '_> {
 
     pub(crate) fn modification(&mut self) -> Option<Modification> {
         let first = self.pos;
-        let class_mod = if self.at(Sym::LParen) {
-            Some(self.class_modification()?)
-        } else {
-            None
-        };
+        let class_mod = self.parse_if(Sym::LParen, Self::class_modification)?;
         let mut binding = None;
         let mut assign = false;
         if self.at(Sym::Equals) || self.at(Sym::Assign) {
@@ -272,11 +238,7 @@ impl<'a> P<'a, '_> {
         let is_final = self.eat(Sym::KwFinal);
         if self.eat(Sym::KwReplaceable) {
             let element = self.redeclared()?;
-            let constrainedby = if self.at(Sym::KwConstrainedby) {
-                Some(self.constraining()?)
-            } else {
-                None
-            };
+            let constrainedby = self.parse_if(Sym::KwConstrainedby, Self::constraining)?;
             return Some(Argument::Redeclare {
                 redeclare,
                 each,

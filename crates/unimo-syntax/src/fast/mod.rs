@@ -102,6 +102,20 @@ impl<'a> P<'a, '_> {
         self.toks.get(at).is_some_and(|t| t.sym == sym)
     }
 
+    /// What `parse` reads when the next token is `sym` (`Some(None)` otherwise); `None`
+    /// when it fails.
+    fn parse_if<T>(
+        &mut self,
+        sym: Sym,
+        parse: impl FnOnce(&mut Self) -> Option<T>,
+    ) -> Option<Option<T>> {
+        if self.at(sym) {
+            parse(self).map(Some)
+        } else {
+            Some(None)
+        }
+    }
+
     fn at(&self, sym: Sym) -> bool {
         self.sym_at(self.pos, sym)
     }
@@ -208,11 +222,7 @@ impl<'a> P<'a, '_> {
 
     fn comment(&mut self) -> Option<Comment> {
         let description = self.description();
-        let annotation = if self.at(Sym::KwAnnotation) {
-            Some(self.annotation()?)
-        } else {
-            None
-        };
+        let annotation = self.parse_if(Sym::KwAnnotation, Self::annotation)?;
         Some(Comment {
             description,
             annotation,
