@@ -33,6 +33,15 @@ pub trait Integrator {
     /// step. `x` may differ from the current state (event changes).
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError>;
 
+    /// Takes back the last accepted step: the method returns to that step's start, with the
+    /// step size and history it had there, so that the step can be taken again to an
+    /// earlier end (a root located inside it). False, with nothing changed, when the method
+    /// cannot or there is no step to take back (none since the last restart, or already
+    /// taken back).
+    fn rewind(&mut self) -> bool {
+        false
+    }
+
     /// Work counters.
     fn stats(&self) -> &Stats;
 
