@@ -108,19 +108,7 @@ pub struct Dopri5 {
     error_vector: Vec<f64>,
     scale: Vec<f64>,
     dense: Dopri5DenseOutput,
-    /// The controller's values at the start of the last accepted step, `None` when there
-    /// is no step to take back (its start state and `f` there are the dense output's
-    /// first coefficient and the first stage, untouched until the next attempt).
-    rewind_to: Option<Dopri5Rewind>,
     stats: Stats,
-}
-
-/// The step size and controller state a rewind restores.
-#[derive(Debug, Clone, Copy)]
-struct Dopri5Rewind {
-    step: f64,
-    previous_error: f64,
-    last_rejected: bool,
 }
 
 impl Dopri5 {
@@ -159,7 +147,6 @@ impl Dopri5 {
                 coefficients: std::array::from_fn(|_| zeros()),
                 end_state: x0.to_vec(),
             },
-            rewind_to: None,
             stats: Stats::default(),
         };
         integrator.restart(system, t0, x0)?;
@@ -178,7 +165,6 @@ impl Dopri5 {
         self.step_size = self.setup.options.initial_step;
         self.previous_error = 1e-4;
         self.last_rejected = false;
-        self.rewind_to = None;
         self.dense.start = t;
         self.dense.end = t;
         self.dense.end_state.copy_from_slice(x);
@@ -296,19 +282,6 @@ impl Integrator for Dopri5 {
         self.restart(system, t, x)
     }
 
-    fn rewind(&mut self) -> bool {
-        let Some(back) = self.rewind_to.take() else {
-            return false;
-        };
-        self.t = self.dense.start;
-        self.x.copy_from_slice(&self.dense.coefficients[0]);
-        self.f_current.copy_from_slice(&self.stages[0]);
-        self.step_size = Some(back.step);
-        self.previous_error = back.previous_error;
-        self.last_rejected = back.last_rejected;
-        true
-    }
-
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
         if t_limit <= self.t {
             return Ok(());
@@ -350,11 +323,6 @@ impl Integrator for Dopri5 {
                 if hits_limit && h > h_try {
                     h_new = h_new.max(h.min(max_step));
                 }
-                self.rewind_to = Some(Dopri5Rewind {
-                    step: h_try,
-                    previous_error: self.previous_error,
-                    last_rejected: self.last_rejected,
-                });
                 self.previous_error = error.max(1e-4);
                 let t_end = if hits_limit { t_limit } else { self.t + h_try };
                 self.store_dense_output(h_try, t_end);

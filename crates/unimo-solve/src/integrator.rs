@@ -42,6 +42,15 @@ pub trait Integrator {
         false
     }
 
+    /// Estimated error of the dense output between the last step's ends, in units of the
+    /// requested tolerance: above 1, a root inside the step is better reached by
+    /// [`rewind`](Integrator::rewind) and a step to it. Zero for methods whose
+    /// interpolant has the order of their steps' error control (BDF's polynomial through
+    /// its history, Dormand–Prince's extension against its embedded estimate).
+    fn interpolation_error(&self) -> f64 {
+        0.0
+    }
+
     /// Work counters.
     fn stats(&self) -> &Stats;
 

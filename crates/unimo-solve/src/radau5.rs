@@ -158,6 +158,11 @@ pub struct Radau5 {
     /// The step before the last one: its polynomial, start state and `f` there, and the
     /// controller's values at its end (what [`Integrator::rewind`] goes back to).
     before: Radau5Rewind,
+    /// The last accepted step's error estimate in units of the requested tolerance (the
+    /// estimate is of the stage order, like the collocation polynomial between the ends).
+    interpolation_error: f64,
+    /// `rtol' / rtol` of the transformed tolerances (the smallest ratio).
+    tolerance_ratio: f64,
     stats: Stats,
 }
 
@@ -188,7 +193,14 @@ impl Radau5 {
         options: Options,
     ) -> Result<Self, SolveError> {
         let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+        let requested = setup.tolerances.relative.clone();
         transform_tolerances(&mut setup.tolerances);
+        let tolerance_ratio = requested
+            .iter()
+            .zip(&setup.tolerances.relative)
+            .filter(|(r, _)| **r > 0.0)
+            .map(|(r, t)| t / r)
+            .fold(f64::INFINITY, f64::min);
         let smallest_rtol = setup
             .tolerances
             .relative
@@ -254,6 +266,12 @@ impl Radau5 {
                 last_rejected: false,
                 jacobian_fresh: false,
                 gustafsson: None,
+            },
+            interpolation_error: 0.0,
+            tolerance_ratio: if tolerance_ratio.is_finite() {
+                tolerance_ratio
+            } else {
+                1.0
             },
             stats: Stats::default(),
         };
@@ -673,6 +691,10 @@ impl Integrator for Radau5 {
         self.restart(system, t, x)
     }
 
+    fn interpolation_error(&self) -> f64 {
+        self.interpolation_error
+    }
+
     fn rewind(&mut self) -> bool {
         if !self.before.valid {
             return false;
@@ -755,6 +777,7 @@ impl Integrator for Radau5 {
                 continue;
             }
             self.accept(h_try, t_end);
+            self.interpolation_error = error * self.tolerance_ratio;
             let mut h_next = h_new.min(max_step);
             if self.last_rejected {
                 h_next = h_next.min(h_try);

@@ -5,6 +5,14 @@
 //! internal time: after a root or an output time inside a step, the next call first searches
 //! the rest of that step and only then takes new steps. A step is never taken past the
 //! `t_stop` of the current call.
+//!
+//! A root found well inside a step whose dense output is less accurate than requested
+//! (Radau5: its collocation polynomial has the stage order 3 between a step's ends, the
+//! step order 5 at the end) is not reported from the dense output: the method takes the
+//! step back and steps again to just after the root, and the root is located again on
+//! that step, near its end (`Solver::step_to_root`). The state an event starts from then
+//! has the method's accuracy. BDF's and Dormand–Prince's interpolants have the order of
+//! their steps' error control; they are used as they are.
 
 use crate::bdf::Bdf;
 use crate::dopri5::Dopri5;
@@ -328,15 +336,14 @@ impl Solver {
     }
 
     /// A root at `t_root` inside the last step `[start, end]`, farther from its ends than
-    /// [`ROOT_MARGIN_START`] and [`ROOT_MARGIN_END`] of the step: the method takes the step
-    /// back and steps from its start to just after `t_root` ([`ROOT_STEP_BEYOND`]; at most
-    /// to `t_right`), true. The dense output between a step's ends is one or two orders
-    /// less accurate than its end point (Radau IIA's collocation polynomial has the stage
-    /// order 3 inside and order 5 at the end; Dormand–Prince's extension order 4), and
-    /// the state at a root is where the event starts from; on the new step the root lies
+    /// [`ROOT_MARGIN_START`] and [`ROOT_MARGIN_END`] of the step, on a dense output whose
+    /// estimated error exceeds the requested tolerance
+    /// ([`Integrator::interpolation_error`]): the method takes the step back and steps from
+    /// its start to just after `t_root` ([`ROOT_STEP_BEYOND`]; at most to `t_right`), true.
+    /// The state at a root is where the event starts from; on the new step the root lies
     /// near the end, where the interpolant is as accurate as the step. False: the root is
-    /// taken from the dense output (near an end, after [`MAX_ROOT_STEPS`] steps to it, or
-    /// the method cannot take a step back).
+    /// taken from the dense output (accurate enough, near an end, after
+    /// [`MAX_ROOT_STEPS`] steps to it, or the method cannot take a step back).
     fn step_to_root(
         &mut self,
         system: &mut dyn System,
@@ -346,7 +353,11 @@ impl Solver {
         let (start, end) = self.integrator.dense_output().interval();
         let inside = t_root - start > ROOT_MARGIN_START * (end - start)
             && end - t_root > ROOT_MARGIN_END * (end - start);
-        if !inside || self.root_steps >= MAX_ROOT_STEPS || !self.integrator.rewind() {
+        if !inside
+            || self.integrator.interpolation_error() <= 1.0
+            || self.root_steps >= MAX_ROOT_STEPS
+            || !self.integrator.rewind()
+        {
             return Ok(false);
         }
         self.root_steps += 1;

@@ -304,8 +304,8 @@ fn oscillator_crossings(method: Method, rtol: f64, count: usize) -> (f64, f64, S
 /// collocation polynomial is of order 3 there against 5 at the end). The solver takes the
 /// step again to the root. Measured over 40 restarts (worst crossing time, worst energy):
 /// Radau5 rtol 1e-8 3.9e-8 and 6.6e-8 (from the dense output: 3.2e-7 and 4.9e-7), rtol
-/// 1e-10 8.4e-10 and 1.4e-9 (1.9e-8 and 3.1e-8); Dopri5 rtol 1e-8 7.1e-8 and 1.0e-7
-/// (8.8e-8 and 9.7e-8: its interpolant is one order below its steps, not two).
+/// 1e-10 8.4e-10 and 1.4e-9 (1.9e-8 and 3.1e-8). Dopri5 keeps its interpolant (its
+/// error is of the order of the step's embedded estimate): 8.8e-8 and 9.7e-8 at 1e-8.
 #[test]
 fn roots_carry_the_accuracy_of_the_steps() {
     let cases = [
