@@ -155,8 +155,9 @@ pub struct Radau5 {
     previous_step: f64,
     gustafsson: Option<(f64, f64)>,
     dense: Radau5DenseOutput,
-    /// The step before the last one: its polynomial, start state and `f` there, and the
-    /// controller's values at its end (what [`Integrator::rewind`] goes back to).
+    /// The start of the last accepted step: the state and `f` there, the polynomial of the
+    /// step before (the Newton start) and the controller's values (what
+    /// [`Integrator::rewind`] goes back to).
     before: Radau5Rewind,
     /// The last accepted step's error estimate in units of the requested tolerance (the
     /// estimate is of the stage order, like the collocation polynomial between the ends).
