@@ -33,6 +33,24 @@ pub trait Integrator {
     /// step. `x` may differ from the current state (event changes).
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError>;
 
+    /// Takes back the last accepted step: the method returns to that step's start, with the
+    /// step size and history it had there, so that the step can be taken again to an
+    /// earlier end (a root located inside it). False, with nothing changed, when the method
+    /// cannot or there is no step to take back (none since the last restart, or already
+    /// taken back).
+    fn rewind(&mut self) -> bool {
+        false
+    }
+
+    /// Estimated error of the dense output between the last step's ends, in units of the
+    /// requested tolerance: above 1, a root inside the step is better reached by
+    /// [`rewind`](Integrator::rewind) and a step to it. Zero for methods whose
+    /// interpolant has the order of their steps' error control (BDF's polynomial through
+    /// its history, Dormand–Prince's extension against its embedded estimate).
+    fn interpolation_error(&self) -> f64 {
+        0.0
+    }
+
     /// Work counters.
     fn stats(&self) -> &Stats;
 

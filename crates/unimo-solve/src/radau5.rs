@@ -155,7 +155,34 @@ pub struct Radau5 {
     previous_step: f64,
     gustafsson: Option<(f64, f64)>,
     dense: Radau5DenseOutput,
+    /// The start of the last accepted step: the state and `f` there, the polynomial of the
+    /// step before (the Newton start) and the controller's values (what
+    /// [`Integrator::rewind`] goes back to).
+    before: Radau5Rewind,
+    /// The last accepted step's error estimate in units of the requested tolerance (the
+    /// estimate is of the stage order, like the collocation polynomial between the ends).
+    interpolation_error: f64,
+    /// `rtol' / rtol` of the transformed tolerances (the smallest ratio).
+    tolerance_ratio: f64,
     stats: Stats,
+}
+
+/// What Radau5 needs to take its last accepted step again from that step's start.
+#[derive(Debug, Clone)]
+struct Radau5Rewind {
+    /// The last accepted step can be taken back.
+    valid: bool,
+    x: Vec<f64>,
+    f: Vec<f64>,
+    /// The polynomial of the step before the last (the Newton start of the last).
+    dense: Radau5DenseOutput,
+    t: f64,
+    step: f64,
+    previous_step: f64,
+    first_step: bool,
+    last_rejected: bool,
+    jacobian_fresh: bool,
+    gustafsson: Option<(f64, f64)>,
 }
 
 impl Radau5 {
@@ -167,7 +194,14 @@ impl Radau5 {
         options: Options,
     ) -> Result<Self, SolveError> {
         let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+        let requested = setup.tolerances.relative.clone();
         transform_tolerances(&mut setup.tolerances);
+        let tolerance_ratio = requested
+            .iter()
+            .zip(&setup.tolerances.relative)
+            .filter(|(r, _)| **r > 0.0)
+            .map(|(r, t)| t / r)
+            .fold(f64::INFINITY, f64::min);
         let smallest_rtol = setup
             .tolerances
             .relative
@@ -217,6 +251,29 @@ impl Radau5 {
                 end: t0,
                 cont: std::array::from_fn(|_| zeros()),
             },
+            before: Radau5Rewind {
+                valid: false,
+                x: zeros(),
+                f: zeros(),
+                dense: Radau5DenseOutput {
+                    start: t0,
+                    end: t0,
+                    cont: std::array::from_fn(|_| zeros()),
+                },
+                t: t0,
+                step: 0.0,
+                previous_step: 0.0,
+                first_step: true,
+                last_rejected: false,
+                jacobian_fresh: false,
+                gustafsson: None,
+            },
+            interpolation_error: 0.0,
+            tolerance_ratio: if tolerance_ratio.is_finite() {
+                tolerance_ratio
+            } else {
+                1.0
+            },
             stats: Stats::default(),
         };
         integrator.restart(system, t0, x0)?;
@@ -242,6 +299,7 @@ impl Radau5 {
         self.first_step = true;
         self.last_rejected = false;
         self.gustafsson = None;
+        self.before.valid = false;
         self.dense.start = t;
         self.dense.end = t;
         self.dense.cont[0].copy_from_slice(x);
@@ -530,8 +588,9 @@ impl Radau5 {
     }
 
     /// Moves to the end of the accepted step `h` and stores the collocation polynomial;
-    /// `w[0]` holds `f` at the new point.
+    /// `w[0]` holds `f` at the new point. The step's start is kept for a rewind.
     fn accept(&mut self, h: f64, t_end: f64) {
+        self.keep_step_start(h);
         let [cont0, cont1, cont2, cont3] = &mut self.dense.cont;
         for i in 0..self.setup.size {
             let (z1, z2, z3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
@@ -552,6 +611,23 @@ impl Radau5 {
         self.update_scale();
         self.f_current.copy_from_slice(&self.w[0]);
         self.jacobian_fresh = false;
+    }
+
+    /// Before the step `h` from `self.t` is stored: keeps its start point and the previous
+    /// polynomial (swapped, not copied; `accept` overwrites the whole polynomial).
+    fn keep_step_start(&mut self, h: f64) {
+        let before = &mut self.before;
+        before.valid = true;
+        before.x.copy_from_slice(&self.x);
+        std::mem::swap(&mut before.f, &mut self.f_current);
+        std::mem::swap(&mut before.dense, &mut self.dense);
+        before.t = self.t;
+        before.step = h;
+        before.previous_step = self.previous_step;
+        before.first_step = self.first_step;
+        before.last_rejected = self.last_rejected;
+        before.jacobian_fresh = self.jacobian_fresh;
+        before.gustafsson = self.gustafsson;
     }
 
     /// Step-size proposal from the error and the Newton iteration count.
@@ -616,6 +692,33 @@ impl Integrator for Radau5 {
         self.restart(system, t, x)
     }
 
+    fn interpolation_error(&self) -> f64 {
+        self.interpolation_error
+    }
+
+    fn rewind(&mut self) -> bool {
+        if !self.before.valid {
+            return false;
+        }
+        let before = &mut self.before;
+        before.valid = false;
+        self.x.copy_from_slice(&before.x);
+        std::mem::swap(&mut before.f, &mut self.f_current);
+        std::mem::swap(&mut before.dense, &mut self.dense);
+        self.t = before.t;
+        self.step_size = Some(before.step);
+        self.previous_step = before.previous_step;
+        self.first_step = before.first_step;
+        self.last_rejected = before.last_rejected;
+        self.gustafsson = before.gustafsson;
+        // The matrix the step was taken with (evaluated at its start or before) serves
+        // again; only its factorization is for another step size.
+        self.jacobian_valid = true;
+        self.jacobian_fresh = before.jacobian_fresh;
+        self.update_scale();
+        true
+    }
+
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
         if t_limit <= self.t {
             return Ok(());
@@ -675,6 +778,7 @@ impl Integrator for Radau5 {
                 continue;
             }
             self.accept(h_try, t_end);
+            self.interpolation_error = error * self.tolerance_ratio;
             let mut h_next = h_new.min(max_step);
             if self.last_rejected {
                 h_next = h_next.min(h_try);

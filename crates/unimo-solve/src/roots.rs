@@ -49,6 +49,9 @@ pub(crate) struct RootTracker {
     g_right: Vec<f64>,
     g_middle: Vec<f64>,
     state_scratch: Vec<f64>,
+    /// `g_left` and `zero_at_left` kept by [`RootTracker::save`].
+    saved_left: Vec<f64>,
+    saved_zero: Vec<bool>,
 }
 
 /// Bracket width at which the search stops.
@@ -69,6 +72,8 @@ impl RootTracker {
             g_right: vec![0.0; root_count],
             g_middle: vec![0.0; root_count],
             state_scratch: vec![0.0; state_len],
+            saved_left: vec![0.0; root_count],
+            saved_zero: vec![false; root_count],
         }
     }
 
@@ -97,6 +102,19 @@ impl RootTracker {
             self.zero_at_left[i] = true;
         }
         Ok(())
+    }
+
+    /// Keeps the references at the left end, so that a search can be repeated over a
+    /// solution that was computed again ([`RootTracker::restore`]).
+    pub fn save(&mut self) {
+        self.saved_left.copy_from_slice(&self.g_left);
+        self.saved_zero.copy_from_slice(&self.zero_at_left);
+    }
+
+    /// Back to the references kept by the last [`RootTracker::save`].
+    pub fn restore(&mut self) {
+        self.g_left.copy_from_slice(&self.saved_left);
+        self.zero_at_left.copy_from_slice(&self.saved_zero);
     }
 
     /// Searches `(t_left, t_right]` on `dense`, which must cover it. Without a root, the

@@ -5,6 +5,14 @@
 //! internal time: after a root or an output time inside a step, the next call first searches
 //! the rest of that step and only then takes new steps. A step is never taken past the
 //! `t_stop` of the current call.
+//!
+//! A root found well inside a step whose dense output is less accurate than requested
+//! (Radau5: its collocation polynomial has the stage order 3 between a step's ends, the
+//! step order 5 at the end) is not reported from the dense output: the method takes the
+//! step back and steps again to just after the root, and the root is located again on
+//! that step, near its end (`Solver::step_to_root`). The state an event starts from then
+//! has the method's accuracy. BDF's and Dormand–Prince's interpolants have the order of
+//! their steps' error control; they are used as they are.
 
 use crate::bdf::Bdf;
 use crate::dopri5::Dopri5;
@@ -43,7 +51,29 @@ pub struct Solver {
     reported_at_time: Vec<usize>,
     driver_stats: Stats,
     max_steps_per_call: usize,
+    /// Steps taken again to a located root since the last reported root.
+    root_steps: usize,
 }
+
+/// A root located inside a step is reached by taking the step again to it at most this
+/// many times in a row (the method's end point is then the state at the root).
+const MAX_ROOT_STEPS: usize = 3;
+
+/// A root this close to the start of its step, as a fraction of the step, is taken from
+/// the dense output: the interpolant matches the step's start state, so its error grows
+/// from zero there (linearly).
+const ROOT_MARGIN_START: f64 = 1e-3;
+
+/// The same near the step's end, where the interpolant matches the end state and its
+/// derivative (Radau IIA collocates at the end, Dormand–Prince's extension is Hermite
+/// there), so its error grows quadratically: one hundredth of the step leaves a ten
+/// thousandth of the error inside.
+const ROOT_MARGIN_END: f64 = 1e-2;
+
+/// The step taken again ends this fraction of its length after the root located on the
+/// discarded dense output, so that the root, moved by the interpolant's error, is still
+/// inside it and within [`ROOT_MARGIN_END`] of its end.
+const ROOT_STEP_BEYOND: f64 = 1e-3;
 
 impl std::fmt::Debug for Solver {
     fn fmt(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -80,6 +110,7 @@ impl Solver {
             reported_at_time: Vec::new(),
             driver_stats: Stats::default(),
             max_steps_per_call,
+            root_steps: 0,
         };
         solver.restart_roots(system, &[])?;
         Ok(solver)
@@ -119,6 +150,7 @@ impl Solver {
             )));
         }
         self.integrator.reset(system, t, x)?;
+        self.root_steps = 0;
         let known_zero = if t == self.time {
             std::mem::take(&mut self.reported_at_time)
         } else {
@@ -246,48 +278,92 @@ impl Solver {
     }
 
     /// Searches the part of the last internal step between the output position and
-    /// `min(internal time, t_stop)` for roots, and moves the output position.
+    /// `min(internal time, t_stop)` for roots, and moves the output position. A root found
+    /// well inside the step is reached by taking the step again to it
+    /// ([`Solver::step_to_root`]), and searched for again on that step.
     fn search_pending(
         &mut self,
         system: &mut dyn System,
         t_stop: f64,
     ) -> Result<Option<StopReason>, SolveError> {
-        let internal_time = self.integrator.current_time();
-        let t_right = internal_time.min(t_stop);
-        if t_right > self.time {
-            let dense = self.integrator.dense_output();
-            let found = self
-                .roots
-                .search(system, dense, self.time, t_right, &mut self.driver_stats)
-                .map_err(|error| SolveError::Eval {
-                    time: t_right,
-                    message: format!("root functions: {error}"),
-                })?;
-            if let Some(root) = found {
-                self.time = root.time;
-                if root.time == internal_time {
+        loop {
+            let internal_time = self.integrator.current_time();
+            let t_right = internal_time.min(t_stop);
+            if t_right > self.time {
+                self.roots.save();
+                let dense = self.integrator.dense_output();
+                let found = self
+                    .roots
+                    .search(system, dense, self.time, t_right, &mut self.driver_stats)
+                    .map_err(|error| SolveError::Eval {
+                        time: t_right,
+                        message: format!("root functions: {error}"),
+                    })?;
+                if let Some(root) = found {
+                    if self.step_to_root(system, root.time, t_right)? {
+                        self.roots.restore();
+                        continue;
+                    }
+                    self.root_steps = 0;
+                    self.time = root.time;
+                    if root.time == internal_time {
+                        self.state.copy_from_slice(self.integrator.state());
+                    } else {
+                        self.integrator
+                            .dense_output()
+                            .evaluate(root.time, &mut self.state);
+                    }
+                    self.driver_stats.events += 1;
+                    self.reported_at_time = root.components.iter().map(|(i, _)| *i).collect();
+                    return Ok(Some(StopReason::Root {
+                        t: root.time,
+                        components: root.components,
+                    }));
+                }
+                self.time = t_right;
+                self.reported_at_time.clear();
+                if t_right == internal_time {
                     self.state.copy_from_slice(self.integrator.state());
                 } else {
-                    dense.evaluate(root.time, &mut self.state);
+                    dense.evaluate(t_right, &mut self.state);
                 }
-                self.driver_stats.events += 1;
-                self.reported_at_time = root.components.iter().map(|(i, _)| *i).collect();
-                return Ok(Some(StopReason::Root {
-                    t: root.time,
-                    components: root.components,
-                }));
             }
-            self.time = t_right;
-            self.reported_at_time.clear();
-            if t_right == internal_time {
-                self.state.copy_from_slice(self.integrator.state());
-            } else {
-                dense.evaluate(t_right, &mut self.state);
+            if self.time >= t_stop {
+                return Ok(Some(StopReason::ReachedStop));
             }
+            return Ok(None);
         }
-        if self.time >= t_stop {
-            return Ok(Some(StopReason::ReachedStop));
+    }
+
+    /// A root at `t_root` inside the last step `[start, end]`, farther from its ends than
+    /// [`ROOT_MARGIN_START`] and [`ROOT_MARGIN_END`] of the step, on a dense output whose
+    /// estimated error exceeds the requested tolerance
+    /// ([`Integrator::interpolation_error`]): the method takes the step back and steps from
+    /// its start to just after `t_root` ([`ROOT_STEP_BEYOND`]; at most to `t_right`), true.
+    /// The state at a root is where the event starts from; on the new step the root lies
+    /// near the end, where the interpolant is as accurate as the step. False: the root is
+    /// taken from the dense output (accurate enough, near an end, after
+    /// [`MAX_ROOT_STEPS`] steps to it, or the method cannot take a step back).
+    fn step_to_root(
+        &mut self,
+        system: &mut dyn System,
+        t_root: f64,
+        t_right: f64,
+    ) -> Result<bool, SolveError> {
+        let (start, end) = self.integrator.dense_output().interval();
+        let inside = t_root - start > ROOT_MARGIN_START * (end - start)
+            && end - t_root > ROOT_MARGIN_END * (end - start);
+        if !inside
+            || self.integrator.interpolation_error() <= 1.0
+            || self.root_steps >= MAX_ROOT_STEPS
+            || !self.integrator.rewind()
+        {
+            return Ok(false);
         }
-        Ok(None)
+        self.root_steps += 1;
+        let beyond = ROOT_STEP_BEYOND * (t_root - start);
+        self.integrator
+            .step(system, (t_root + beyond).min(t_right))?;
+        Ok(true)
     }
 }
