@@ -975,6 +975,43 @@ fn a_bistable_loop_keeps_its_branch_until_the_fold() {
     }
 }
 
+/// The same loop with events (the MSL's limited op-amp law under `strict = false`, as
+/// in `Electrical.Analog.Examples.OpAmps.SignalGenerator`): at the fold of the
+/// saturated branch its relation is at its root and neither outcome holds along its
+/// own flow (the saturated branch leaves it, the unstable linear one comes back); the
+/// event must take the loop's other consistent mode, the opposite limit. The switch
+/// times are the closed form of the RC relaxation between the folds `|v| = v_f`
+/// (`v_f = 15 (V0 / 2 - 1) / V0`): from `v = 1` to `-v_f` towards -15, then every
+/// `RC ln((15 + v_f) / (15 - v_f))`. Before: chattering at the first fold (E4006,
+/// t = 0.0345).
+#[test]
+fn a_comparator_in_positive_feedback_flips_at_the_fold() {
+    let m = load("tests/simulate/SchmittTrigger.mo");
+    let r = run(&m, Method::Bdf, 1e-6, 1e-8, 0.2, 2_000);
+    let kout = r.names.iter().position(|n| n == "vout").unwrap();
+    let mut switches = Vec::new();
+    for (k, w) in r.rows.windows(2).enumerate() {
+        if (w[0][kout] > 0.0) != (w[1][kout] > 0.0) {
+            // The event's two rows (left and right limit) at its time.
+            let (t0, t1) = (r.times[k], r.times[k + 1]);
+            assert!(t1 - t0 < 1e-9, "a switch between output points {t0}, {t1}");
+            switches.push(t1);
+        }
+    }
+    let rc = 1000.0 / 10.0 / (2.0 * 1000.0 * 3f64.ln());
+    let vf: f64 = 15.0 * (15000.0 / 2.0 - 1.0) / 15000.0;
+    let first = rc * (16.0 / (15.0 - vf)).ln();
+    let half = rc * ((15.0 + vf) / (15.0 - vf)).ln();
+    assert_eq!(switches.len(), 4, "{switches:?}");
+    for (k, t) in switches.iter().enumerate() {
+        let exact = first + k as f64 * half;
+        assert!(
+            (t - exact).abs() < 1e-6,
+            "switch {k} at t = {t}, closed form {exact}"
+        );
+    }
+}
+
 /// Index reduction that passes through the equation of a discrete variable: its
 /// derivative is identically zero and stands as `der(b) = 0` (before: E3204 "no dummy
 /// derivatives can be chosen ... for 0 = 0", the MSL's `KinematicPTP2` and RobotR3).

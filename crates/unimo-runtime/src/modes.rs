@@ -83,6 +83,16 @@ pub(crate) fn newton(
     if search(b, r, ev, w, &candidates, &start) {
         return Ok(());
     }
+    // No outcome of the switching relations is consistent (a positive-feedback loop
+    // past the fold of its branch, switching between that branch and the unstable
+    // one): the consistent mode changes other relations of the block too (the other
+    // limit of the comparator).
+    if candidates.len() < b.relations.len() {
+        ev.relations.copy_from_slice(&base);
+        if search(b, r, ev, w, &b.relations, &start) {
+            return Ok(());
+        }
+    }
     ev.relations.copy_from_slice(&base);
     if let Some(f) = failure {
         return Err(f);

@@ -124,6 +124,11 @@ impl Simulator<'_> {
                     .any(|(&(_, v), side)| side.is_some_and(|w| w != v));
             }
             self.ode.regs.copy_from_slice(&registers);
+            // Neither outcome holds along its own flow: a loop whose branch ended at
+            // its fold (a comparator in positive feedback) has another consistent mode.
+            if sliding && self.jump_mode(t, &x, &changed) {
+                sliding = false;
+            }
         }
         // Restore the registers to the state at t with the settled relations.
         let _ = self.load_state(t, &x);
@@ -144,6 +149,64 @@ impl Simulator<'_> {
             }
         }
         Settled { sliding, fires }
+    }
+
+    /// A sliding relation (`changed`: each outcome drives its function back across
+    /// zero) decided as Modelica's event iteration decides relations with the new
+    /// continuous values: the model is evaluated in event mode just after `t` along
+    /// the flow, so a Newton block searches its modes for one consistent with its own
+    /// solution (the other limit of a saturated positive-feedback loop: its relations
+    /// away from their roots). Kept, and true returned, when at `t` too that mode
+    /// leaves none of the `changed` relations sliding; otherwise the relations and the
+    /// registers are restored.
+    fn jump_mode(&mut self, t: f64, x: &[f64], changed: &[(usize, f64)]) -> bool {
+        let m = self.m();
+        let saved = self.ode.ev.relations.clone();
+        let registers = self.ode.regs.clone();
+        let restore = |me: &mut Self| {
+            me.ode.ev.relations.copy_from_slice(&saved);
+            me.ode.regs.copy_from_slice(&registers);
+        };
+        if self.load_state(t, x).is_err() {
+            restore(self);
+            return false;
+        }
+        let delta = 1e-8 * t.abs().max(1.0);
+        let x1: Vec<f64> = (0..x.len())
+            .map(|i| {
+                let dx = m
+                    .derivatives
+                    .get(i)
+                    .map_or(0.0, |&r| self.ode.regs[r as usize]);
+                x[i] + delta * dx
+            })
+            .collect();
+        let sticky = self.ode.ev.sticky;
+        self.ode.ev.event_mode = true;
+        self.ode.ev.sticky = false;
+        let loaded = self.load_state(t + delta, &x1).is_ok();
+        self.ode.ev.event_mode = false;
+        self.ode.ev.sticky = sticky;
+        if !loaded || self.ode.ev.relations == saved {
+            restore(self);
+            return false;
+        }
+        let components: Vec<(usize, Direction)> = changed
+            .iter()
+            .map(|&(k, _)| (k, Direction::Rising))
+            .collect();
+        let consistent = self.flow_sides(t, x, &components).is_some_and(|sides| {
+            components
+                .iter()
+                .zip(sides)
+                .all(|(&(k, _), side)| side.is_none_or(|w| w == self.ode.ev.relations[k]))
+        });
+        if !consistent {
+            restore(self);
+            return false;
+        }
+        self.ode.regs.copy_from_slice(&registers);
+        true
     }
 
     /// Per component (a relation, at its root at `(t, x)`): the value the relation
