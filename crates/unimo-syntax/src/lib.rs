@@ -6,6 +6,7 @@
 
 pub mod ast;
 mod build;
+pub mod error;
 pub mod dump;
 mod fast;
 mod grammar;
