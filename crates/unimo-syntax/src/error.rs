@@ -253,9 +253,9 @@ fn arguments_plural(max: &usize) -> &'static str {
 /// The help of a character that is not Modelica, when one fits.
 fn char_help(ch: char) -> Option<&'static str> {
     match ch {
-        '#' | '%' | '$' | '@' | '!' | '&' | '|' | '?' | '~' | '`' => Some(
-            "comments start with `//` or `/*`; logical operators are `and`, `or`, `not`",
-        ),
+        '#' | '%' | '$' | '@' | '!' | '&' | '|' | '?' | '~' | '`' => {
+            Some("comments start with `//` or `/*`; logical operators are `and`, `or`, `not`")
+        }
         '\u{2013}' | '\u{2212}' => Some("this is a typographic dash; use `-`"),
         '\u{201c}' | '\u{201d}' => Some("this is a typographic quote; use `\"`"),
         _ => None,

@@ -6,8 +6,8 @@
 
 pub mod ast;
 mod build;
-pub mod error;
 pub mod dump;
+pub mod error;
 mod fast;
 mod grammar;
 pub mod lexer;
