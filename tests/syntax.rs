@@ -240,16 +240,23 @@ fn expressions_round_trip_through_the_printer() {
     assert!(count > 300, "only {count} expressions checked");
 }
 
-/// The typed codes of flattening (`FlatCode`) and lowering (`DaeCode`): each unique
-/// within its stage, in its stage's range, and with a row in `docs/errors.md`.
+/// The typed codes of the command line (`CliCode`), the syntax stage (`SyntaxCode`), flattening (`FlatCode`) and
+/// lowering (`DaeCode`): each unique within its stage, in its stage's range, and with a
+/// row in `docs/errors.md`.
 #[test]
 fn every_typed_code_is_unique_and_documented() {
     let doc =
         std::fs::read_to_string(manifest_dir().join("docs/errors.md")).expect("docs/errors.md");
+    let cli = unimo_cli::codes::CliCode::ALL.iter().map(|c| c.as_str());
+    let syntax = unimo_syntax::error::SyntaxCode::ALL
+        .iter()
+        .map(|c| c.as_str());
     let flat = unimo_flat::error::FlatCode::ALL.iter().map(|c| c.as_str());
     let dae = unimo_dae::error::DaeCode::ALL.iter().map(|c| c.as_str());
     for (stage, prefix, codes) in [
-        ("flat", "2", flat.collect::<Vec<_>>()),
+        ("cli", "0", cli.collect::<Vec<_>>()),
+        ("syntax", "1", syntax.collect()),
+        ("flat", "2", flat.collect()),
         ("dae", "3", dae.collect()),
     ] {
         let mut seen = std::collections::HashSet::new();

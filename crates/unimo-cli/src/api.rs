@@ -6,6 +6,7 @@
 //! again. A [`Session`] keeps the parsed files and the loaded library between
 //! compilations, so a sweep parses once per worker and recompiles per point.
 
+use crate::codes::CliCode;
 use crate::provider::CliProvider;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -68,7 +69,7 @@ impl ApiError {
                 location: d.primary_span().map(|s| map.location(s)),
                 rendered,
             },
-            None => ApiError::plain(kind, "E0000", "unknown error"),
+            None => ApiError::plain(kind, CliCode::Unknown.as_str(), "unknown error"),
         }
     }
 }
@@ -127,7 +128,7 @@ impl Compiled {
                 output_rtol: 0.0,
                 ..o
             })
-            .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0007", m))?;
+            .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::BadOptions.as_str(), m))?;
         let result = unimo_runtime::sim::simulate(&self.model, &options);
         let error = result.error.as_ref().map(|e| self.simulation_error(e));
         Ok((result, error))
@@ -191,7 +192,7 @@ pub fn with_session<R>(
             Some(t) => t.clone(),
             None => std::fs::read_to_string(path).map_err(|e| {
                 let m = format!("cannot read `{}`: {e}", path.display());
-                ApiError::plain(ErrorKind::Usage, "E0001", m)
+                ApiError::plain(ErrorKind::Usage, CliCode::Unreadable.as_str(), m)
             })?,
         };
         let id = tree.sources.add(path.clone(), text);
@@ -209,7 +210,7 @@ pub fn with_session<R>(
     }
     let classes = first.unwrap_or_default();
     let class = crate::check::pick(&mut tree, &classes, source.model.as_deref())
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0002", m))?;
+        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::BadFile.as_str(), m))?;
     let (base, diags) = unimo_flat::flatten(&mut tree, class);
     let mut session = Session {
         tree,
@@ -219,7 +220,7 @@ pub fn with_session<R>(
     };
     session.check(diags)?;
     crate::simulate::check_tunable(&session.base, &session.fold)
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0020", m))?;
+        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownTunable.as_str(), m))?;
     Ok(then(&mut session))
 }
 
@@ -320,7 +321,7 @@ fn output_ids(dae: &Dae, outputs: &[String]) -> Result<Vec<unimo_dae::expr::Scal
     let ids: Vec<_> = dae.ids().collect();
     let names: Vec<String> = ids.iter().map(|&s| dae.name(s)).collect();
     let cols = crate::simulate::select(&names, &without_time(outputs))
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0003", m))?;
+        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownName.as_str(), m))?;
     Ok(cols.into_iter().map(|c| ids[c]).collect())
 }
 
@@ -331,7 +332,7 @@ pub fn select_columns(names: &[String], outputs: &[String]) -> Result<Vec<usize>
         return Ok(Vec::new());
     }
     crate::simulate::select(names, &without_time(outputs))
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, "E0003", m))
+        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownName.as_str(), m))
 }
 
 fn without_time(outputs: &[String]) -> Vec<String> {
@@ -347,7 +348,7 @@ pub fn method(name: &str) -> Result<Method, ApiError> {
         "dopri5" => Ok(Method::Dopri5),
         _ => Err(ApiError::plain(
             ErrorKind::Usage,
-            "E0007",
+            CliCode::BadOptions.as_str(),
             format!("unknown method `{name}`: auto, bdf, radau5 or dopri5"),
         )),
     }

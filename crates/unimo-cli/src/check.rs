@@ -1,5 +1,6 @@
 //! `unimo check` and `unimo emit --stage ast`: read files, parse, report.
 
+use crate::codes::CliCode;
 use crate::provider::CliProvider;
 use crate::render::emit_stderr;
 use crate::{EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
@@ -101,12 +102,20 @@ fn read_text(path: &Path) -> Option<String> {
         Ok(b) => match String::from_utf8(b) {
             Ok(t) => Some(t),
             Err(_) => {
-                eprintln!("error[E0002]: `{}` is not UTF-8 text", path.display());
+                eprintln!(
+                    "error[{}]: `{}` is not UTF-8 text",
+                    CliCode::BadFile,
+                    path.display()
+                );
                 None
             }
         },
         Err(e) => {
-            eprintln!("error[E0001]: cannot read `{}`: {e}", path.display());
+            eprintln!(
+                "error[{}]: cannot read `{}`: {e}",
+                CliCode::Unreadable,
+                path.display()
+            );
             None
         }
     }

@@ -8,6 +8,7 @@ pub mod animate;
 pub mod api;
 mod bench;
 mod check;
+pub mod codes;
 pub mod fmu;
 mod numfmt;
 mod params;

@@ -4,6 +4,7 @@
 //! flattening again. Problems are coded `E00xx` diagnostics pointing into the command
 //! line or the override file.
 
+use crate::codes::CliCode;
 use std::path::{Path, PathBuf};
 use unimo_flat::flat::{FlatModel, FlatType, FlatVar, Variability};
 use unimo_source::{Diagnostic, FileId, SourceMap, Span};
@@ -33,9 +34,12 @@ fn split_lines(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Wri
         let at = |a: usize, b: usize| Span::new(file, start + lead + a, start + lead + b);
         let Some(eq) = content.find('=') else {
             diags.push(
-                Diagnostic::error("E0006", format!("`{content}` is not `NAME=VALUE`"))
-                    .at(at(0, content.len()), "no `=`")
-                    .with_help("write e.g. `-p k=0.8`"),
+                Diagnostic::error(
+                    CliCode::NotNameValue,
+                    format!("`{content}` is not `NAME=VALUE`"),
+                )
+                .at(at(0, content.len()), "no `=`")
+                .with_help("write e.g. `-p k=0.8`"),
             );
             continue;
         };
@@ -53,7 +57,7 @@ fn split_lines(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Wri
         });
         if name_trim.is_empty() {
             diags.push(
-                Diagnostic::error("E0006", "an override without a name")
+                Diagnostic::error(CliCode::NotNameValue, "an override without a name")
                     .at(at(0, eq + 1), "name missing"),
             );
             out.pop();
@@ -73,7 +77,10 @@ fn written(
     let mut out = Vec::new();
     if let Some(path) = file {
         let text = std::fs::read_to_string(path).map_err(|e| {
-            Diagnostic::error("E0001", format!("cannot read `{}`: {e}", path.display()))
+            Diagnostic::error(
+                CliCode::Unreadable,
+                format!("cannot read `{}`: {e}", path.display()),
+            )
         })?;
         let id = map.add(path.to_path_buf(), text.clone());
         out.extend(split_lines(id, &text, diags));
@@ -222,7 +229,7 @@ fn split_top_level(text: &str) -> Vec<&str> {
 fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
     let Some(var) = flat.vars.iter().find(|v| v.name == w.name) else {
         let mut d = Diagnostic::error(
-            "E0003",
+            CliCode::UnknownName,
             format!("no parameter `{}` in `{}`", w.name, flat.name),
         )
         .at(w.name_span, "unknown name");
@@ -238,7 +245,7 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
         return Err(d);
     };
     let refuse = |why: String, help: &str| {
-        Err(Diagnostic::error("E0005", why)
+        Err(Diagnostic::error(CliCode::NotSettable, why)
             .at(w.name_span, "cannot be changed")
             .with_label(var.origin, "declared here")
             .with_help(help.to_owned()))
@@ -268,7 +275,7 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
         );
     }
     let value = array_value(var, &var.dims, &w.value, w.value_span).map_err(|msg| {
-        Diagnostic::error("E0004", msg)
+        Diagnostic::error(CliCode::OverrideValue, msg)
             .at(w.value_span, "wrong value")
             .with_label(var.origin, "declared here")
     })?;

@@ -1,6 +1,7 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
+use crate::codes::CliCode;
 use crate::results::csv::CsvStream;
 use crate::{
     EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
@@ -409,13 +410,15 @@ pub(crate) fn check_tunable(
         .collect();
     let lines: Vec<String> = unknown
         .iter()
-        .map(|n| {
-            match unimo_flat::resolve::suggest(n, names.clone()) {
-                Some(c) => format!(
-                    "error[E0020]: --tunable `{n}` names no parameter of the model (did you mean `{c}`?)"
-                ),
-                None => format!("error[E0020]: --tunable `{n}` names no parameter of the model"),
-            }
+        .map(|n| match unimo_flat::resolve::suggest(n, names.clone()) {
+            Some(c) => format!(
+                "error[{}]: --tunable `{n}` names no parameter of the model (did you mean `{c}`?)",
+                CliCode::UnknownTunable
+            ),
+            None => format!(
+                "error[{}]: --tunable `{n}` names no parameter of the model",
+                CliCode::UnknownTunable
+            ),
         })
         .collect();
     Err(lines.join("\n"))

@@ -111,31 +111,28 @@ impl SimOptions {
     }
 }
 
-/// Why a simulation stopped early.
-#[derive(Clone, Debug, PartialEq)]
+/// Why a simulation stopped early; its message is its `Display` (thiserror).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SimError {
+    #[error("initialization failed: {message} (variables: {})", .culprits.join(", "))]
     Init {
         message: String,
         culprits: Vec<String>,
     },
+    #[error("the solver failed at t = {time}{}: {message}; worst variables: {}", step_note(.step), .culprits.join(", "))]
     Solver {
         time: f64,
         step: Option<f64>,
         message: String,
         culprits: Vec<String>,
     },
-    Block {
-        time: f64,
-        failure: BlockFailure,
-    },
-    Assert {
-        time: f64,
-        message: String,
-    },
-    EventIteration {
-        time: f64,
-        culprits: Vec<String>,
-    },
+    #[error("an algebraic loop failed at t = {time}: {} (residual {:e}); its iteration variables: {}", .failure.reason, .failure.residual, .failure.variables.join(", "))]
+    Block { time: f64, failure: BlockFailure },
+    #[error("assertion failed at t = {time}: {message}")]
+    Assert { time: f64, message: String },
+    #[error("event iteration did not converge at t = {time} after {} iterations; still changing: {}", MAX_EVENT_ITERATIONS, .culprits.join(", "))]
+    EventIteration { time: f64, culprits: Vec<String> },
+    #[error("chattering at t = {time}: {events} events in a row {}", chatter_note(.crossing, .sliding))]
     Chattering {
         time: f64,
         crossing: String,
@@ -145,6 +142,7 @@ pub enum SimError {
         sliding: bool,
     },
     /// A result value became NaN or infinite.
+    #[error("`{variable}` is {value} at t = {time}{}{}", step_note(.step), .equation.map(|e| format!(", computed by equation #{}", e.0)).unwrap_or_default())]
     NonFinite {
         time: f64,
         step: Option<f64>,
@@ -154,6 +152,21 @@ pub enum SimError {
         /// show with its source.
         equation: Option<unimo_dae::dae::EqId>,
     },
+}
+
+/// `, step size 1e-3` when the step size is known.
+fn step_note(step: &Option<f64>) -> String {
+    step.map(|h| format!(", step size {h:e}"))
+        .unwrap_or_default()
+}
+
+/// How chattering events followed each other, and from which crossing.
+fn chatter_note(crossing: &str, sliding: &bool) -> String {
+    if *sliding {
+        format!("where the flow drives the zero crossing `{crossing}` back across zero from both sides (a sliding mode)")
+    } else {
+        format!("less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`")
+    }
 }
 
 impl SimError {
@@ -169,41 +182,9 @@ impl SimError {
         }
     }
 
+    /// The message (its `Display`).
     pub fn message(&self) -> String {
-        match self {
-            SimError::Init { message, culprits } => {
-                format!("initialization failed: {message} (variables: {})", culprits.join(", "))
-            }
-            SimError::Solver { time, step, message, culprits } => format!(
-                "the solver failed at t = {time}{}: {message}; worst variables: {}",
-                step.map(|h| format!(", step size {h:e}")).unwrap_or_default(),
-                culprits.join(", ")
-            ),
-            SimError::Block { time, failure } => format!(
-                "an algebraic loop failed at t = {time}: {} (residual {:e}); its iteration variables: {}",
-                failure.reason,
-                failure.residual,
-                failure.variables.join(", ")
-            ),
-            SimError::Assert { time, message } => format!("assertion failed at t = {time}: {message}"),
-            SimError::EventIteration { time, culprits } => format!(
-                "event iteration did not converge at t = {time} after {MAX_EVENT_ITERATIONS} iterations; still changing: {}",
-                culprits.join(", ")
-            ),
-            SimError::NonFinite { time, step, variable, value, equation } => format!(
-                "`{variable}` is {value} at t = {time}{}{}",
-                step.map(|h| format!(", step size {h:e}")).unwrap_or_default(),
-                equation
-                    .map(|e| format!(", computed by equation #{}", e.0))
-                    .unwrap_or_default()
-            ),
-            SimError::Chattering { time, crossing, events, sliding: false } => format!(
-                "chattering at t = {time}: {events} events in a row less than {CHATTER_WINDOW:e} apart, from the zero crossing `{crossing}`"
-            ),
-            SimError::Chattering { time, crossing, events, sliding: true } => format!(
-                "chattering at t = {time}: {events} events in a row where the flow drives the zero crossing `{crossing}` back across zero from both sides (a sliding mode)"
-            ),
-        }
+        self.to_string()
     }
 }
 
@@ -765,4 +746,67 @@ impl<'a> Simulator<'a> {
 /// Convenience: compile-time model in, results out.
 pub fn simulate(m: &CompiledModel, o: &SimOptions) -> SimResult {
     Simulator::new(m).run(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each variant's message, with and without its optional parts.
+    #[test]
+    fn messages_of_every_variant() {
+        let failure = BlockFailure {
+            variables: vec!["a".into(), "b".into()],
+            residual: 0.5,
+            reason: "no convergence".into(),
+        };
+        let cases = [
+            (
+                SimError::Init { message: "m".into(), culprits: vec!["x".into(), "y".into()] },
+                "initialization failed: m (variables: x, y)",
+            ),
+            (
+                SimError::Solver { time: 1.5, step: Some(0.001), message: "m".into(), culprits: vec!["x".into()] },
+                "the solver failed at t = 1.5, step size 1e-3: m; worst variables: x",
+            ),
+            (
+                SimError::Solver { time: 2.0, step: None, message: "m".into(), culprits: vec![] },
+                "the solver failed at t = 2: m; worst variables: ",
+            ),
+            (
+                SimError::Block { time: 1.0, failure },
+                "an algebraic loop failed at t = 1: no convergence (residual 5e-1); its iteration variables: a, b",
+            ),
+            (SimError::Assert { time: 0.5, message: "m".into() }, "assertion failed at t = 0.5: m"),
+            (
+                SimError::EventIteration { time: 3.0, culprits: vec!["x".into()] },
+                "event iteration did not converge at t = 3 after 100 iterations; still changing: x",
+            ),
+            (
+                SimError::Chattering { time: 1.0, crossing: "x > 0".into(), events: 7, sliding: false },
+                "chattering at t = 1: 7 events in a row less than 1e-9 apart, from the zero crossing `x > 0`",
+            ),
+            (
+                SimError::Chattering { time: 1.0, crossing: "x > 0".into(), events: 7, sliding: true },
+                "chattering at t = 1: 7 events in a row where the flow drives the zero crossing `x > 0` back across zero from both sides (a sliding mode)",
+            ),
+            (
+                SimError::NonFinite {
+                    time: 1.0,
+                    step: Some(0.25),
+                    variable: "v".into(),
+                    value: f64::NAN,
+                    equation: Some(unimo_dae::dae::EqId(4)),
+                },
+                "`v` is NaN at t = 1, step size 2.5e-1, computed by equation #4",
+            ),
+            (
+                SimError::NonFinite { time: 1.0, step: None, variable: "v".into(), value: f64::INFINITY, equation: None },
+                "`v` is inf at t = 1",
+            ),
+        ];
+        for (e, expected) in cases {
+            assert_eq!(e.message(), expected, "{e:?}");
+        }
+    }
 }

@@ -7,6 +7,7 @@
 pub mod ast;
 mod build;
 pub mod dump;
+pub mod error;
 mod fast;
 mod grammar;
 pub mod lexer;

@@ -7,6 +7,7 @@
 
 use crate::ast::{Expr, StoredDefinition};
 use crate::build::Builder;
+use crate::error::SyntaxError;
 use crate::fast;
 use crate::grammar::{describe, ModelicaParser, Rule};
 use crate::lexer::{self, LexError, Scan, Token, TokenKind};
@@ -226,14 +227,11 @@ fn repair_syntax_errors(
                 };
                 if diagnostics.len() >= MAX_ERRORS {
                     diagnostics.push(
-                        Diagnostic::error(
-                            "E1105",
-                            format!("too many errors; stopped after {MAX_ERRORS}"),
-                        )
-                        .at(
-                            Span::point(file, err_pos(&err).min(text.len())),
-                            "parsing stopped here",
-                        ),
+                        SyntaxError::TooManyErrors {
+                            limit: MAX_ERRORS,
+                            span: Span::point(file, err_pos(&err).min(text.len())),
+                        }
+                        .into(),
                     );
                     return Parsed {
                         ast: empty,
@@ -381,55 +379,40 @@ fn lex_span(err: &LexError) -> (usize, usize) {
 }
 
 pub(crate) fn lex_diagnostic(file: FileId, text: &str, err: &LexError) -> Diagnostic {
+    lex_error(file, text, err).into()
+}
+
+/// The syntax error of a lexical error in `text`.
+fn lex_error(file: FileId, text: &str, err: &LexError) -> SyntaxError {
     let (start, end) = lex_span(err);
     let span = Span::new(file, start.min(text.len()), end.min(text.len()));
-    match err {
-        LexError::UnexpectedChar { ch, .. } => {
-            let d = Diagnostic::error("E1001", format!("unexpected character `{}`", ch.escape_debug()))
-                .at(span, "not part of Modelica's syntax");
-            match ch {
-                '#' | '%' | '$' | '@' | '!' | '&' | '|' | '?' | '~' | '`' => {
-                    d.with_help("comments start with `//` or `/*`; logical operators are `and`, `or`, `not`")
-                }
-                '\u{2013}' | '\u{2212}' => d.with_help("this is a typographic dash; use `-`"),
-                '\u{201c}' | '\u{201d}' => d.with_help("this is a typographic quote; use `\"`"),
-                _ => d,
+    let lexeme = || text[start..end.min(text.len())].to_string();
+    match *err {
+        LexError::UnexpectedChar { ch, .. } => SyntaxError::UnexpectedChar { ch, span },
+        LexError::UnterminatedString { .. } => SyntaxError::UnterminatedString { span },
+        LexError::UnterminatedComment { .. } => SyntaxError::UnterminatedComment {
+            span: Span::new(file, start, (start + 2).min(text.len())),
+        },
+        LexError::MalformedNumber { .. } => SyntaxError::MalformedNumber {
+            text: lexeme(),
+            span,
+        },
+        LexError::BadEscape { .. } => SyntaxError::BadEscape {
+            text: lexeme(),
+            span,
+        },
+        LexError::UnterminatedQuotedIdent { .. } => SyntaxError::UnterminatedQuotedIdent { span },
+        LexError::TooDeep { depth, .. } if depth > lexer::MAX_OPERATORS => {
+            SyntaxError::TooManyOperators {
+                limit: lexer::MAX_OPERATORS,
+                span,
             }
         }
-        LexError::UnterminatedString { .. } => Diagnostic::error("E1002", "unterminated string literal")
-            .at(span, "this string is never closed")
-            .with_help("add the closing `\"`; a `\"` inside a string is written `\\\"`"),
-        LexError::UnterminatedComment { .. } => Diagnostic::error("E1003", "unterminated block comment")
-            .at(Span::new(file, start, (start + 2).min(text.len())), "this comment is never closed")
-            .with_help("close it with `*/`"),
-        LexError::MalformedNumber { .. } => Diagnostic::error(
-            "E1004",
-            format!("malformed number `{}`", &text[start..end.min(text.len())]),
-        )
-        .at(span, "not a valid number")
-        .with_help("numbers look like `12`, `1.5`, `.5`, `2.`, `1e-3` or `6.02E23`; a name cannot start with a digit"),
-        LexError::BadEscape { .. } => Diagnostic::error(
-            "E1005",
-            format!("invalid escape `{}` in string", &text[start..end.min(text.len())]),
-        )
-        .at(span, "unknown escape sequence")
-        .with_help("valid escapes are \\' \\\" \\? \\\\ \\a \\b \\f \\n \\r \\t \\v"),
-        LexError::UnterminatedQuotedIdent { .. } => {
-            Diagnostic::error("E1006", "unterminated quoted identifier")
-                .at(span, "this `'` is never closed on its line")
-                .with_help("quoted identifiers look like `'my name'`")
-        }
-        LexError::TooDeep { depth, .. } if *depth > lexer::MAX_OPERATORS => Diagnostic::error(
-            "E1008",
-            format!("expression too long (more than {} operators in one statement)", lexer::MAX_OPERATORS),
-        )
-        .at(span, "the limit is exceeded here")
-        .with_help("split it with intermediate variables, or use `sum(...)` over an array"),
-        LexError::TooDeep { depth, .. } => Diagnostic::error(
-            "E1008",
-            format!("nesting is too deep ({depth} levels; at most {} are supported)", lexer::MAX_DEPTH),
-        )
-        .at(span, "nesting exceeds the limit here"),
+        LexError::TooDeep { depth, .. } => SyntaxError::TooDeep {
+            depth,
+            limit: lexer::MAX_DEPTH,
+            span,
+        },
     }
 }
 
@@ -522,9 +505,12 @@ impl ErrorSite<'_> {
             .is_some_and(|b| b.is_ascii_whitespace());
         if later_line && ends_with_space && !is_punct(text, prev, ";") {
             let at = Span::point(self.file, prev.end());
-            let d = Diagnostic::error("E1101", format!("expected `;`, found {}", self.found_desc))
-                .at(at, "add `;` here")
-                .with_label(self.here, "the next item starts here");
+            let d = SyntaxError::MissingSemicolon {
+                found: self.found_desc.clone(),
+                span: at,
+                next: self.here,
+            }
+            .into();
             return Some((d, Fix::InsertSemicolon(prev.end())));
         }
         None
@@ -538,15 +524,12 @@ impl ErrorSite<'_> {
         }
         let (name, span) = unclosed_class(self.tokens, text)?;
         Some(
-            Diagnostic::error(
-                "E1102",
-                format!("unexpected end of file: class `{name}` is not closed"),
-            )
-            .at(
-                Span::point(file, text.len()),
-                format!("expected `end {name};` before the end of the file"),
-            )
-            .with_label(Span::new(file, span.0, span.1), "class opened here"),
+            SyntaxError::UnclosedClass {
+                name: name.to_string(),
+                span: Span::point(file, text.len()),
+                opened: Span::new(file, span.0, span.1),
+            }
+            .into(),
         )
     }
 
@@ -557,14 +540,13 @@ impl ErrorSite<'_> {
             && self.has("identifier")
             && !matches!(token_text(self.text, t), "end" | "equation" | "algorithm")
         {
-            let word = token_text(self.text, t);
+            let word = token_text(self.text, t).to_string();
             return Some(
-                Diagnostic::error(
-                    "E1103",
-                    format!("`{word}` is a reserved word and cannot be used as a name"),
-                )
-                .at(self.here, "reserved word")
-                .with_help(format!("rename it, or quote it as `'{word}'`")),
+                SyntaxError::ReservedWord {
+                    word,
+                    span: self.here,
+                }
+                .into(),
             );
         }
         None
@@ -591,36 +573,33 @@ impl ErrorSite<'_> {
             _ => "}",
         };
         Some(
-            Diagnostic::error(
-                "E1104",
-                format!(
-                    "unclosed `{open}`: expected `{close}`, found {}",
-                    self.found_desc
-                ),
-            )
-            .at(self.here, format!("expected `{close}` before this"))
-            .with_label(Span::new(self.file, span.0, span.1), "opened here"),
+            SyntaxError::UnclosedBracket {
+                open: open.to_string(),
+                close,
+                found: self.found_desc.clone(),
+                span: self.here,
+                opened: Span::new(self.file, span.0, span.1),
+            }
+            .into(),
         )
     }
 
     /// Any other error: what was expected and what was found.
     fn unexpected(&self) -> Diagnostic {
-        let found_desc = &self.found_desc;
-        let mut msg = if self.expected.is_empty() {
-            format!("unexpected {found_desc}")
+        let expected = if self.expected.is_empty() {
+            String::new()
         } else {
-            format!(
-                "expected {}, found {found_desc}",
-                join_expected(&self.expected)
-            )
+            join_expected(&self.expected)
         };
-        if self
-            .found
-            .is_some_and(|t| token_text(self.text, t) == "when")
-        {
-            msg.push_str(" (a `when` is not allowed here)");
+        SyntaxError::Unexpected {
+            expected,
+            found: self.found_desc.clone(),
+            when: self
+                .found
+                .is_some_and(|t| token_text(self.text, t) == "when"),
+            span: self.here,
         }
-        Diagnostic::error("E1100", msg).at(self.here, "unexpected here")
+        .into()
     }
 }
 

@@ -2,6 +2,7 @@
 //! they build the same nodes and report the same diagnostics.
 
 use crate::ast::{ComponentRef, ExprKind, Name};
+use crate::error::SyntaxError;
 use unimo_source::{Diagnostic, Span};
 
 /// A number literal's value; reports `E1007` when it is out of range.
@@ -9,21 +10,14 @@ pub(crate) fn number(text: &str, span: Span, diags: &mut Vec<Diagnostic>) -> Exp
     if text.contains(['.', 'e', 'E']) {
         let v: f64 = text.parse().unwrap_or(f64::NAN);
         if !v.is_finite() {
-            diags.push(
-                Diagnostic::error("E1007", "real literal is out of range")
-                    .at(span, "larger than the largest finite Real (about 1.8e308)"),
-            );
+            diags.push(SyntaxError::RealOutOfRange { span }.into());
         }
         return ExprKind::Real(v);
     }
     match text.parse::<i64>() {
         Ok(v) => ExprKind::Integer(v),
         Err(_) => {
-            diags.push(
-                Diagnostic::error("E1007", "integer literal is too large")
-                    .at(span, "does not fit in a 64-bit Integer")
-                    .with_help("write it as a Real, e.g. `1e20`"),
-            );
+            diags.push(SyntaxError::IntegerTooLarge { span }.into());
             ExprKind::Integer(0)
         }
     }
@@ -34,10 +28,7 @@ pub(crate) fn callee(cref: &ComponentRef, diags: &mut Vec<Diagnostic>) -> Name {
     match cref.as_name() {
         Some(n) => n,
         None => {
-            diags.push(
-                Diagnostic::error("E1218", "a function name cannot have subscripts")
-                    .at(cref.span, "subscripted name called as a function"),
-            );
+            diags.push(SyntaxError::SubscriptedCallee { span: cref.span }.into());
             Name {
                 global: cref.global,
                 parts: cref.parts.iter().map(|p| p.name.clone()).collect(),
@@ -49,21 +40,15 @@ pub(crate) fn callee(cref: &ComponentRef, diags: &mut Vec<Diagnostic>) -> Name {
 
 /// `E1215`: `:=` written in an equation section.
 pub(crate) fn assign_in_equation(op: Span) -> Diagnostic {
-    Diagnostic::error("E1215", "`:=` in an equation section")
-        .at(op, "assignment is only allowed in algorithm sections")
-        .with_help("write an equation with `=`, or move it into an `algorithm` section")
+    SyntaxError::AssignInEquation { span: op }.into()
 }
 
 /// `E1216`: `=` written in an algorithm section.
 pub(crate) fn equals_in_algorithm(op: Span) -> Diagnostic {
-    Diagnostic::error("E1216", "`=` in an algorithm section")
-        .at(op, "statements assign with `:=`")
-        .with_help("write `:=`, or move the equation into an `equation` section")
+    SyntaxError::EqualsInAlgorithm { span: op }.into()
 }
 
 /// `E1217`: a statement that is only a reference.
 pub(crate) fn statement_without_effect(target: Span) -> Diagnostic {
-    Diagnostic::error("E1217", "a statement must assign or call")
-        .at(target, "this reference alone does nothing")
-        .with_help("write `x := expr;` or call a function `f(x);`")
+    SyntaxError::StatementWithoutEffect { span: target }.into()
 }

@@ -3,6 +3,7 @@
 //! duplicates within one declaration.
 
 use crate::ast::*;
+use crate::error::SyntaxError;
 use std::collections::HashMap;
 use unimo_source::{Diagnostic, Span};
 
@@ -47,19 +48,19 @@ fn simple_name(func: &Name) -> Option<&str> {
 }
 
 impl Validator<'_> {
-    fn push(&mut self, d: Diagnostic) {
-        self.diags.push(d);
+    fn push(&mut self, e: SyntaxError) {
+        self.diags.push(e.into());
     }
 
     fn classes<'c>(&mut self, classes: impl IntoIterator<Item = &'c ClassDef>) {
         let mut seen: HashMap<&str, Span> = HashMap::new();
         for c in classes {
             if let Some(first) = seen.get(c.name.text.as_str()) {
-                self.push(
-                    Diagnostic::error("E1213", format!("class `{}` is defined twice", c.name.text))
-                        .at(c.name.span, "second definition")
-                        .with_label(*first, "first defined here"),
-                );
+                self.push(SyntaxError::DuplicateClass {
+                    name: c.name.text.to_string(),
+                    span: c.name.span,
+                    first: *first,
+                });
             } else {
                 seen.insert(&c.name.text, c.name.span);
             }
@@ -90,17 +91,12 @@ impl Validator<'_> {
         ];
         for (bad, word, allowed) in misplaced {
             if bad {
-                self.push(
-                    Diagnostic::error(
-                        "E1223",
-                        format!("`{word}` cannot prefix a {}", c.kind.keyword()),
-                    )
-                    .at(
-                        c.name.span,
-                        format!("declared as {} here", c.kind.keyword()),
-                    )
-                    .with_help(format!("`{word}` refines only `{allowed}`")),
-                );
+                self.push(SyntaxError::MisplacedClassPrefix {
+                    word,
+                    keyword: c.kind.keyword(),
+                    allowed,
+                    span: c.name.span,
+                });
             }
         }
     }
@@ -115,19 +111,13 @@ impl Validator<'_> {
                 ..
             } => {
                 if end_name.text != c.name.text && !end_name.text.is_empty() {
-                    self.push(
-                        Diagnostic::error(
-                            "E1201",
-                            format!(
-                                "`end {}` does not match `{} {}`",
-                                end_name.text,
-                                c.kind.keyword(),
-                                c.name.text
-                            ),
-                        )
-                        .at(end_name.span, format!("expected `{}`", c.name.text))
-                        .with_label(c.name.span, "class opened here"),
-                    );
+                    self.push(SyntaxError::EndNameMismatch {
+                        end_name: end_name.text.to_string(),
+                        keyword: c.kind.keyword(),
+                        name: c.name.text.to_string(),
+                        span: end_name.span,
+                        opened: c.name.span,
+                    });
                 }
                 self.composition(c, composition);
             }
@@ -149,14 +139,11 @@ impl Validator<'_> {
                 let mut seen: HashMap<&str, Span> = HashMap::new();
                 for l in literals {
                     if let Some(first) = seen.get(l.name.text.as_str()) {
-                        self.push(
-                            Diagnostic::error(
-                                "E1214",
-                                format!("enumeration literal `{}` appears twice", l.name.text),
-                            )
-                            .at(l.name.span, "duplicate literal")
-                            .with_label(*first, "first here"),
-                        );
+                        self.push(SyntaxError::DuplicateLiteral {
+                            name: l.name.text.to_string(),
+                            span: l.name.span,
+                            first: *first,
+                        });
                     } else {
                         seen.insert(&l.name.text, l.name.span);
                     }
@@ -198,18 +185,12 @@ impl Validator<'_> {
     /// An `external` clause: allowed in functions only; its arguments checked.
     fn external(&mut self, c: &ClassDef, ext: &External) {
         if c.kind != ClassKind::Function {
-            self.push(
-                Diagnostic::error(
-                    "E1226",
-                    format!("a {} cannot have an `external` clause", c.kind.keyword()),
-                )
-                .at(ext.span, "external clause not allowed here")
-                .with_label(
-                    c.name.span,
-                    format!("in {} `{}`", c.kind.keyword(), c.name.text),
-                )
-                .with_help("only functions are implemented externally"),
-            );
+            self.push(SyntaxError::ExternalNotInFunction {
+                keyword: c.kind.keyword(),
+                name: c.name.text.to_string(),
+                span: ext.span,
+                class: c.name.span,
+            });
         }
         if let Some(call) = &ext.call {
             for a in &call.args {
@@ -225,14 +206,13 @@ impl Validator<'_> {
         match s {
             Section::Equation(es) => {
                 if !c.kind.may_have_equations() {
-                    self.push(
-                        misplaced_section(c, "E1221", "equations", es.span, "equation")
-                            .with_help(if in_function {
-                                "functions compute their outputs in an `algorithm` section with `:=`"
-                            } else {
-                                "equations belong in a `model` or `block`"
-                            }),
-                    );
+                    self.push(SyntaxError::EquationsNotAllowed {
+                        keyword: c.kind.keyword(),
+                        name: c.name.text.to_string(),
+                        in_function,
+                        span: es.span,
+                        class: c.name.span,
+                    });
                 }
                 let ctx = Ctx {
                     in_initial: es.initial,
@@ -245,13 +225,12 @@ impl Validator<'_> {
             }
             Section::Algorithm(al) => {
                 if !c.kind.may_have_algorithms() {
-                    self.push(misplaced_section(
-                        c,
-                        "E1222",
-                        "algorithm sections",
-                        al.span,
-                        "algorithm",
-                    ));
+                    self.push(SyntaxError::AlgorithmNotAllowed {
+                        keyword: c.kind.keyword(),
+                        name: c.name.text.to_string(),
+                        span: al.span,
+                        class: c.name.span,
+                    });
                 }
                 let ctx = Ctx {
                     in_initial: al.initial,
@@ -311,14 +290,11 @@ impl Validator<'_> {
                     // same full name twice is not (spec 7.2.4).
                     if let Some(first) = seen.get(&key) {
                         if modification.as_ref().is_some_and(|m| m.binding.is_some()) {
-                            self.push(
-                                Diagnostic::error(
-                                    "E1242",
-                                    format!("`{key}` is modified twice in one modification"),
-                                )
-                                .at(*span, "second modification")
-                                .with_label(*first, "first here"),
-                            );
+                            self.push(SyntaxError::DuplicateModification {
+                                name: key.clone(),
+                                span: *span,
+                                first: *first,
+                            });
                         }
                     } else if modification.as_ref().is_some_and(|m| m.binding.is_some()) {
                         seen.insert(key, *span);
@@ -352,11 +328,7 @@ impl Validator<'_> {
             EquationKind::Call(e) => {
                 if !matches!(e.kind, ExprKind::Call { .. }) {
                     if !matches!(&e.kind, ExprKind::Tuple(v) if v.is_empty()) {
-                        self.push(
-                            Diagnostic::error("E1219", "an equation needs `=`")
-                                .at(e.span, "this expression is not an equation")
-                                .with_help("write `lhs = rhs;`; only function calls such as `assert(...)` stand alone"),
-                        );
+                        self.push(SyntaxError::EquationWithoutEquals { span: e.span });
                     }
                     return;
                 }
@@ -408,27 +380,15 @@ impl Validator<'_> {
     fn when_allowed(&mut self, span: Span, ctx: Ctx) -> bool {
         let when_span = Span::new(span.file, span.start as usize, span.start as usize + 4);
         if ctx.in_when {
-            self.push(
-                Diagnostic::error("E1202", "`when` nested inside another `when`")
-                    .at(when_span, "nested `when`")
-                    .with_help("combine the conditions, or use `elsewhen` (Modelica spec 8.3.5)"),
-            );
+            self.push(SyntaxError::NestedWhen { span: when_span });
             return false;
         }
         if ctx.in_function {
-            self.push(
-                Diagnostic::error("E1207", "`when` inside a function")
-                    .at(when_span, "not allowed in a function")
-                    .with_help("functions have no events; use `if`"),
-            );
+            self.push(SyntaxError::WhenInFunction { span: when_span });
             return false;
         }
         if ctx.in_initial {
-            self.push(
-                Diagnostic::error("E1206", "`when` in an initial section")
-                    .at(when_span, "not allowed during initialization")
-                    .with_help("use `when initial() then ... end when;` in a normal section, or write the initial equation directly"),
-            );
+            self.push(SyntaxError::WhenInInitial { span: when_span });
             return false;
         }
         true
@@ -439,24 +399,11 @@ impl Validator<'_> {
         if let ExprKind::Call { func, args } = &e.kind {
             if simple_name(func) == Some("reinit") {
                 if !ctx.in_when {
-                    self.push(
-                        Diagnostic::error("E1204", "`reinit` outside a `when`")
-                            .at(func.span, "reinit is only allowed in the body of a `when`")
-                            .with_help(
-                                "wrap it: `when condition then reinit(x, value); end when;`",
-                            ),
-                    );
+                    self.push(SyntaxError::ReinitOutsideWhen { span: func.span });
                 }
                 if let Some(first) = args.positional.first() {
                     if !matches!(first.kind, ExprKind::Ref(_)) {
-                        self.push(
-                            Diagnostic::error(
-                                "E1205",
-                                "the first argument of `reinit` must be a variable",
-                            )
-                            .at(first.span, "not a variable reference")
-                            .with_help("write `reinit(x, expr)` where `x` is a state"),
-                        );
+                        self.push(SyntaxError::ReinitOfNonVariable { span: first.span });
                     }
                 }
             }
@@ -473,13 +420,7 @@ impl Validator<'_> {
             StatementKind::MultiAssign { targets, value } => {
                 for t in targets.iter().flatten() {
                     if !matches!(t.kind, ExprKind::Ref(_)) {
-                        self.push(
-                            Diagnostic::error(
-                                "E1220",
-                                "the targets of `(...) :=` must be variables",
-                            )
-                            .at(t.span, "not a variable reference"),
-                        );
+                        self.push(SyntaxError::NonVariableTarget { span: t.span });
                     }
                 }
                 self.expr(value, ctx);
@@ -540,19 +481,12 @@ impl Validator<'_> {
             }
             StatementKind::Return => {
                 if !ctx.in_function {
-                    self.push(
-                        Diagnostic::error("E1208", "`return` outside a function")
-                            .at(st.span, "only functions can return")
-                            .with_help("in a model's algorithm, use `if` to skip statements"),
-                    );
+                    self.push(SyntaxError::ReturnOutsideFunction { span: st.span });
                 }
             }
             StatementKind::Break => {
                 if !ctx.in_loop {
-                    self.push(
-                        Diagnostic::error("E1209", "`break` outside a loop")
-                            .at(st.span, "not inside `for` or `while`"),
-                    );
+                    self.push(SyntaxError::BreakOutsideLoop { span: st.span });
                 }
             }
         }
@@ -592,10 +526,7 @@ impl Validator<'_> {
             ExprKind::Integer(_) | ExprKind::Real(_) | ExprKind::Bool(_) | ExprKind::String(_) => {}
             ExprKind::End => {
                 if !in_subscript {
-                    self.push(
-                        Diagnostic::error("E1224", "`end` used outside an array subscript")
-                            .at(e.span, "`end` only means the last index inside `[...]`"),
-                    );
+                    self.push(SyntaxError::EndOutsideSubscript { span: e.span });
                 }
             }
             ExprKind::Ref(r) => self.cref(r, ctx),
@@ -638,15 +569,11 @@ impl Validator<'_> {
                 }
             }
             ExprKind::Tuple(items) => {
-                let what = if items.is_empty() {
-                    "empty parentheses `()` are not an expression"
+                self.push(if items.is_empty() {
+                    SyntaxError::EmptyParentheses { span: e.span }
                 } else {
-                    "a parenthesized list `(a, b)` is not an expression"
-                };
-                self.push(
-                    Diagnostic::error("E1225", what)
-                        .at(e.span, "only allowed as the left side of `(a, b) := f(x)`"),
-                );
+                    SyntaxError::TupleAsValue { span: e.span }
+                });
             }
             ExprKind::PartialApplication { args, .. } => {
                 for a in args {
@@ -675,19 +602,15 @@ impl Validator<'_> {
                     continue;
                 }
                 if relational(op) && relational(*inner) {
-                    self.push(
-                        Diagnostic::error("E1230", "comparison operators cannot be chained")
-                            .at(lhs.span.to(rhs.span), "chained comparison")
-                            .with_help("write `a < b and b < c`"),
-                    );
+                    self.push(SyntaxError::ChainedComparison {
+                        span: lhs.span.to(rhs.span),
+                    });
                     return;
                 }
                 if power(op) && power(*inner) && side {
-                    self.push(
-                        Diagnostic::error("E1231", "`^` is not associative in Modelica")
-                            .at(lhs.span.to(rhs.span), "`a ^ b ^ c` is ambiguous")
-                            .with_help("add parentheses: `a ^ (b ^ c)` or `(a ^ b) ^ c`"),
-                    );
+                    self.push(SyntaxError::ChainedPower {
+                        span: lhs.span.to(rhs.span),
+                    });
                     return;
                 }
             }
@@ -699,21 +622,13 @@ impl Validator<'_> {
             if let Some((lo, hi)) = operator_arity(name) {
                 let n = args.positional.len() + args.named.len();
                 if n < lo || n > hi {
-                    let want = if lo == hi {
-                        format!("{lo}")
-                    } else {
-                        format!("{lo} to {hi}")
-                    };
-                    self.push(
-                        Diagnostic::error(
-                            "E1211",
-                            format!(
-                                "`{name}` takes {want} argument{}, found {n}",
-                                if hi == 1 { "" } else { "s" }
-                            ),
-                        )
-                        .at(args.span, "wrong number of arguments"),
-                    );
+                    self.push(SyntaxError::OperatorArity {
+                        name: name.to_string(),
+                        min: lo,
+                        max: hi,
+                        found: n,
+                        span: args.span,
+                    });
                 }
             }
             let event_op = matches!(
@@ -721,11 +636,10 @@ impl Validator<'_> {
                 "der" | "pre" | "edge" | "change" | "reinit" | "initial" | "terminal" | "sample"
             );
             if ctx.in_function && event_op {
-                self.push(
-                    Diagnostic::error("E1210", format!("`{name}` cannot be used in a function"))
-                        .at(func.span, "functions have no time, states or events")
-                        .with_help("compute the value in the model and pass it as an input"),
-                );
+                self.push(SyntaxError::EventOperatorInFunction {
+                    name: name.to_string(),
+                    span: func.span,
+                });
             }
             match name {
                 "der" => {
@@ -737,27 +651,17 @@ impl Validator<'_> {
                                 | ExprKind::Bool(_)
                                 | ExprKind::String(_)
                         ) {
-                            self.push(
-                                Diagnostic::error("E1203", "`der` of a literal")
-                                    .at(a.span, "a constant has no time derivative to take")
-                                    .with_help("the derivative of a constant is 0; write `0`"),
-                            );
+                            self.push(SyntaxError::DerOfLiteral { span: a.span });
                         }
                     }
                 }
                 "pre" | "edge" | "change" => {
                     if let Some(a) = args.positional.first() {
                         if !matches!(a.kind, ExprKind::Ref(_)) {
-                            self.push(
-                                Diagnostic::error(
-                                    "E1212",
-                                    format!("the argument of `{name}` must be a variable"),
-                                )
-                                .at(a.span, "not a variable reference")
-                                .with_help(format!(
-                                    "introduce a variable `v = ...;` and write `{name}(v)`"
-                                )),
-                            );
+                            self.push(SyntaxError::PreOfNonVariable {
+                                name: name.to_string(),
+                                span: a.span,
+                            });
                         }
                     }
                 }
@@ -772,19 +676,4 @@ impl Validator<'_> {
         }
         self.indices(&args.iterators, ctx);
     }
-}
-
-/// A section that a class of `c`'s kind cannot have (`what` in the message, `section`
-/// naming it in the label).
-fn misplaced_section(
-    c: &ClassDef,
-    code: &'static str,
-    what: &str,
-    span: Span,
-    section: &str,
-) -> Diagnostic {
-    let keyword = c.kind.keyword();
-    Diagnostic::error(code, format!("a {keyword} cannot have {what}"))
-        .at(span, format!("{section} section not allowed here"))
-        .with_label(c.name.span, format!("in {keyword} `{}`", c.name.text))
 }

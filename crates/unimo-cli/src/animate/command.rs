@@ -3,6 +3,7 @@
 
 use super::{AnimateOptions, AnimateSource, ResultTable};
 use crate::api::{ApiError, ErrorKind};
+use crate::codes::CliCode;
 use crate::{EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE};
 use std::path::{Path, PathBuf};
 
@@ -77,7 +78,10 @@ pub fn command(a: &AnimateArgs) -> i32 {
         match p.split_once('=') {
             Some((n, v)) => params.push((n.trim().to_owned(), v.trim().to_owned())),
             None => {
-                eprintln!("error[E0006]: `-p {p}` is not NAME=VALUE");
+                eprintln!(
+                    "error[{}]: `-p {p}` is not NAME=VALUE",
+                    CliCode::NotNameValue
+                );
                 return EXIT_USAGE;
             }
         }

@@ -13,6 +13,7 @@ pub use spec::{Body, Rotation, Series, Shape};
 pub use table::ResultTable;
 
 use crate::api::{self, ApiError, ErrorKind};
+use crate::codes::CliCode;
 use spec::error;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -53,7 +54,7 @@ pub fn page(
     if flat.visuals.is_empty() {
         return Err(error(
             ErrorKind::Usage,
-            "E0074",
+            CliCode::NothingToDraw,
             format!(
                 "`{}` has no component to draw: no class it instantiates declares \
                  `annotation(__unimo_visual(...))` (see docs/animation.md)",
@@ -65,12 +66,12 @@ pub fn page(
     let bodies = spec::bodies(&model, table)?;
     let clock = table.column(&options.clock).ok_or_else(|| {
         let message = format!("the result has no column `{}` for the clock", options.clock);
-        error(ErrorKind::Usage, "E0075", message)
+        error(ErrorKind::Usage, CliCode::BadClock, message)
     })?;
     let frames = page::frames(table, clock, options.max_frames).map_err(|m| {
         error(
             ErrorKind::Usage,
-            "E0075",
+            CliCode::BadClock,
             format!("clock `{}`: {m}", options.clock),
         )
     })?;
@@ -189,7 +190,7 @@ pub fn page_from_files(
             return Err(failure.unwrap_or_else(|| {
                 error(
                     ErrorKind::Simulation,
-                    "E0076",
+                    CliCode::NotInitialized,
                     "the model could not be initialized for its parameter values".into(),
                 )
             }));

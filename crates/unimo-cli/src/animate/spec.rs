@@ -4,6 +4,7 @@
 
 use super::table::ResultTable;
 use crate::api::{ApiError, ErrorKind};
+use crate::codes::CliCode;
 use std::collections::HashMap;
 use unimo_flat::flat::FlatType;
 use unimo_flat::{FlatModel, FlatVisual};
@@ -232,7 +233,7 @@ impl Resolver<'_, '_> {
     fn malformed(&self, what: String) -> ApiError {
         error(
             ErrorKind::Model,
-            "E0071",
+            CliCode::MalformedVisual,
             format!(
                 "`__unimo_visual` of `{}` (class `{}`): {what}",
                 self.v.path, self.v.class
@@ -283,7 +284,7 @@ impl Resolver<'_, '_> {
     fn not_a_variable(&self, full: &str) -> ApiError {
         error(
             ErrorKind::Model,
-            "E0072",
+            CliCode::VisualNotVariable,
             format!(
                 "`__unimo_visual` of `{}` (class `{}`) names `{}`, which is not a \
                  variable of the instance (or not a scalar where one is needed)",
@@ -391,7 +392,7 @@ impl Resolver<'_, '_> {
     fn missing(&self, name: &str) -> ApiError {
         error(
             ErrorKind::Usage,
-            "E0073",
+            CliCode::MissingColumn,
             format!(
                 "`{name}` (drawing `{}`) is not a column of the result and not a \
                  parameter of the model: simulate without `--vars`, or include it",
@@ -416,10 +417,10 @@ fn scalar_names(name: &str, dims: &[usize]) -> Vec<String> {
         .collect()
 }
 
-pub(super) fn error(kind: ErrorKind, code: &str, message: String) -> ApiError {
+pub(super) fn error(kind: ErrorKind, code: CliCode, message: String) -> ApiError {
     ApiError {
         kind,
-        code: code.into(),
+        code: code.as_str().into(),
         rendered: format!("error[{code}]: {message}"),
         message,
         location: None,

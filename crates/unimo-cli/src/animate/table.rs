@@ -2,6 +2,7 @@
 //! quoted when they hold a comma, as `T[1,2]`), or a run's rows in memory.
 
 use crate::api::{ApiError, ErrorKind};
+use crate::codes::CliCode;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -94,8 +95,8 @@ fn split_header(header: &str) -> Result<Vec<String>, String> {
 pub fn table_error(message: String) -> ApiError {
     ApiError {
         kind: ErrorKind::Usage,
-        code: "E0070".into(),
-        rendered: format!("error[E0070]: {message}"),
+        code: CliCode::ResultTable.as_str().into(),
+        rendered: format!("error[{}]: {message}", CliCode::ResultTable),
         message,
         location: None,
     }

@@ -31,6 +31,19 @@ pub enum CodegenError {
     TooManyRegisters(usize),
 }
 
+impl CodegenError {
+    /// The code of this error (`E46xx`), which its message also starts with.
+    pub fn code(&self) -> &'static str {
+        match self {
+            CodegenError::UnsupportedHost(_) => "E4601",
+            CodegenError::Settings(_) => "E4602",
+            CodegenError::Compile { .. } => "E4603",
+            CodegenError::Link(_) => "E4604",
+            CodegenError::TooManyRegisters(_) => "E4605",
+        }
+    }
+}
+
 /// Choices of the native compilation.
 #[derive(Clone, Debug)]
 pub struct NativeOptions {
@@ -176,4 +189,45 @@ pub fn compile_model(
         });
     stats.compile_ms = started.elapsed().as_secs_f64() * 1e3;
     Ok(stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CodegenError;
+
+    /// One error of each variant.
+    fn samples() -> Vec<CodegenError> {
+        vec![
+            CodegenError::UnsupportedHost("x".into()),
+            CodegenError::Settings("x".into()),
+            CodegenError::Compile {
+                tape: "t".into(),
+                message: "x".into(),
+            },
+            CodegenError::Link("x".into()),
+            CodegenError::TooManyRegisters(1),
+        ]
+    }
+
+    #[test]
+    fn each_code_is_unique_documented_and_starts_its_message() {
+        let doc = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/errors.md"),
+        )
+        .expect("docs/errors.md");
+        let mut seen = std::collections::HashSet::new();
+        for e in samples() {
+            let code = e.code();
+            assert!(seen.insert(code), "{code} twice");
+            assert!(code.starts_with("E46"), "{code} outside E46xx");
+            assert!(
+                e.to_string().starts_with(&format!("{code}: ")),
+                "{e} does not start with {code}"
+            );
+            assert!(
+                doc.contains(&format!("`{code}`")),
+                "{code} not in docs/errors.md"
+            );
+        }
+    }
 }

@@ -5,6 +5,7 @@
 //! diagnostic rather than a panic.
 
 use crate::ast::*;
+use crate::error::SyntaxError;
 use crate::grammar::Rule;
 use crate::lexer::Token;
 use pest::iterators::Pair;
@@ -80,15 +81,11 @@ impl Builder<'_> {
     fn internal(&mut self, pair: &Pair<'_, Rule>) {
         let span = self.span(pair);
         self.diags.push(
-            Diagnostic::error(
-                "E1999",
-                format!(
-                    "internal error: unexpected `{:?}` in the parse tree",
-                    pair.as_rule()
-                ),
-            )
-            .at(span, "here")
-            .with_note("this is a bug in unimo; please report it with this file"),
+            SyntaxError::Internal {
+                rule: format!("{:?}", pair.as_rule()),
+                span,
+            }
+            .into(),
         );
     }
 
