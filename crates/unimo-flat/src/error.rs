@@ -729,41 +729,8 @@ unimo_source::coded_errors! {
 mod tests {
     use super::*;
 
-    /// The code a variant's doc comment starts with (`E2005: ...`).
-    fn documented_code(doc: &str) -> &str {
-        doc.trim_start().split(':').next().unwrap_or_default()
-    }
-
     #[test]
-    fn every_code_has_a_variant_and_every_variant_a_known_code() {
-        for (variant, doc) in FlatError::VARIANT_DOCS {
-            let code = documented_code(doc);
-            assert!(
-                FlatCode::ALL.iter().any(|c| c.as_str() == code),
-                "{variant}: its doc names no code of the stage: {doc}"
-            );
-        }
-        for code in FlatCode::ALL {
-            assert!(
-                FlatError::VARIANT_DOCS
-                    .iter()
-                    .any(|(_, doc)| documented_code(doc) == code.as_str()),
-                "{code} has no variant"
-            );
-        }
-    }
-
-    #[test]
-    fn each_variant_maps_to_its_documented_code_and_severity() {
-        let samples = FlatError::samples();
-        assert_eq!(samples.len(), FlatError::VARIANT_DOCS.len());
-        for (e, (variant, doc)) in samples.into_iter().zip(FlatError::VARIANT_DOCS) {
-            let code = e.code();
-            assert_eq!(code.as_str(), documented_code(doc), "{variant}");
-            let d = unimo_source::Diagnostic::from(e);
-            assert_eq!(d.code, code.into(), "{variant}");
-            assert_eq!(d.is_error(), !code.is_warning(), "{variant}");
-            assert!(d.primary_span().is_some(), "{variant} has no primary label");
-        }
+    fn every_code_has_a_variant_and_each_variant_its_documented_code() {
+        FlatError::check_variants(FlatCode::ALL);
     }
 }

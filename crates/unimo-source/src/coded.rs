@@ -45,6 +45,39 @@ macro_rules! coded_errors {
                 vec![$($name::$variant { $($field: Default::default()),* }),*]
             }
 
+            /// Checks, in the stage's tests, that every code of `codes` has a variant,
+            /// every variant's doc comment names one of them, and each variant's
+            /// diagnostic carries that code, its severity and a primary label.
+            #[cfg(test)]
+            pub(crate) fn check_variants(codes: &[$code_ty]) {
+                let documented = $crate::documented_code;
+                for (variant, doc) in Self::VARIANT_DOCS {
+                    assert!(
+                        codes.iter().any(|c| c.as_str() == documented(doc)),
+                        "{variant}: its doc names no code of the stage: {doc}"
+                    );
+                }
+                for code in codes {
+                    assert!(
+                        Self::VARIANT_DOCS
+                            .iter()
+                            .any(|(_, doc)| documented(doc) == code.as_str()),
+                        "{} has no variant",
+                        code.as_str()
+                    );
+                }
+                let samples = Self::samples();
+                assert_eq!(samples.len(), Self::VARIANT_DOCS.len());
+                for (e, (variant, doc)) in samples.into_iter().zip(Self::VARIANT_DOCS) {
+                    let code = e.code();
+                    assert_eq!(code.as_str(), documented(doc), "{variant}");
+                    let d = $crate::Diagnostic::from(e);
+                    assert_eq!(d.code, $crate::Code(code.as_str()), "{variant}");
+                    assert_eq!(d.is_error(), !code.is_warning(), "{variant}");
+                    assert!(d.primary_span().is_some(), "{variant} has no primary label");
+                }
+            }
+
             /// The code of this error.
             #[allow(unused_variables)]
             pub fn code(&self) -> $code_ty {
@@ -78,4 +111,11 @@ macro_rules! coded_errors {
             }
         }
     };
+}
+
+/// The code a variant's doc comment starts with (`E2005: ...` gives `E2005`); what
+/// `check_variants` compares, public for the macro's expansion in the stages' crates.
+#[doc(hidden)]
+pub fn documented_code(doc: &str) -> &str {
+    doc.trim_start().split(':').next().unwrap_or_default()
 }

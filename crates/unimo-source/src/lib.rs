@@ -5,6 +5,8 @@
 //! the CLI turns it into text.
 
 mod coded;
+#[doc(hidden)]
+pub use coded::documented_code;
 mod diagnostic;
 mod source;
 
