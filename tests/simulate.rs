@@ -1143,3 +1143,55 @@ fn initial_jacobian_leaves_no_perturbed_values_behind() {
     let exact = -(7e9f64).sin();
     assert!((x0 - exact).abs() < 1e-9, "x(0) = {x0}, exact {exact}");
 }
+
+/// The method of `simulate --stats`'s JSON line.
+fn method_of_run(args: &[&str]) -> String {
+    let o = common::unimo(args);
+    common::assert_success(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    let stats = err
+        .lines()
+        .find(|l| l.starts_with('{'))
+        .expect("a --stats line");
+    let (_, rest) = stats.split_once("\"method\":\"").expect("a method");
+    rest.split('"').next().unwrap().to_owned()
+}
+
+/// `experiment(__unimo_method = "radau5")` chooses the method when the user does not;
+/// `--method` still wins.
+#[test]
+fn the_experiment_annotation_chooses_the_method_unless_the_user_does() {
+    let file = "tests/simulate/ExperimentMethod.mo";
+    let null = if cfg!(windows) { "NUL" } else { "/dev/null" };
+    let asked = method_of_run(&["simulate", file, "--stats", "-o", null]);
+    assert_eq!(asked, "radau5");
+    let chosen = method_of_run(&["simulate", file, "--stats", "--method", "bdf", "-o", null]);
+    assert_eq!(chosen, "bdf");
+    let plain = method_of_run(&["simulate", "models/Dahlquist.mo", "--stats", "-o", null]);
+    assert_eq!(plain, "auto", "no annotation: the default (BDF)");
+}
+
+/// `E3023`: a method name unimo does not have is an error at its place, not a silent BDF.
+#[test]
+fn an_unknown_experiment_method_is_a_coded_error() {
+    let o = common::unimo(&[
+        "simulate",
+        "tests/simulate/UnknownMethod.mo",
+        "-o",
+        "/dev/null",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    insta::assert_snapshot!(String::from_utf8_lossy(&o.stderr));
+}
+
+/// Every name lowering accepts in `__unimo_method` is a method the runtime runs.
+#[test]
+fn every_experiment_method_name_is_a_method() {
+    for name in unimo_dae::dae::METHOD_NAMES {
+        assert!(
+            unimo_solve::Method::from_name(name).is_some(),
+            "{name} is accepted by lowering but names no method"
+        );
+    }
+    assert_eq!(unimo_solve::Method::from_name("dassl"), None);
+}

@@ -5,7 +5,8 @@ ConstraintSurfaces.Gap,...`) with the event-driven reference (`ellipsoid-referen
 --events ref.csv`): counts per kind, first rolling time, the event where the two
 sequences part (first different kind, or a time off by more than 1e-3 relative), the
 largest relative time difference before it and over the first 100 events, the energy
-at t = 150 and the largest |gap| in contact.
+at t = 150 and the largest |gap| in contact. The reference may also be another run's CSV
+(the causal model's, for instance), whose events are read in the same way.
 
 usage: crosscheck.py MODEL.csv REFERENCE_EVENTS.csv [REFERENCE_ENERGY]"""
 import csv
@@ -44,10 +45,19 @@ def at_time(c, data, name, when):
     return float("nan")
 
 
+def reference_events(path):
+    """The reference's events: an event list (`t,kind`) or another run's CSV (for
+    example the causal model's), whose events are read as the model's are."""
+    header = next(csv.reader(open(path)))
+    if "kind" in header:
+        return [(float(r["t"]), r["kind"]) for r in csv.DictReader(open(path))]
+    return model_events(*load(path))
+
+
 def main(model_csv, reference_csv, reference_energy=None):
     c, data = load(model_csv)
     model = model_events(c, data)
-    reference = [(float(r["t"]), r["kind"]) for r in csv.DictReader(open(reference_csv))]
+    reference = reference_events(reference_csv)
     n = min(len(model), len(reference))
     part = next((k for k in range(n) if model[k][1] != reference[k][1]
                  or abs(model[k][0] - reference[k][0]) > 1e-3 * reference[k][0]), None)

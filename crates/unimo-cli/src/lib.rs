@@ -224,8 +224,8 @@ pub struct SimulateArgs {
     /// Absolute tolerance, scaled per state by its `nominal` [default: RTOL / 100].
     #[arg(long, value_name = "ATOL")]
     pub atol: Option<f64>,
-    /// Integration method: `auto` (BDF), `bdf`, `radau5` (tight tolerances) or
-    /// `dopri5` (explicit, non-stiff).
+    /// Integration method: `auto` (the model's `experiment(__unimo_method = ...)`, else
+    /// BDF), `bdf`, `radau5` (tight tolerances) or `dopri5` (explicit, non-stiff).
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     pub method: MethodArg,
     /// Output interval [default: experiment Interval, else (stop - start) / 500].

@@ -195,7 +195,7 @@ fn simulate_flat(
     }
     if a.stats {
         print_stats(
-            a.method,
+            options.method,
             &compiled,
             &plan,
             &result,
@@ -587,7 +587,7 @@ fn ms_since(t: Instant) -> f64 {
 /// The `--stats` line: one JSON object on stderr. `compile_ms` is everything before
 /// the simulation (load, analysis, tapes and native code), `phases_ms` each phase.
 fn print_stats(
-    method: MethodArg,
+    method: Method,
     compiled: &CompiledModel,
     plan: &Plan,
     result: &SimResult,

@@ -217,7 +217,13 @@ pub struct Experiment {
     pub stop_time: Option<f64>,
     pub tolerance: Option<f64>,
     pub interval: Option<f64>,
+    /// `__unimo_method = "radau5"`: the integration method the model asks for (one of
+    /// [`METHOD_NAMES`]), used when the user does not choose one.
+    pub method: Option<String>,
 }
+
+/// The values `experiment(__unimo_method = ...)` accepts, as the CLI's `--method` names them.
+pub const METHOD_NAMES: &[&str] = &["auto", "bdf", "radau5", "dopri5"];
 
 impl Dae {
     pub fn scalar(&self, s: ScalarId) -> &Scalar {

@@ -88,6 +88,9 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
             f(ex.tolerance),
             f(ex.interval)
         );
+        if let Some(m) = &ex.method {
+            let _ = writeln!(o, "experiment method: {m}");
+        }
     }
     o
 }

@@ -469,6 +469,10 @@ impl Lowerer<'_> {
             let Some(b) = &md.binding else {
                 continue;
             };
+            if name.to_dotted() == "__unimo_method" {
+                self.experiment_method(b);
+                continue;
+            }
             let value = self.scalar(b).ok().and_then(|x| self.const_value(x));
             let e = &mut self.dae.experiment;
             match name.to_dotted().as_str() {
@@ -478,6 +482,19 @@ impl Lowerer<'_> {
                 "Interval" => e.interval = value,
                 _ => {}
             }
+        }
+    }
+
+    /// `__unimo_method = "name"`: a string literal naming one of [`METHOD_NAMES`].
+    fn experiment_method(&mut self, b: &ast::Expr) {
+        match &b.kind {
+            ast::ExprKind::String(m) if METHOD_NAMES.contains(&m.as_str()) => {
+                self.dae.experiment.method = Some(m.clone());
+            }
+            _ => self.errors.push(DaeError::UnknownMethod {
+                given: unimo_syntax::print::expr(b),
+                span: b.span,
+            }),
         }
     }
 

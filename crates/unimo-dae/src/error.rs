@@ -49,6 +49,8 @@ pub enum DaeCode {
     EmptyTable,
     /// E3022: the plan needs the derivative of a top-level input.
     DifferentiatedInput,
+    /// E3023: an `experiment` setting of unimo's with a value it does not know.
+    ExperimentSetting,
     /// W3001 (a warning): a call statement that is not executed, since the function
     /// reaches an external function unimo does not provide (writing a file, printing).
     CallNotExecuted,
@@ -87,6 +89,7 @@ impl DaeCode {
         DaeCode::MissingExternal,
         DaeCode::EmptyTable,
         DaeCode::DifferentiatedInput,
+        DaeCode::ExperimentSetting,
         DaeCode::CallNotExecuted,
         DaeCode::StructurallySingular,
         DaeCode::CannotDifferentiate,
@@ -123,6 +126,7 @@ impl DaeCode {
             DaeCode::MissingExternal => "E3020",
             DaeCode::EmptyTable => "E3021",
             DaeCode::DifferentiatedInput => "E3022",
+            DaeCode::ExperimentSetting => "E3023",
             DaeCode::CallNotExecuted => "W3001",
             DaeCode::StructurallySingular => "E3201",
             DaeCode::CannotDifferentiate => "E3202",
@@ -154,6 +158,10 @@ unimo_source::coded_errors! {
         #[error("not supported yet: {what}")]
         Unsupported { what: String, span: Span } = DaeCode::Unsupported,
         |d| d.at(span, "here"),
+        /// E3023: `experiment(__unimo_method = ...)` that names no method unimo has.
+        #[error("`__unimo_method = {given}` names no integration method")]
+        UnknownMethod { given: String, span: Span } = DaeCode::ExperimentSetting,
+        |d| d.at(span, "here").with_help("one of \"auto\", \"bdf\", \"radau5\", \"dopri5\" (a string)"),
         /// E3001: a `connect` equation that flattening should have replaced.
         #[error("a `connect` survived flattening")]
         ConnectAfterFlattening { span: Span } = DaeCode::Unsupported,

@@ -68,7 +68,8 @@ pub struct Overrides {
 
 impl SimOptions {
     /// The settings of a run, in one place for every command: the override, else the
-    /// `experiment` annotation, else the default — StartTime 0, StopTime 1, Tolerance
+    /// `experiment` annotation (a method of `Auto`: its `__unimo_method`), else the
+    /// default — StartTime 0, StopTime 1, Tolerance
     /// 1e-6, absolute tolerance rtol / 100, Interval (stop - start) / 500. A
     /// zero-length run writes the initial values only. Err: a message for the user
     /// (stop before start, tolerances or interval not positive).
@@ -85,6 +86,12 @@ impl SimOptions {
                 "the stop time {stop} is before the start time {start}"
             ));
         }
+        // `Auto` (no method chosen by the caller) takes the model's
+        // `__unimo_method`, which lowering checked to be one of its names.
+        let method = match (method, ex.method.as_deref().and_then(Method::from_name)) {
+            (Method::Auto, Some(asked)) => asked,
+            (chosen, _) => chosen,
+        };
         let rtol = o.rtol.or(ex.tolerance).unwrap_or(1e-6);
         let atol = o.atol.unwrap_or(rtol / 100.0);
         let interval = match (o.interval, o.points) {

@@ -25,6 +25,18 @@ impl Method {
         }
     }
 
+    /// The method a lower-case name stands for (`"bdf"`, `"radau5"`, `"dopri5"`, `"auto"`:
+    /// the CLI's `--method` values and `experiment(__unimo_method = ...)`).
+    pub fn from_name(name: &str) -> Option<Method> {
+        match name {
+            "auto" => Some(Method::Auto),
+            "bdf" => Some(Method::Bdf),
+            "radau5" => Some(Method::Radau5),
+            "dopri5" => Some(Method::Dopri5),
+            _ => None,
+        }
+    }
+
     /// Short name for messages.
     pub fn name(self) -> &'static str {
         match self {
