@@ -4,7 +4,7 @@
 //! module locates: `UNIMO_FMI_LIBRARY`, else next to the `unimo` executable (or in its
 //! `deps/` folder, where cargo builds it). See `docs/fmi.md`.
 
-use crate::api::{self, ErrorKind, Source};
+use crate::api::{self, Source};
 use std::path::PathBuf;
 use unimo_fmi::package::{self, Request};
 use unimo_fmi::{FmiError, Kind, Version};
@@ -94,11 +94,7 @@ pub fn command(a: &FmuArgs) -> i32 {
         Ok(t) => t,
         Err(e) => {
             eprintln!("{}", e.rendered);
-            return match e.kind {
-                ErrorKind::Model => crate::EXIT_MODEL_ERROR,
-                ErrorKind::Usage => crate::EXIT_USAGE,
-                ErrorKind::Simulation => crate::EXIT_SIMULATION_FAILURE,
-            };
+            return e.kind.exit_code();
         }
     };
     let written = locate_library().and_then(|library| {

@@ -9,6 +9,7 @@ pub mod api;
 mod bench;
 mod check;
 pub mod codes;
+pub mod error;
 pub mod fmu;
 mod numfmt;
 mod params;
@@ -478,10 +479,7 @@ fn run_on_this_thread() -> i32 {
         } => match stage {
             Stage::Ast => match files.first() {
                 Some(file) => check::emit_ast(file, color),
-                None => {
-                    eprintln!("error: `emit --stage ast` prints the tree of a file: give the file");
-                    EXIT_USAGE
-                }
+                None => error::CliError::AstNeedsFile {}.report(),
             },
             Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
             Stage::Dae | Stage::Structure | Stage::Tape => {
@@ -534,7 +532,7 @@ pub fn load_model_with(
         first.get_or_insert(classes);
     }
     let classes = first.unwrap_or_default();
-    let class = check::pick(&mut tree, &classes, model)?;
+    let class = check::pick(&mut tree, &classes, model).map_err(|e| e.line())?;
     let (flat, diags) = unimo_flat::flatten(&mut tree, class);
     if diags.iter().any(|d| d.is_error()) {
         return Err(render_all(&diags, &tree.sources));
