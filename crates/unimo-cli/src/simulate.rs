@@ -69,9 +69,9 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
         file: a.override_file.as_deref(),
     };
     with_flat_model_overridden(
-        &a.files,
-        a.model.as_deref(),
-        &a.libs,
+        &a.source.files,
+        a.source.model.as_deref(),
+        &a.source.libs,
         color,
         false,
         &overrides,

@@ -199,15 +199,10 @@ pub fn command(a: &crate::SweepArgs) -> i32 {
         }
     }
     let points = grid(&settings);
-    let source = Source {
-        files: a.files.iter().map(|f| (f.clone(), None)).collect(),
-        model: a.model.clone(),
-        libs: a.libs.clone(),
-        fold: unimo_dae::FoldOptions {
-            tunable_all: false,
-            tunable: a.tunable.clone(),
-        },
-    };
+    let source = a.source.source(unimo_dae::FoldOptions {
+        tunable_all: false,
+        tunable: a.tunable.clone(),
+    });
     let jobs = a
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
