@@ -144,6 +144,9 @@ fn an_unreadable_library_file_is_e0001() {
     assert!(tree.lookup_dotted(None, &["Lib"], false).is_none());
     let d = &tree.diagnostics[0];
     assert_eq!(d.code.0, "E0001");
-    assert_eq!(d.message, "cannot read `lib/Lib/package.mo`: permission denied");
+    assert_eq!(
+        d.message,
+        "cannot read `lib/Lib/package.mo`: permission denied"
+    );
     assert!(d.is_error());
 }
