@@ -7,6 +7,9 @@ use std::path::PathBuf;
 use unimo_runtime::eval::RhsEvaluator;
 use unimo_runtime::native::execute_shim;
 
+#[path = "../crates/unimo-solve/tests/support/test_set.rs"]
+mod test_set;
+
 fn main() {
     divan::main();
 }
@@ -36,14 +39,7 @@ fn rober_hand(_t: f64, y: &[f64], f: &mut [f64]) {
 }
 
 fn hires_hand(_t: f64, y: &[f64], f: &mut [f64]) {
-    f[0] = -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
-    f[1] = 1.71 * y[0] - 8.75 * y[1];
-    f[2] = -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
-    f[3] = 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
-    f[4] = -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
-    f[5] = -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
-    f[6] = 280.0 * y[5] * y[7] - 1.81 * y[6];
-    f[7] = -f[6];
+    test_set::hires_rhs(y, f);
 }
 
 fn chain_hand(_t: f64, x: &[f64], f: &mut [f64]) {

@@ -2,24 +2,12 @@
 //! same tree and the same diagnostics wherever the fast path answers, and the fast path
 //! must answer on every valid file we ship.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use unimo_source::FileId;
 use unimo_syntax::differential::{fast_only, pest_only};
 
-fn files_below(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for e in entries {
-        if e.is_dir() {
-            files_below(&e, out);
-        } else if e.extension().is_some_and(|x| x == "mo") {
-            out.push(e);
-        }
-    }
-}
+#[path = "common/corpus.rs"]
+mod corpus_files;
 
 /// The first place two trees differ, as pretty-printed Debug lines with context.
 fn first_difference<T: std::fmt::Debug>(a: &T, b: &T) -> Option<String> {
@@ -39,12 +27,7 @@ fn first_difference<T: std::fmt::Debug>(a: &T, b: &T) -> Option<String> {
 }
 
 fn corpus(dirs: &[&str]) -> Vec<PathBuf> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let mut out = Vec::new();
-    for d in dirs {
-        files_below(&root.join(d), &mut out);
-    }
-    out
+    corpus_files::files(&PathBuf::from(env!("CARGO_MANIFEST_DIR")), dirs)
 }
 
 #[test]
@@ -147,22 +130,11 @@ fn fast_path_agrees_on_mutated_files() {
     );
     runner
         .run(&strategy, |(which, edits)| {
-            let mut text = texts[which].clone();
-            for (at, tok, delete) in edits {
-                let mut at = at % text.len().max(1);
-                while !text.is_char_boundary(at) {
-                    at -= 1;
-                }
-                if delete {
-                    let mut end = (at + 3).min(text.len());
-                    while !text.is_char_boundary(end) {
-                        end += 1;
-                    }
-                    text.replace_range(at..end, "");
-                } else {
-                    text.insert_str(at, TOKENS[tok]);
-                }
-            }
+            let edits: Vec<_> = edits
+                .into_iter()
+                .map(|(at, tok, delete)| (at, TOKENS[tok], delete))
+                .collect();
+            let text = corpus_files::mutate(&texts[which], &edits, 3);
             if let Some(fast) = fast_only(FileId(0), &text) {
                 let pest = pest_only(FileId(0), &text);
                 if let Some(d) = first_difference(&fast.ast, &pest.ast) {
@@ -187,7 +159,7 @@ fn fast_path_answers_and_agrees_on_the_msl() {
         root.display()
     );
     let mut files = Vec::new();
-    files_below(&root, &mut files);
+    corpus_files::files_below(&root, &mut files);
     assert!(files.len() > 2500, "only {} MSL files", files.len());
     for f in files {
         let text = std::fs::read_to_string(&f).unwrap();

@@ -307,3 +307,55 @@ fn bad_overrides_are_coded_errors() {
     assert_eq!(o.status.code(), Some(2), "usage errors exit with 2");
     insta::assert_snapshot!("override_errors", String::from_utf8_lossy(&o.stderr));
 }
+
+/// The command line's errors that point into no file are one coded line each
+/// (`CliError::line`) and exit with 2; they were uncoded `error: ...` lines before.
+#[test]
+fn usage_errors_are_one_coded_line() {
+    let two = temp_file("TwoModels.mo");
+    let text = "model A\n  Real x = 1;\nend A;\nmodel B\n  Real y = 2;\nend B;\n";
+    std::fs::write(&two, text).unwrap();
+    let two = two.to_string_lossy();
+    let ball = "models/BouncingBall.mo";
+    let cases: [(&[&str], &str); 8] = [
+        (
+            &["emit", "--stage", "ast", "tests/interop/Missing.mo"],
+            "error[E0001]: cannot read `tests/interop/Missing.mo`: ",
+        ),
+        (
+            &["check", "tests/interop/NoSuchFolder"],
+            "error[E0001]: no such file or folder: `tests/interop/NoSuchFolder`",
+        ),
+        (
+            &["emit", "--stage", "ast", "--model", "A"],
+            "error[E0010]: `emit --stage ast` prints the tree of a file: give the file",
+        ),
+        (
+            &["simulate", &two],
+            "error[E0008]: the file has several models (A, B); choose one with --model",
+        ),
+        (
+            &["simulate", &two, "--model", "C"],
+            "error[E0008]: no class `C` in the file or the library",
+        ),
+        (
+            &["simulate", ball, "--vars", "nosuch"],
+            "error[E0003]: no variable `nosuch` in the model",
+        ),
+        (
+            &["simulate", ball, "--output-tolerance=-1"],
+            "error[E0007]: the output tolerance must be 0 or positive",
+        ),
+        (
+            &["sweep", ball, "-p", "e"],
+            "error[E0006]: `e` is not NAME=VALUES (e.g. k=0.5:0.9:5 or f=0.05,0.1)",
+        ),
+    ];
+    for (args, line) in cases {
+        let o = unimo(args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.starts_with(line), "{args:?}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr}");
+    }
+}

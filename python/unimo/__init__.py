@@ -17,12 +17,26 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+from typing import (
+    TYPE_CHECKING,
+    Any,
+    Callable,
+    Dict,
+    Iterable,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    Union,
+)
 
 import numpy as np
 
 from . import _unimo
 from .errors import ModelError, SimulationError, UnimoError, UsageError, from_tuple
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = [
     "compile",
@@ -34,9 +48,11 @@ __all__ = [
     "SimulationError",
     "UsageError",
 ]
-__version__ = _unimo.__version__
+__version__: str = _unimo.__version__
 
 PathLike = Union[str, "os.PathLike[str]"]
+#: A parameter value: a number, a Boolean or an enumeration literal's name.
+ParamValue = Union[float, int, bool, str]
 
 
 def _modelica_text(name: str, value: Any) -> str:
@@ -107,7 +123,7 @@ class Result:
             out.update({n: float(self._data[-1, k]) for n, k in self._index.items()})
         return out
 
-    def to_pandas(self):
+    def to_pandas(self) -> pd.DataFrame:
         """The result as a ``pandas.DataFrame``: a ``time`` column, then one per name."""
         import pandas as pd
 
@@ -122,10 +138,10 @@ class Result:
 class Model:
     """A compiled model. Make one with :func:`unimo.compile`."""
 
-    def __init__(self, native: Any, spec: tuple, params: Dict[str, Any]):
+    def __init__(self, native: Any, spec: tuple, params: Mapping[str, ParamValue]):
         self._native = native
         self._spec = spec
-        self.params: Dict[str, Any] = dict(params)
+        self.params: Dict[str, ParamValue] = dict(params)
         #: Result column names (every variable but parameters and constants).
         self.names: List[str] = list(native.names())
         self._units: Optional[Dict[str, str]] = None
@@ -140,7 +156,7 @@ class Model:
     def simulate(
         self,
         stop_time: Optional[float] = None,
-        params: Optional[Mapping[str, Any]] = None,
+        params: Optional[Mapping[str, ParamValue]] = None,
         method: str = "auto",
         rtol: Optional[float] = None,
         atol: Optional[float] = None,
@@ -177,18 +193,20 @@ class Model:
             _raise(raw["error"], result)
         return result
 
-    def _recompiled(self, params: Mapping[str, Any]) -> "Model":
+    def _recompiled(self, params: Mapping[str, ParamValue]) -> "Model":
         merged = {**self.params, **params}
         native = _unimo.compile(self._spec, _param_pairs(merged))
         return Model(native, self._spec, merged)
 
     def sweep(
         self,
-        grid_or_samples: Union[Mapping[str, Iterable[Any]], Sequence[Mapping[str, Any]]],
+        grid_or_samples: Union[
+            Mapping[str, Iterable[ParamValue]], Sequence[Mapping[str, ParamValue]], pd.DataFrame
+        ],
         outputs: Optional[Sequence[str]] = None,
         jobs: Optional[int] = None,
         client: Any = None,
-        summary: Any = None,
+        summary: Optional[Callable[[Result], Dict[str, Any]]] = None,
         stop_time: Optional[float] = None,
         method: str = "auto",
         rtol: Optional[float] = None,
@@ -196,7 +214,7 @@ class Model:
         interval: Optional[float] = None,
         points: Optional[int] = None,
         chunks: Optional[int] = None,
-    ):
+    ) -> pd.DataFrame:
         """Runs the model at many parameter points and returns one ``pandas.DataFrame``.
 
         ``grid_or_samples`` is a dict ``name -> list of values`` (every combination,
@@ -254,7 +272,7 @@ def compile(
     path: Union[PathLike, Sequence[PathLike]],
     model: Optional[str] = None,
     libs: Sequence[PathLike] = (),
-    params: Optional[Mapping[str, Any]] = None,
+    params: Optional[Mapping[str, ParamValue]] = None,
     tunable: Union[None, bool, Sequence[str]] = None,
 ) -> Model:
     """Compiles a model and returns a :class:`Model`.
@@ -276,10 +294,27 @@ def simulate(
     path: Union[PathLike, Sequence[PathLike]],
     model: Optional[str] = None,
     libs: Sequence[PathLike] = (),
-    params: Optional[Mapping[str, Any]] = None,
+    params: Optional[Mapping[str, ParamValue]] = None,
     tunable: Union[None, bool, Sequence[str]] = None,
-    **options: Any,
+    *,
+    stop_time: Optional[float] = None,
+    method: str = "auto",
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    outputs: Optional[Sequence[str]] = None,
+    start_time: Optional[float] = None,
+    interval: Optional[float] = None,
+    points: Optional[int] = None,
 ) -> Result:
     """Compiles and simulates in one call: ``compile(path, model, libs, params,
-    tunable).simulate(**options)``."""
-    return compile(path, model, libs, params, tunable).simulate(**options)
+    tunable).simulate(...)`` with the keyword arguments of :meth:`Model.simulate`."""
+    return compile(path, model, libs, params, tunable).simulate(
+        stop_time=stop_time,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        outputs=outputs,
+        start_time=start_time,
+        interval=interval,
+        points=points,
+    )

@@ -6,7 +6,7 @@
 //! again. A [`Session`] keeps the parsed files and the loaded library between
 //! compilations, so a sweep parses once per worker and recompiles per point.
 
-use crate::codes::CliCode;
+use crate::error::CliError;
 use crate::provider::CliProvider;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -27,6 +27,17 @@ pub enum ErrorKind {
     Usage,
     /// The simulation failed (exit code 3).
     Simulation,
+}
+
+impl ErrorKind {
+    /// The command line's exit code for an error of this kind.
+    pub fn exit_code(self) -> i32 {
+        match self {
+            ErrorKind::Model => crate::EXIT_MODEL_ERROR,
+            ErrorKind::Usage => crate::EXIT_USAGE,
+            ErrorKind::Simulation => crate::EXIT_SIMULATION_FAILURE,
+        }
+    }
 }
 
 /// A coded error: the first error diagnostic's code, message and `file:line:col`,
@@ -69,7 +80,23 @@ impl ApiError {
                 location: d.primary_span().map(|s| map.location(s)),
                 rendered,
             },
-            None => ApiError::plain(kind, CliCode::Unknown.as_str(), "unknown error"),
+            None => ApiError {
+                kind,
+                ..ApiError::from(CliError::Unknown {})
+            },
+        }
+    }
+}
+
+/// A command-line error as the API reports it: its kind, code, message and line.
+impl From<CliError> for ApiError {
+    fn from(e: CliError) -> ApiError {
+        ApiError {
+            kind: e.kind(),
+            code: e.code().as_str().to_owned(),
+            message: e.to_string(),
+            location: None,
+            rendered: e.line(),
         }
     }
 }
@@ -128,7 +155,7 @@ impl Compiled {
                 output_rtol: 0.0,
                 ..o
             })
-            .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::BadOptions.as_str(), m))?;
+            .map_err(|why| CliError::BadOptions { why })?;
         let result = unimo_runtime::sim::simulate(&self.model, &options);
         let error = result.error.as_ref().map(|e| self.simulation_error(e));
         Ok((result, error))
@@ -190,9 +217,9 @@ pub fn with_session<R>(
     for (path, text) in &source.files {
         let text = match text {
             Some(t) => t.clone(),
-            None => std::fs::read_to_string(path).map_err(|e| {
-                let m = format!("cannot read `{}`: {e}", path.display());
-                ApiError::plain(ErrorKind::Usage, CliCode::Unreadable.as_str(), m)
+            None => std::fs::read_to_string(path).map_err(|e| CliError::Unreadable {
+                path: path.clone(),
+                reason: e.to_string(),
             })?,
         };
         let id = tree.sources.add(path.clone(), text);
@@ -209,8 +236,7 @@ pub fn with_session<R>(
         first.get_or_insert(classes);
     }
     let classes = first.unwrap_or_default();
-    let class = crate::check::pick(&mut tree, &classes, source.model.as_deref())
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::BadFile.as_str(), m))?;
+    let class = crate::check::pick(&mut tree, &classes, source.model.as_deref())?;
     let (base, diags) = unimo_flat::flatten(&mut tree, class);
     let mut session = Session {
         tree,
@@ -219,8 +245,9 @@ pub fn with_session<R>(
         fold: source.fold.clone(),
     };
     session.check(diags)?;
+    // The first name that covers no parameter (the command line lists them all).
     crate::simulate::check_tunable(&session.base, &session.fold)
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownTunable.as_str(), m))?;
+        .map_err(|unknown| unknown.into_iter().next().unwrap_or(CliError::Unknown {}))?;
     Ok(then(&mut session))
 }
 
@@ -320,8 +347,7 @@ impl Session<'_> {
 fn output_ids(dae: &Dae, outputs: &[String]) -> Result<Vec<unimo_dae::expr::ScalarId>, ApiError> {
     let ids: Vec<_> = dae.ids().collect();
     let names: Vec<String> = ids.iter().map(|&s| dae.name(s)).collect();
-    let cols = crate::simulate::select(&names, &without_time(outputs))
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownName.as_str(), m))?;
+    let cols = crate::simulate::select(&names, &without_time(outputs))?;
     Ok(cols.into_iter().map(|c| ids[c]).collect())
 }
 
@@ -331,8 +357,7 @@ pub fn select_columns(names: &[String], outputs: &[String]) -> Result<Vec<usize>
     if !outputs.is_empty() && outputs.iter().all(|o| o == "time") {
         return Ok(Vec::new());
     }
-    crate::simulate::select(names, &without_time(outputs))
-        .map_err(|m| ApiError::plain(ErrorKind::Usage, CliCode::UnknownName.as_str(), m))
+    Ok(crate::simulate::select(names, &without_time(outputs))?)
 }
 
 fn without_time(outputs: &[String]) -> Vec<String> {
@@ -346,11 +371,10 @@ pub fn method(name: &str) -> Result<Method, ApiError> {
         "bdf" => Ok(Method::Bdf),
         "radau5" => Ok(Method::Radau5),
         "dopri5" => Ok(Method::Dopri5),
-        _ => Err(ApiError::plain(
-            ErrorKind::Usage,
-            CliCode::BadOptions.as_str(),
-            format!("unknown method `{name}`: auto, bdf, radau5 or dopri5"),
-        )),
+        _ => Err(CliError::UnknownMethod {
+            name: name.to_owned(),
+        }
+        .into()),
     }
 }
 

@@ -2,8 +2,9 @@
 //! table on stdout and a work-precision plot.
 
 use crate::check::{render_stage, with_flat_model};
+use crate::error::CliError;
 use crate::simulate::{method, native_or_tape};
-use crate::{BenchArgs, MethodArg, EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
+use crate::{BenchArgs, MethodArg, EXIT_MODEL_ERROR, EXIT_OK};
 use std::collections::HashMap;
 use std::time::Instant;
 use unimo_codegen::model::CompiledModel;
@@ -152,8 +153,7 @@ fn measure(
 
 pub fn bench(a: &BenchArgs, color: bool) -> i32 {
     if a.tolerances.iter().any(|&t| !positive(t)) || !positive(a.atol_factor) {
-        eprintln!("error: tolerances and the atol factor must be positive");
-        return EXIT_USAGE;
+        return CliError::BadTolerances {}.report();
     }
     let mut all = Vec::new();
     let mut code = EXIT_OK;
@@ -175,8 +175,8 @@ pub fn bench(a: &BenchArgs, color: bool) -> i32 {
     }
     if let Some(path) = &a.plot {
         if let Err(e) = plot(path, &all) {
-            eprintln!("error: cannot write the plot: {e}");
-            return EXIT_USAGE;
+            let (what, reason) = ("the plot".to_owned(), e.to_string());
+            return CliError::CannotWrite { what, reason }.report();
         }
         eprintln!("wrote {}", path.display());
     }
@@ -219,19 +219,15 @@ fn bench_model(
         })
     };
     // Tolerances are checked above: only the times can be wrong here.
-    if let Err(msg) = resolved(MethodArg::Bdf, 1e-6, 1e-8) {
-        eprintln!("error: {msg}");
-        return EXIT_USAGE;
+    if let Err(why) = resolved(MethodArg::Bdf, 1e-6, 1e-8) {
+        return CliError::BadOptions { why }.report();
     }
     let options = |m: MethodArg, rtol: f64, atol: f64| {
         resolved(m, rtol, atol).expect("times checked above, tolerances positive")
     };
     let reference = match reference_values(a, &compiled, &options) {
         Ok(r) => r,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     for &m in &a.methods {
         for &rtol in &a.tolerances {
@@ -259,9 +255,9 @@ fn reference_values(
     a: &BenchArgs,
     compiled: &CompiledModel,
     options: &dyn Fn(MethodArg, f64, f64) -> SimOptions,
-) -> Result<Reference, String> {
+) -> Result<Reference, CliError> {
     match &a.reference {
-        Some(p) => reference_from_csv(p),
+        Some(p) => reference_from_csv(p).map_err(|why| CliError::ResultTable { why }),
         None => {
             let tight =
                 (a.tolerances.iter().copied().fold(f64::INFINITY, f64::min) * 1e-3).max(1e-14);
@@ -270,7 +266,7 @@ fn reference_values(
                 &options(MethodArg::Radau5, tight, tight * a.atol_factor),
             );
             if let Some(e) = &r.error {
-                return Err(format!("the reference run failed: {}", e.message()));
+                return Err(CliError::ReferenceFailed { why: e.message() });
             }
             Ok(reference_from_result(&r))
         }

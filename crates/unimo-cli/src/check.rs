@@ -1,6 +1,6 @@
 //! `unimo check` and `unimo emit --stage ast`: read files, parse, report.
 
-use crate::codes::CliCode;
+use crate::error::CliError;
 use crate::provider::CliProvider;
 use crate::render::emit_stderr;
 use crate::{EXIT_MODEL_ERROR, EXIT_OK, EXIT_USAGE};
@@ -39,15 +39,18 @@ fn library_class(
 }
 
 /// Collects `*.mo` files below each path (files are taken as given), sorted per folder.
-fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+fn collect(paths: &[PathBuf]) -> Result<Vec<PathBuf>, CliError> {
     let mut out = Vec::new();
     for p in paths {
         if p.is_dir() {
-            walk(p, &mut out).map_err(|e| format!("cannot read folder `{}`: {e}", p.display()))?;
+            walk(p, &mut out).map_err(|e| CliError::UnreadableFolder {
+                path: p.clone(),
+                reason: e.to_string(),
+            })?;
         } else if p.is_file() {
             out.push(p.clone());
         } else {
-            return Err(format!("no such file or folder: `{}`", p.display()));
+            return Err(CliError::NoSuchPath { path: p.clone() });
         }
     }
     Ok(out)
@@ -98,24 +101,20 @@ struct Parsed {
 
 /// The text of a file for `check`; None (after the error) when it cannot be read.
 fn read_text(path: &Path) -> Option<String> {
-    match std::fs::read(path) {
-        Ok(b) => match String::from_utf8(b) {
-            Ok(t) => Some(t),
-            Err(_) => {
-                eprintln!(
-                    "error[{}]: `{}` is not UTF-8 text",
-                    CliCode::BadFile,
-                    path.display()
-                );
-                None
-            }
-        },
+    let text = std::fs::read(path)
+        .map_err(|e| CliError::Unreadable {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })
+        .and_then(|b| {
+            String::from_utf8(b).map_err(|_| CliError::NotUtf8 {
+                path: path.to_path_buf(),
+            })
+        });
+    match text {
+        Ok(t) => Some(t),
         Err(e) => {
-            eprintln!(
-                "error[{}]: cannot read `{}`: {e}",
-                CliCode::Unreadable,
-                path.display()
-            );
+            e.report();
             None
         }
     }
@@ -222,10 +221,7 @@ pub fn check(
     let started = Instant::now();
     let files = match collect(paths) {
         Ok(f) => f,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     let provider = CliProvider::new(libs);
     let mut tree = ClassTree::new(&provider);
@@ -335,12 +331,9 @@ fn report(
 }
 
 pub fn emit_ast(file: &Path, color: bool) -> i32 {
-    let text = match std::fs::read_to_string(file) {
+    let text = match read(file) {
         Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: cannot read `{}`: {e}", file.display());
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     let mut map = SourceMap::new();
     let id = map.add(file.to_path_buf(), text);
@@ -413,15 +406,23 @@ pub fn pick(
     tree: &mut ClassTree<'_>,
     classes: &[unimo_flat::ClassId],
     wanted: Option<&str>,
-) -> Result<unimo_flat::ClassId, String> {
+) -> Result<unimo_flat::ClassId, CliError> {
     pick_model(tree, classes, wanted)
+}
+
+/// The text of a file given on the command line (`E0001` when it cannot be read).
+pub fn read(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|e| CliError::Unreadable {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    })
 }
 
 fn pick_model(
     tree: &mut ClassTree<'_>,
     classes: &[unimo_flat::ClassId],
     wanted: Option<&str>,
-) -> Result<unimo_flat::ClassId, String> {
+) -> Result<unimo_flat::ClassId, CliError> {
     use unimo_syntax::ast::ClassKind;
     if let Some(w) = wanted {
         for &c in classes {
@@ -432,7 +433,7 @@ fn pick_model(
         let parts: Vec<&str> = w.split('.').collect();
         return tree
             .lookup_global(&parts)
-            .ok_or_else(|| format!("no class `{w}` in the file or the library"));
+            .ok_or_else(|| CliError::NoSuchClass { name: w.to_owned() });
     }
     let candidates: Vec<_> = classes
         .iter()
@@ -477,16 +478,12 @@ fn pick_model(
                 .collect();
             match partial.as_slice() {
                 [one] => Ok(*one),
-                _ => Err("the file has no non-partial model; name one with --model".into()),
+                _ => Err(CliError::NoModel {}),
             }
         }
-        many => {
-            let names: Vec<String> = many.iter().map(|c| tree.full_name(*c)).collect();
-            Err(format!(
-                "the file has several models ({}); choose one with --model",
-                names.join(", ")
-            ))
-        }
+        many => Err(CliError::SeveralModels {
+            names: many.iter().map(|c| tree.full_name(*c)).collect(),
+        }),
     }
 }
 
@@ -538,12 +535,9 @@ pub fn with_flat_model_overridden(
     let mut tree = ClassTree::new(&provider);
     let mut first_classes = None;
     for file in files {
-        let text = match std::fs::read_to_string(file) {
+        let text = match read(file) {
             Ok(t) => t,
-            Err(e) => {
-                eprintln!("error: cannot read `{}`: {e}", file.display());
-                return EXIT_USAGE;
-            }
+            Err(e) => return e.report(),
         };
         let id = tree.sources.add(file.to_path_buf(), text);
         let started = Instant::now();
@@ -560,10 +554,7 @@ pub fn with_flat_model_overridden(
     let classes = first_classes.unwrap_or_default();
     let class = match pick_model(&mut tree, &classes, model) {
         Ok(c) => c,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     let (mut flat, mut diags) = unimo_flat::flatten(&mut tree, class);
     let overridden = !overrides.flags.is_empty() || overrides.file.is_some();

@@ -1,5 +1,6 @@
-//! The codes of the command line and the API's usage errors (`E00xx`), one variant each;
-//! `docs/errors.md` has a row per code (a test checks it).
+//! The codes of the command line and the API's usage errors (`E00xx`), one variant each
+//! (the errors themselves: `error.rs`); `docs/errors.md` has a row per code (a test
+//! checks it).
 
 use unimo_source::Code;
 
@@ -10,8 +11,7 @@ pub enum CliCode {
     Unknown,
     /// E0001: a file could not be read.
     Unreadable,
-    /// E0002: a file is not UTF-8 text; the API also reports with it that no model can
-    /// be chosen from the file.
+    /// E0002: a file is not UTF-8 text.
     BadFile,
     /// E0003: a parameter override or output name that names nothing in the model.
     UnknownName,
@@ -21,9 +21,20 @@ pub enum CliCode {
     NotSettable,
     /// E0006: an override that is not `NAME=VALUE`.
     NotNameValue,
-    /// E0007: the API's simulation options cannot be used (an unknown method, a stop
-    /// before the start, a non-positive interval or tolerance).
+    /// E0007: the simulation options cannot be used (an unknown method, a stop before
+    /// the start, a non-positive interval or tolerance).
     BadOptions,
+    /// E0008: no model can be chosen: `--model` names no class, or the file has no
+    /// model or several.
+    NoModel,
+    /// E0009: an output file cannot be written.
+    CannotWrite,
+    /// E0010: a command given without what it needs (`emit --stage ast` without a file).
+    NeedsFile,
+    /// E0011: `plot`: the options or the columns cannot be plotted.
+    CannotPlot,
+    /// E0012: `bench`: the reference run failed.
+    NoReference,
     /// E0020: `--tunable NAME` names no parameter.
     UnknownTunable,
     /// E0070: `animate`: the result file is unusable.
@@ -53,6 +64,11 @@ impl CliCode {
         CliCode::NotSettable,
         CliCode::NotNameValue,
         CliCode::BadOptions,
+        CliCode::NoModel,
+        CliCode::CannotWrite,
+        CliCode::NeedsFile,
+        CliCode::CannotPlot,
+        CliCode::NoReference,
         CliCode::UnknownTunable,
         CliCode::ResultTable,
         CliCode::MalformedVisual,
@@ -62,6 +78,11 @@ impl CliCode {
         CliCode::BadClock,
         CliCode::NotInitialized,
     ];
+
+    /// Whether the code is a warning: none of the command line's is.
+    pub fn is_warning(self) -> bool {
+        self.as_str().starts_with('W')
+    }
 
     /// The code as printed (`E0003`).
     pub fn as_str(self) -> &'static str {
@@ -74,6 +95,11 @@ impl CliCode {
             CliCode::NotSettable => "E0005",
             CliCode::NotNameValue => "E0006",
             CliCode::BadOptions => "E0007",
+            CliCode::NoModel => "E0008",
+            CliCode::CannotWrite => "E0009",
+            CliCode::NeedsFile => "E0010",
+            CliCode::CannotPlot => "E0011",
+            CliCode::NoReference => "E0012",
             CliCode::UnknownTunable => "E0020",
             CliCode::ResultTable => "E0070",
             CliCode::MalformedVisual => "E0071",

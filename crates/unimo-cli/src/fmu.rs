@@ -4,7 +4,7 @@
 //! module locates: `UNIMO_FMI_LIBRARY`, else next to the `unimo` executable (or in its
 //! `deps/` folder, where cargo builds it). See `docs/fmi.md`.
 
-use crate::api::{self, ErrorKind, Source};
+use crate::api;
 use std::path::PathBuf;
 use unimo_fmi::package::{self, Request};
 use unimo_fmi::{FmiError, Kind, Version};
@@ -29,16 +29,8 @@ pub enum KindArg {
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct FmuArgs {
-    /// The Modelica file with the model, then any other files it uses (none when
-    /// --model names a class of a library).
-    #[arg(required_unless_present = "model", value_name = "FILE")]
-    pub files: Vec<PathBuf>,
-    /// The model (full dotted name); may be omitted when the file has one.
-    #[arg(long, value_name = "NAME")]
-    pub model: Option<String>,
-    /// Add a library folder.
-    #[arg(long = "lib", value_name = "DIR")]
-    pub libs: Vec<PathBuf>,
+    #[command(flatten)]
+    pub source: crate::ModelArgs,
     /// FMI version.
     #[arg(long = "fmi", value_enum, default_value_t = FmiVersionArg::Two)]
     pub version: FmiVersionArg,
@@ -84,21 +76,12 @@ pub fn locate_library() -> Result<PathBuf, FmiError> {
 }
 
 pub fn command(a: &FmuArgs) -> i32 {
-    let source = Source {
-        files: a.files.iter().map(|f| (f.clone(), None)).collect(),
-        model: a.model.clone(),
-        libs: a.libs.clone(),
-        fold: unimo_dae::FoldOptions::default(),
-    };
+    let source = a.source.source(unimo_dae::FoldOptions::default());
     let text = match api::with_session(&source, |s| s.flat().to_modelica()) {
         Ok(t) => t,
         Err(e) => {
             eprintln!("{}", e.rendered);
-            return match e.kind {
-                ErrorKind::Model => crate::EXIT_MODEL_ERROR,
-                ErrorKind::Usage => crate::EXIT_USAGE,
-                ErrorKind::Simulation => crate::EXIT_SIMULATION_FAILURE,
-            };
+            return e.kind.exit_code();
         }
     };
     let written = locate_library().and_then(|library| {

@@ -9,6 +9,7 @@ pub mod api;
 mod bench;
 mod check;
 pub mod codes;
+pub mod error;
 pub mod fmu;
 mod numfmt;
 mod params;
@@ -96,17 +97,8 @@ enum Command {
     /// merged, `for` equations unrolled and connections turned into equations. The
     /// output parses back with unimo.
     Flatten {
-        /// The Modelica file with the model, then any other files it uses (none when
-        /// --model names a class of a library: --lib, MODELICAPATH).
-        #[arg(required_unless_present = "model", value_name = "FILE")]
-        files: Vec<PathBuf>,
-        /// The model to flatten (full dotted name); may be omitted when the file has
-        /// exactly one non-partial model.
-        #[arg(long, value_name = "NAME")]
-        model: Option<String>,
-        /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
-        #[arg(long = "lib", value_name = "DIR")]
-        libs: Vec<PathBuf>,
+        #[command(flatten)]
+        source: ModelArgs,
         /// Print equation and unknown counts to stderr.
         #[arg(long)]
         stats: bool,
@@ -180,16 +172,8 @@ enum Command {
         /// Which stage to print.
         #[arg(long, value_enum, default_value_t = Stage::Ast)]
         stage: Stage,
-        /// The Modelica file with the model, then any other files it uses (none when
-        /// --model names a class of a library: --lib, MODELICAPATH).
-        #[arg(required_unless_present = "model", value_name = "FILE")]
-        files: Vec<PathBuf>,
-        /// The model (full dotted name); may be omitted when the file has one.
-        #[arg(long, value_name = "NAME")]
-        model: Option<String>,
-        /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
-        #[arg(long = "lib", value_name = "DIR")]
-        libs: Vec<PathBuf>,
+        #[command(flatten)]
+        source: ModelArgs,
         /// Keep these parameters tunable (see `simulate --tunable`): the DAE, structure
         /// and tape name them instead of showing their folded values.
         #[arg(long, value_delimiter = ',', value_name = "P,Q.R")]
@@ -200,18 +184,40 @@ enum Command {
     },
 }
 
+/// The model a command works on: its files, its name, the library folders (`flatten`,
+/// `emit`, `simulate`, `sweep`, `fmu`).
 #[derive(clap::Args, Debug, Clone)]
-pub struct SimulateArgs {
+pub struct ModelArgs {
     /// The Modelica file with the model, then any other files it uses (none when
     /// --model names a class of a library: --lib, MODELICAPATH).
     #[arg(required_unless_present = "model", value_name = "FILE")]
     pub files: Vec<PathBuf>,
-    /// The model (full dotted name); may be omitted when the file has one.
+    /// The model (full dotted name); may be omitted when the file has one
+    /// non-partial model (or one that no other model of the file uses).
     #[arg(long, value_name = "NAME")]
     pub model: Option<String>,
     /// Add a library folder (searched before MODELICAPATH, UNIMO_PATH and the bundled library).
     #[arg(long = "lib", value_name = "DIR")]
     pub libs: Vec<PathBuf>,
+}
+
+impl ModelArgs {
+    /// The model as the API loads it (the files read from disk), with `fold`'s choice
+    /// of tunable parameters.
+    pub fn source(&self, fold: unimo_dae::FoldOptions) -> api::Source {
+        api::Source {
+            files: self.files.iter().map(|f| (f.clone(), None)).collect(),
+            model: self.model.clone(),
+            libs: self.libs.clone(),
+            fold,
+        }
+    }
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub source: ModelArgs,
     /// Start time [default: experiment StartTime, else 0].
     #[arg(long, value_name = "T0")]
     pub start: Option<f64>,
@@ -348,15 +354,8 @@ pub struct BenchArgs {
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SweepArgs {
-    /// The Modelica file with the model, then any other files it uses.
-    #[arg(required = true, value_name = "FILE")]
-    pub files: Vec<PathBuf>,
-    /// The model (full dotted name); may be omitted when the file has one.
-    #[arg(long, value_name = "NAME")]
-    pub model: Option<String>,
-    /// Add a library folder.
-    #[arg(long = "lib", value_name = "DIR")]
-    pub libs: Vec<PathBuf>,
+    #[command(flatten)]
+    pub source: ModelArgs,
     /// A parameter's values: `k=0.5:0.9:5` (n points from a to b), `f=0.05,0.1`, `h0=2`.
     #[arg(short = 'p', long = "param", value_name = "NAME=VALUES")]
     pub params: Vec<String>,
@@ -456,12 +455,9 @@ fn run_on_this_thread() -> i32 {
             no_balance,
             no_analysis,
         } => check::check(&paths, &libs, stats, !no_balance, !no_analysis, color),
-        Command::Flatten {
-            files,
-            model,
-            libs,
-            stats,
-        } => check::flatten(&files, model.as_deref(), &libs, stats, color),
+        Command::Flatten { source: m, stats } => {
+            check::flatten(&m.files, m.model.as_deref(), &m.libs, stats, color)
+        }
         Command::Simulate(args) => simulate::simulate(&args, color),
         Command::Bench(args) => bench::bench(&args, color),
         Command::Sweep(args) => sweep::command(&args),
@@ -470,20 +466,15 @@ fn run_on_this_thread() -> i32 {
         Command::Fmu(args) => fmu::command(&args),
         Command::Emit {
             stage,
-            files,
-            model,
-            libs,
+            source: m,
             tunable,
             tunable_all,
         } => match stage {
-            Stage::Ast => match files.first() {
+            Stage::Ast => match m.files.first() {
                 Some(file) => check::emit_ast(file, color),
-                None => {
-                    eprintln!("error: `emit --stage ast` prints the tree of a file: give the file");
-                    EXIT_USAGE
-                }
+                None => error::CliError::AstNeedsFile {}.report(),
             },
-            Stage::Flat => check::flatten(&files, model.as_deref(), &libs, false, color),
+            Stage::Flat => check::flatten(&m.files, m.model.as_deref(), &m.libs, false, color),
             Stage::Dae | Stage::Structure | Stage::Tape => {
                 let fold = unimo_dae::FoldOptions {
                     tunable_all,
@@ -494,7 +485,7 @@ fn run_on_this_thread() -> i32 {
                     Stage::Structure => stages::BackStage::Structure,
                     _ => stages::BackStage::Tape,
                 };
-                stages::emit(back, &files, model.as_deref(), &libs, &fold, color)
+                stages::emit(back, &m.files, m.model.as_deref(), &m.libs, &fold, color)
             }
         },
     }
@@ -534,7 +525,7 @@ pub fn load_model_with(
         first.get_or_insert(classes);
     }
     let classes = first.unwrap_or_default();
-    let class = check::pick(&mut tree, &classes, model)?;
+    let class = check::pick(&mut tree, &classes, model).map_err(|e| e.line())?;
     let (flat, diags) = unimo_flat::flatten(&mut tree, class);
     if diags.iter().any(|d| d.is_error()) {
         return Err(render_all(&diags, &tree.sources));

@@ -4,7 +4,7 @@
 //! flattening again. Problems are coded `E00xx` diagnostics pointing into the command
 //! line or the override file.
 
-use crate::codes::CliCode;
+use crate::error::CliError;
 use std::path::{Path, PathBuf};
 use unimo_flat::flat::{FlatModel, FlatType, FlatVar, Variability};
 use unimo_source::{Diagnostic, FileId, SourceMap, Span};
@@ -33,13 +33,13 @@ fn split_lines(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Wri
         }
         let at = |a: usize, b: usize| Span::new(file, start + lead + a, start + lead + b);
         let Some(eq) = content.find('=') else {
+            let text = content.to_owned();
             diags.push(
-                Diagnostic::error(
-                    CliCode::NotNameValue,
-                    format!("`{content}` is not `NAME=VALUE`"),
-                )
-                .at(at(0, content.len()), "no `=`")
-                .with_help("write e.g. `-p k=0.8`"),
+                CliError::NotNameValue {
+                    text,
+                    span: at(0, content.len()),
+                }
+                .into(),
             );
             continue;
         };
@@ -57,8 +57,10 @@ fn split_lines(file: FileId, text: &str, diags: &mut Vec<Diagnostic>) -> Vec<Wri
         });
         if name_trim.is_empty() {
             diags.push(
-                Diagnostic::error(CliCode::NotNameValue, "an override without a name")
-                    .at(at(0, eq + 1), "name missing"),
+                CliError::NoOverrideName {
+                    span: at(0, eq + 1),
+                }
+                .into(),
             );
             out.pop();
         }
@@ -76,12 +78,7 @@ fn written(
 ) -> Result<Vec<Written>, Diagnostic> {
     let mut out = Vec::new();
     if let Some(path) = file {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            Diagnostic::error(
-                CliCode::Unreadable,
-                format!("cannot read `{}`: {e}", path.display()),
-            )
-        })?;
+        let text = crate::check::read(path).map_err(Diagnostic::from)?;
         let id = map.add(path.to_path_buf(), text.clone());
         out.extend(split_lines(id, &text, diags));
     }
@@ -228,56 +225,48 @@ fn split_top_level(text: &str) -> Vec<&str> {
 /// Checks one override against the flat model.
 fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
     let Some(var) = flat.vars.iter().find(|v| v.name == w.name) else {
-        let mut d = Diagnostic::error(
-            CliCode::UnknownName,
-            format!("no parameter `{}` in `{}`", w.name, flat.name),
-        )
-        .at(w.name_span, "unknown name");
-        if let Some(n) = closest(&w.name, flat) {
-            d = d.with_help(format!("did you mean `{n}`?"));
+        return Err(CliError::UnknownParameter {
+            name: w.name.clone(),
+            model: flat.name.clone(),
+            suggestion: closest(&w.name, flat),
+            span: w.name_span,
         }
-        if w.name.contains('[') {
-            let base = w.name.split('[').next().unwrap_or_default();
-            d = d.with_help(format!(
-                "elements of arrays cannot be set one by one: set the whole array, `{base}={{...}}`"
-            ));
-        }
-        return Err(d);
+        .into());
     };
-    let refuse = |why: String, help: &str| {
-        Err(Diagnostic::error(CliCode::NotSettable, why)
-            .at(w.name_span, "cannot be changed")
-            .with_label(var.origin, "declared here")
-            .with_help(help.to_owned()))
-    };
+    let (name, span, declared) = (w.name.clone(), w.name_span, var.origin);
     match var.variability {
         Variability::Parameter => {}
         Variability::Constant => {
-            return refuse(
-                format!("`{}` is a constant", w.name),
-                "only parameters can be overridden",
-            )
+            return Err(CliError::SetsConstant {
+                name,
+                span,
+                declared,
+            }
+            .into())
         }
         _ => {
-            return refuse(
-                format!("`{}` is a variable, not a parameter", w.name),
-                "change its start value in the model instead",
-            )
+            return Err(CliError::SetsVariable {
+                name,
+                span,
+                declared,
+            }
+            .into())
         }
     }
     if var.is_final {
-        return refuse(
-            format!(
-                "`{}` is `final`: no modifier may change it (spec 7.2.6)",
-                w.name
-            ),
-            "remove `final` in the model to make it a setting",
-        );
+        return Err(CliError::SetsFinal {
+            name,
+            span,
+            declared,
+        }
+        .into());
     }
-    let value = array_value(var, &var.dims, &w.value, w.value_span).map_err(|msg| {
-        Diagnostic::error(CliCode::OverrideValue, msg)
-            .at(w.value_span, "wrong value")
-            .with_label(var.origin, "declared here")
+    let value = array_value(var, &var.dims, &w.value, w.value_span).map_err(|why| {
+        CliError::OverrideValue {
+            why,
+            span: w.value_span,
+            declared,
+        }
     })?;
     Ok((w.name.clone(), value))
 }

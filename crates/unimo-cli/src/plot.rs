@@ -1,7 +1,8 @@
 //! `unimo plot`: line plots (SVG) of columns of a result CSV, against time or another
 //! column (phase plots such as a contact point's x against z).
 
-use crate::{EXIT_OK, EXIT_USAGE};
+use crate::error::CliError;
+use crate::EXIT_OK;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug, Clone)]
@@ -87,22 +88,18 @@ pub fn read_csv(path: &Path) -> Result<Table, String> {
     Ok(Table { names, rows })
 }
 
-fn column(t: &Table, name: &str) -> Result<usize, String> {
+fn column(t: &Table, name: &str) -> Result<usize, CliError> {
     t.names.iter().position(|n| n == name).ok_or_else(|| {
-        let near: Vec<&str> = t
+        let near = t
             .names
             .iter()
             .filter(|n| n.ends_with(name) || name.ends_with(n.as_str()))
-            .map(|s| s.as_str())
             .take(5)
+            .cloned()
             .collect();
-        if near.is_empty() {
-            format!("no column `{name}` in the CSV")
-        } else {
-            format!(
-                "no column `{name}` in the CSV (did you mean {}?)",
-                near.join(", ")
-            )
+        CliError::NoColumn {
+            name: name.to_owned(),
+            near,
         }
     })
 }
@@ -145,23 +142,22 @@ pub fn plot(a: &PlotArgs) -> i32 {
             eprintln!("wrote {} ({n} lines)", a.output.display());
             EXIT_OK
         }
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            EXIT_USAGE
-        }
+        Err(e) => e.report(),
     }
 }
 
-fn run(a: &PlotArgs) -> Result<usize, String> {
+fn run(a: &PlotArgs) -> Result<usize, CliError> {
     if !a.range.is_empty() && a.range.len() != 2 {
-        return Err("--range takes two numbers: FROM,TO".into());
+        return Err(CliError::PlotRange {});
     }
     if a.size.len() != 2 || a.size.contains(&0) {
-        return Err("--size takes two positive numbers: W,H".into());
+        return Err(CliError::PlotSize {});
     }
-    let t = read_csv(&a.csv)?;
+    let t = read_csv(&a.csv).map_err(|why| CliError::ResultTable { why })?;
     if t.rows.is_empty() {
-        return Err(format!("{}: no rows to plot", a.csv.display()));
+        return Err(CliError::NoRowsToPlot {
+            path: a.csv.clone(),
+        });
     }
     let xc = column(&t, &a.x)?;
     let ycols: Vec<usize> = if a.vars.is_empty() {
@@ -173,7 +169,7 @@ fn run(a: &PlotArgs) -> Result<usize, String> {
             .collect::<Result<_, _>>()?
     };
     if ycols.is_empty() {
-        return Err("nothing to plot: give --vars".into());
+        return Err(CliError::NothingToPlot {});
     }
     let rc = match &a.range_of {
         Some(n) => column(&t, n)?,
@@ -208,7 +204,7 @@ fn run(a: &PlotArgs) -> Result<usize, String> {
         }
     }
     if !x0.is_finite() || !y0.is_finite() {
-        return Err("no finite points in the selected columns and range".into());
+        return Err(CliError::NoFinitePoints {});
     }
     let pad = |lo: f64, hi: f64| {
         let d = (hi - lo).abs().max(1e-12 * lo.abs().max(1.0));
@@ -243,7 +239,10 @@ fn run(a: &PlotArgs) -> Result<usize, String> {
         a.log_y,
         &series,
     )
-    .map_err(|e| format!("cannot write {}: {e}", a.output.display()))?;
+    .map_err(|e| CliError::CannotWrite {
+        what: a.output.display().to_string(),
+        reason: e.to_string(),
+    })?;
     Ok(series.len())
 }
 

@@ -1,11 +1,11 @@
 //! `unimo simulate`: compile, simulate, write CSV and statistics.
 
 use crate::check::{render_stage, with_flat_model_overridden, ParameterOverrides};
-use crate::codes::CliCode;
+use crate::error::CliError;
 use crate::results::csv::CsvStream;
 use crate::{
     EngineArg, MethodArg, ResultFormat, SimulateArgs, EXIT_MODEL_ERROR, EXIT_OK,
-    EXIT_SIMULATION_FAILURE, EXIT_USAGE,
+    EXIT_SIMULATION_FAILURE,
 };
 use std::io::Write;
 use std::sync::{Arc, Mutex};
@@ -27,7 +27,7 @@ pub fn method(m: MethodArg) -> Method {
 }
 
 /// Columns selected by `--vars` (all when empty); Err names an unknown selector.
-pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, String> {
+pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, CliError> {
     if wanted.is_empty() {
         return Ok((0..names.len()).collect());
     }
@@ -45,25 +45,15 @@ pub(crate) fn select(names: &[String], wanted: &[String]) -> Result<Vec<usize>, 
             .map(|(k, _)| k)
             .collect();
         if hits.is_empty() {
-            let mut close: Vec<&String> = names
+            let mut similar: Vec<String> = names
                 .iter()
                 .filter(|n| n.contains(w) || w.contains(n.as_str()))
                 .take(5)
+                .cloned()
                 .collect();
-            close.sort();
-            let hint = if close.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    " (similar: {})",
-                    close
-                        .iter()
-                        .map(|s| s.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            };
-            return Err(format!("no variable `{w}` in the model{hint}"));
+            similar.sort();
+            let name = w.to_owned();
+            return Err(CliError::UnknownVariable { name, similar });
         }
         out.extend(hits);
     }
@@ -79,9 +69,9 @@ pub fn simulate(a: &SimulateArgs, color: bool) -> i32 {
         file: a.override_file.as_deref(),
     };
     with_flat_model_overridden(
-        &a.files,
-        a.model.as_deref(),
-        &a.libs,
+        &a.source.files,
+        a.source.model.as_deref(),
+        &a.source.libs,
         color,
         false,
         &overrides,
@@ -126,9 +116,8 @@ fn simulate_flat(
         ..Phases::default()
     };
     let fold = fold_options(a);
-    if let Err(msg) = check_tunable(flat, &fold) {
-        eprintln!("{msg}");
-        return EXIT_USAGE;
+    if let Err(unknown) = check_tunable(flat, &fold) {
+        return report_all(&unknown);
     }
     let mut seconds = [0.0; 2];
     let (dae, analysis) = match unimo_dae::analyze_model_timed(flat, &fold, &mut seconds) {
@@ -142,10 +131,7 @@ fn simulate_flat(
     // Select the outputs first: with --vars, what they do not need is left out.
     let (output_ids, cols) = match output_columns(&dae, &a.vars) {
         Ok(x) => x,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     let mut plan = analysis.plan.clone();
     if !a.vars.is_empty() {
@@ -163,10 +149,7 @@ fn simulate_flat(
     phases.native = ms_since(native_started);
     let options = match sim_options(a, &dae) {
         Ok(o) => o,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return e.report(),
     };
     let start = options.start;
     let sim_started = Instant::now();
@@ -183,8 +166,8 @@ fn simulate_flat(
     let ids = (&output_ids[..], &cols[..]);
     let span = (start, options.stop);
     if let Err(e) = finish_results(a, (flat, &dae), &result, csv, ids, span) {
-        eprintln!("error: cannot write the results: {e}");
-        return EXIT_USAGE;
+        let (what, reason) = ("the results".to_owned(), e.to_string());
+        return CliError::CannotWrite { what, reason }.report();
     }
     phases.write = ms_since(write_started);
     if let Some(page) = &a.animate {
@@ -269,7 +252,7 @@ fn how_it_ended(dae: &Dae, map: &SourceMap, result: &SimResult, start: f64) -> i
 fn output_columns(
     dae: &Dae,
     vars: &[String],
-) -> Result<(Vec<unimo_dae::expr::ScalarId>, Vec<usize>), String> {
+) -> Result<(Vec<unimo_dae::expr::ScalarId>, Vec<usize>), CliError> {
     let output_ids: Vec<unimo_dae::expr::ScalarId> = dae
         .ids()
         .filter(|&s| {
@@ -285,7 +268,7 @@ fn output_columns(
 }
 
 /// The experiment's settings with the command line's overrides.
-fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, String> {
+fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, CliError> {
     let overrides = unimo_runtime::sim::Overrides {
         start: a.start,
         stop: a.stop_time,
@@ -295,14 +278,15 @@ fn sim_options(a: &SimulateArgs, dae: &Dae) -> Result<SimOptions, String> {
         points: a.points,
     };
     if !(a.output_tolerance >= 0.0 && a.output_tolerance.is_finite()) {
-        return Err("the output tolerance must be 0 or positive".into());
+        return Err(CliError::BadOutputTolerance {});
     }
-    SimOptions::resolve(&dae.experiment, &overrides, method(a.method), a.every_step).map(|o| {
-        SimOptions {
+    let resolved = SimOptions::resolve(&dae.experiment, &overrides, method(a.method), a.every_step);
+    resolved
+        .map(|o| SimOptions {
             output_rtol: a.output_tolerance,
             ..o
-        }
-    })
+        })
+        .map_err(|why| CliError::BadOptions { why })
 }
 
 /// Runs the simulation; a progress bar on stderr for runs longer than a moment, when
@@ -397,7 +381,7 @@ fn write_mat(
 pub(crate) fn check_tunable(
     flat: &unimo_flat::FlatModel,
     fold: &unimo_dae::FoldOptions,
-) -> Result<(), String> {
+) -> Result<(), Vec<CliError>> {
     let unknown = unimo_dae::fold::unknown_tunable(flat, fold);
     if unknown.is_empty() {
         return Ok(());
@@ -408,20 +392,22 @@ pub(crate) fn check_tunable(
         .filter(|v| v.variability == unimo_flat::flat::Variability::Parameter)
         .map(|v| v.name.trim_matches('\'').to_string())
         .collect();
-    let lines: Vec<String> = unknown
+    Err(unknown
         .iter()
-        .map(|n| match unimo_flat::resolve::suggest(n, names.clone()) {
-            Some(c) => format!(
-                "error[{}]: --tunable `{n}` names no parameter of the model (did you mean `{c}`?)",
-                CliCode::UnknownTunable
-            ),
-            None => format!(
-                "error[{}]: --tunable `{n}` names no parameter of the model",
-                CliCode::UnknownTunable
-            ),
+        .map(|n| CliError::UnknownTunable {
+            name: n.to_string(),
+            suggestion: unimo_flat::resolve::suggest(n, names.clone()),
         })
-        .collect();
-    Err(lines.join("\n"))
+        .collect())
+}
+
+/// Prints every error of `errors`; the exit code of the first.
+pub(crate) fn report_all(errors: &[CliError]) -> i32 {
+    errors
+        .iter()
+        .map(CliError::report)
+        .reduce(|first, _| first)
+        .unwrap_or(EXIT_OK)
 }
 
 /// The `--cost` table: per component instance, plan operations per evaluation (and

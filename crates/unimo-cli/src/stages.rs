@@ -42,9 +42,8 @@ pub fn emit(
     color: bool,
 ) -> i32 {
     with_flat_model(files, model, libs, color, false, &mut |flat, map, _| {
-        if let Err(msg) = crate::simulate::check_tunable(flat, fold) {
-            eprintln!("{msg}");
-            return crate::EXIT_USAGE;
+        if let Err(unknown) = crate::simulate::check_tunable(flat, fold) {
+            return crate::simulate::report_all(&unknown);
         }
         if stage == BackStage::Dae {
             let (mut dae, diags) = unimo_dae::lower_with(flat, fold);

@@ -4,6 +4,7 @@
 //! point's values as modifiers; a point that fails keeps its error and the others go on.
 
 use crate::api::{self, ApiError, Source};
+use crate::error::CliError;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use unimo_runtime::sim::{Overrides, SimResult};
@@ -125,22 +126,24 @@ fn final_values(r: &SimResult, outputs: &[String]) -> Vec<(String, f64)> {
 
 /// The values of one `-p` setting: `name=a:b:n` (n points from a to b), `name=x,y,z`,
 /// or `name=x`.
-pub fn parse_setting(text: &str) -> Result<(String, Vec<String>), String> {
+pub fn parse_setting(text: &str) -> Result<(String, Vec<String>), CliError> {
+    let text_owned = || text.to_owned();
     let Some((name, spec)) = text.split_once('=') else {
-        return Err(format!(
-            "`{text}` is not NAME=VALUES (e.g. k=0.5:0.9:5 or f=0.05,0.1)"
-        ));
+        return Err(CliError::NotNameValues { text: text_owned() });
     };
     let (name, spec) = (name.trim().to_owned(), spec.trim());
     if name.is_empty() || spec.is_empty() {
-        return Err(format!("`{text}`: a name and values are needed"));
+        return Err(CliError::NoNameOrValues { text: text_owned() });
     }
     let parts: Vec<&str> = spec.split(':').collect();
     if parts.len() == 3 {
         let number = |s: &str| {
             s.trim()
                 .parse::<f64>()
-                .map_err(|_| format!("`{text}`: `{s}` is not a number"))
+                .map_err(|_| CliError::RangeEndNotNumber {
+                    text: text_owned(),
+                    value: s.to_owned(),
+                })
         };
         let (a, b) = (number(parts[0])?, number(parts[1])?);
         let n: usize = parts[2]
@@ -148,7 +151,10 @@ pub fn parse_setting(text: &str) -> Result<(String, Vec<String>), String> {
             .parse()
             .ok()
             .filter(|&n| n >= 1)
-            .ok_or_else(|| format!("`{text}`: `{}` is not a count of points", parts[2]))?;
+            .ok_or_else(|| CliError::RangeCountNotCount {
+                text: text_owned(),
+                value: parts[2].to_owned(),
+            })?;
         let values = (0..n)
             .map(|k| match n {
                 1 => a,
@@ -160,7 +166,7 @@ pub fn parse_setting(text: &str) -> Result<(String, Vec<String>), String> {
         return Ok((name, values));
     }
     if parts.len() != 1 {
-        return Err(format!("`{text}`: a range is FROM:TO:N"));
+        return Err(CliError::NotARange { text: text_owned() });
     }
     Ok((name, spec.split(',').map(|v| v.trim().to_owned()).collect()))
 }
@@ -189,22 +195,14 @@ pub fn command(a: &crate::SweepArgs) -> i32 {
     for p in &a.params {
         match parse_setting(p) {
             Ok(s) => settings.push(s),
-            Err(m) => {
-                eprintln!("error: {m}");
-                return crate::EXIT_USAGE;
-            }
+            Err(e) => return e.report(),
         }
     }
     let points = grid(&settings);
-    let source = Source {
-        files: a.files.iter().map(|f| (f.clone(), None)).collect(),
-        model: a.model.clone(),
-        libs: a.libs.clone(),
-        fold: unimo_dae::FoldOptions {
-            tunable_all: false,
-            tunable: a.tunable.clone(),
-        },
-    };
+    let source = a.source.source(unimo_dae::FoldOptions {
+        tunable_all: false,
+        tunable: a.tunable.clone(),
+    });
     let jobs = a
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
@@ -238,8 +236,8 @@ pub fn command(a: &crate::SweepArgs) -> i32 {
         None => std::io::Write::write_all(&mut std::io::stdout(), table.as_bytes()),
     };
     if let Err(e) = written {
-        eprintln!("error: cannot write the table: {e}");
-        return crate::EXIT_USAGE;
+        let (what, reason) = ("the table".to_owned(), e.to_string());
+        return CliError::CannotWrite { what, reason }.report();
     }
     let failed = outcomes.iter().filter(|o| o.error.is_some()).count();
     eprintln!(

@@ -3,7 +3,7 @@
 //! Pantelides, dummy derivatives, BLT, tearing, and the plan's steps with solved
 //! expressions and symbolic block Jacobians.
 
-use crate::dae::{Dae, EqId, Equation, ScalarKind, StateSelect, WhenAction};
+use crate::dae::{Dae, EqId, Equation, ScalarKind, WhenAction};
 use crate::diff::{partial, solve_linear};
 use crate::error::{DaeError, SingularReport};
 use crate::expr::{ExprId, Node, ScalarId};
@@ -268,16 +268,6 @@ pub fn time_derivative(dae: &mut Dae, e: ExprId) -> ExprId {
     crate::diff::derivative(&mut dae.arena, e, &mut seed, &mut HashMap::default())
 }
 
-fn priority(s: StateSelect) -> st::StateSelectPriority {
-    match s {
-        StateSelect::Never => st::StateSelectPriority::Never,
-        StateSelect::Avoid => st::StateSelectPriority::Avoid,
-        StateSelect::Default => st::StateSelectPriority::Default,
-        StateSelect::Prefer => st::StateSelectPriority::Prefer,
-        StateSelect::Always => st::StateSelectPriority::Always,
-    }
-}
-
 /// The structural result kept for dumps.
 pub struct Analysis {
     pub plan: Plan,
@@ -298,7 +288,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
         .map(|k| {
             let s = sys.scalar(st::VarId(k as u32));
             let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
-            priority(sys.dae.scalar(base).state_select)
+            sys.dae.scalar(base).state_select
         })
         .collect();
     let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities);

@@ -29,16 +29,9 @@ pub enum ScalarType {
     Enumeration(u32),
 }
 
-/// `stateSelect` (spec 4.9.7.1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Default)]
-pub enum StateSelect {
-    Never,
-    Avoid,
-    #[default]
-    Default,
-    Prefer,
-    Always,
-}
+/// `stateSelect` (spec 4.9.7.1): the structural analysis' own priority, so that the
+/// scalar's attribute is what dummy-derivative selection reads.
+pub use unimo_structure::StateSelectPriority as StateSelect;
 
 #[derive(Clone, Debug)]
 pub struct Scalar {

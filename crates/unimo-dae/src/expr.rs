@@ -343,23 +343,27 @@ impl ExprArena {
     }
 
     pub fn and(&mut self, a: ExprId, b: ExprId) -> ExprId {
-        match (self.as_const(a), self.as_const(b)) {
-            (Some(0.0), _) => return self.boolean(false),
-            (_, Some(0.0)) => return self.boolean(false),
-            (Some(_), _) => return b,
-            (_, Some(_)) => return a,
-            _ => {}
-        }
-        if a == b {
-            return a;
-        }
-        self.intern(Node::And(a, b))
+        self.logical(a, b, false, Node::And)
     }
 
     pub fn or(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        self.logical(a, b, true, Node::Or)
+    }
+
+    /// `a and b` (`absorbing` false) or `a or b` (`absorbing` true): a constant operand
+    /// whose truth is `absorbing` decides the result, any other constant leaves the
+    /// other operand, and `x op x` is `x`.
+    fn logical(
+        &mut self,
+        a: ExprId,
+        b: ExprId,
+        absorbing: bool,
+        node: fn(ExprId, ExprId) -> Node,
+    ) -> ExprId {
+        let decides = |c: f64| (c != 0.0) == absorbing;
         match (self.as_const(a), self.as_const(b)) {
-            (Some(x), _) if x != 0.0 => return self.boolean(true),
-            (_, Some(y)) if y != 0.0 => return self.boolean(true),
+            (Some(x), _) if decides(x) => return self.boolean(absorbing),
+            (_, Some(y)) if decides(y) => return self.boolean(absorbing),
             (Some(_), _) => return b,
             (_, Some(_)) => return a,
             _ => {}
@@ -367,7 +371,7 @@ impl ExprArena {
         if a == b {
             return a;
         }
-        self.intern(Node::Or(a, b))
+        self.intern(node(a, b))
     }
 
     pub fn not(&mut self, a: ExprId) -> ExprId {

@@ -1,6 +1,6 @@
 //! The coded errors of the instantiation stage (`E2xxx`), turned into diagnostics.
 
-use unimo_source::{Code, Span};
+use unimo_source::{Code, Diagnostic, Span};
 
 /// The codes of the instantiation stage, one variant each; `docs/errors.md` has a row
 /// per code (a test checks it).
@@ -722,6 +722,32 @@ unimo_source::coded_errors! {
             .at(span, "unbalanced connector")
             .with_help("each potential variable (neither flow, stream, input, output, parameter nor constant) needs a flow variable")
             .with_note("Modelica specification, section 9.3.1"),
+    }
+}
+
+/// A library file that exists but cannot be read. The library is read lazily, while
+/// names are looked up, through the [`SourceProvider`](crate::SourceProvider); the
+/// problem is the file's, not the model's, so its code is the command line's code for a
+/// file that cannot be read (`E0001`), not one of the stage's.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum LibraryError {
+    /// E0001: the file cannot be read (`reason`: the provider's error).
+    #[error("cannot read `{path}`: {reason}")]
+    Unreadable { path: String, reason: String },
+}
+
+impl LibraryError {
+    /// The code of this error (`E0001`).
+    pub fn code(&self) -> &'static str {
+        match self {
+            LibraryError::Unreadable { .. } => "E0001",
+        }
+    }
+}
+
+impl From<LibraryError> for Diagnostic {
+    fn from(e: LibraryError) -> Diagnostic {
+        Diagnostic::error(e.code(), e.to_string())
     }
 }
 

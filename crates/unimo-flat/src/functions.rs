@@ -462,12 +462,8 @@ impl Instantiator<'_, '_> {
             .collect();
         let mut local_names: Vec<String> = Vec::new();
         for (_, d) in &compositions {
-            if let ClassBody::Long { composition, .. } = &d.body {
-                for e in &composition.elements {
-                    if let ElementKind::Component(cc) = &e.kind {
-                        local_names.extend(cc.components.iter().map(|d| d.name.text.to_string()));
-                    }
-                }
+            for (_, cc) in d.component_clauses() {
+                local_names.extend(cc.components.iter().map(|d| d.name.text.to_string()));
             }
         }
         let mut has_sections = false;

@@ -45,13 +45,7 @@ impl Instantiator<'_, '_> {
             self.collect_fields(b, out, depth + 1);
         }
         let def = self.tree.get(class).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
-            return;
-        };
-        for e in &composition.elements {
-            let ElementKind::Component(cc) = &e.kind else {
-                continue;
-            };
+        for (e, cc) in def.component_clauses() {
             for d in &cc.components {
                 let bound = d.modification.as_ref().is_some_and(|m| m.binding.is_some());
                 let constant = cc.prefix.variability == Some(Variability::Constant);

@@ -346,13 +346,10 @@ impl<'p> ClassTree<'p> {
         let text = match self.provider.read(&file_loc) {
             Ok(t) => t,
             Err(e) => {
-                self.diagnostics.push(Diagnostic::error(
-                    "E0001",
-                    format!(
-                        "cannot read `{}`: {e}",
-                        self.provider.display(&file_loc).display()
-                    ),
-                ));
+                let path = self.provider.display(&file_loc).display().to_string();
+                let reason = e.to_string();
+                let error = crate::error::LibraryError::Unreadable { path, reason };
+                self.diagnostics.push(error.into());
                 return None;
             }
         };

@@ -113,3 +113,40 @@ fn extends_names_do_not_see_their_own_inherited_members() {
     // ... but not to name its own base class (spec 5.6.1).
     assert_eq!(tree.lookup_simple(Some(b), "Inner", true), None);
 }
+
+/// A library whose files exist but cannot be read (a permission error, say).
+struct Unreadable;
+
+impl unimo_flat::SourceProvider for Unreadable {
+    fn roots(&self) -> usize {
+        1
+    }
+    fn exists(&self, _: &unimo_flat::LibFile) -> bool {
+        true
+    }
+    fn read(&self, _: &unimo_flat::LibFile) -> Result<String, String> {
+        Err("permission denied".into())
+    }
+    fn list(&self, _: &unimo_flat::LibLocation) -> Vec<String> {
+        Vec::new()
+    }
+    fn display(&self, file: &unimo_flat::LibFile) -> std::path::PathBuf {
+        format!("lib/{}", file.path).into()
+    }
+}
+
+/// A library file that cannot be read is `LibraryError::Unreadable`: `E0001` with the
+/// file and the provider's reason, and the name is not found.
+#[test]
+fn an_unreadable_library_file_is_e0001() {
+    let provider = Unreadable;
+    let mut tree = ClassTree::new(&provider);
+    assert!(tree.lookup_dotted(None, &["Lib"], false).is_none());
+    let d = &tree.diagnostics[0];
+    assert_eq!(d.code.0, "E0001");
+    assert_eq!(
+        d.message,
+        "cannot read `lib/Lib/package.mo`: permission denied"
+    );
+    assert!(d.is_error());
+}

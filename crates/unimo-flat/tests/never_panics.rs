@@ -4,36 +4,24 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestRunner};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use unimo_flat::{ClassTree, MemoryProvider};
 
-fn files_below(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = rd.map(|e| e.unwrap().path()).collect();
-    entries.sort();
-    for e in entries {
-        if e.is_dir() {
-            files_below(&e, out);
-        } else if e.extension().is_some_and(|x| x == "mo") {
-            out.push(e);
-        }
-    }
-}
+#[path = "../../../tests/common/corpus.rs"]
+mod corpus_files;
 
 fn corpus() -> Vec<String> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let mut files = Vec::new();
-    for d in [
-        "tests/syntax/ok",
-        "tests/syntax/err",
-        "tests/flatten",
-        "tests/names",
-        "models",
-    ] {
-        files_below(&root.join(d), &mut files);
-    }
+    let files = corpus_files::files(
+        &root,
+        &[
+            "tests/syntax/ok",
+            "tests/syntax/err",
+            "tests/flatten",
+            "tests/names",
+            "models",
+        ],
+    );
     files
         .iter()
         .map(|f| std::fs::read_to_string(f).unwrap())
@@ -128,23 +116,14 @@ fn mutated_models_flatten_without_panic() {
     );
     runner
         .run(&strategy, |(which, edits)| {
-            let mut text = texts[which].clone();
-            for (at, tok, delete) in edits {
-                let mut at = at % text.len().max(1);
-                while !text.is_char_boundary(at) {
-                    at -= 1;
-                }
-                if delete {
-                    let mut end = (at + 2).min(text.len());
-                    while !text.is_char_boundary(end) {
-                        end += 1;
-                    }
-                    text.replace_range(at..end, "");
-                } else {
-                    text.insert_str(at, TOKENS[tok]);
-                    text.insert(at, ' ');
-                }
-            }
+            // Each token inserted after a space.
+            let tokens: Vec<String> = edits.iter().map(|e| format!(" {}", TOKENS[e.1])).collect();
+            let edits: Vec<_> = edits
+                .iter()
+                .zip(&tokens)
+                .map(|(&(at, _, delete), tok)| (at, tok.as_str(), delete))
+                .collect();
+            let text = corpus_files::mutate(&texts[which], &edits, 2);
             flatten_all(&text);
             Ok(())
         })

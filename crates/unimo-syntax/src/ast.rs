@@ -157,6 +157,21 @@ pub struct ClassDef {
     pub span: Span,
 }
 
+impl ClassDef {
+    /// The component clauses a long class declares, each with its element, in
+    /// declaration order (none for a short, derivative or enumeration class).
+    pub fn component_clauses(&self) -> impl Iterator<Item = (&Element, &ComponentClause)> {
+        let elements: &[Element] = match &self.body {
+            ClassBody::Long { composition, .. } => &composition.elements,
+            _ => &[],
+        };
+        elements.iter().filter_map(|e| match &e.kind {
+            ElementKind::Component(cc) => Some((e, cc)),
+            _ => None,
+        })
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ClassBody {
     /// `model A "doc" ... end A;`, or with `extends` set the class extension

@@ -22,6 +22,10 @@ use diffsol::{
 };
 use std::time::Instant;
 
+#[path = "../../../../crates/unimo-solve/tests/support/test_set.rs"]
+mod test_set;
+use test_set::HIRES_REF;
+
 type M = NalgebraMat<f64>;
 type LS = NalgebraLU<f64>;
 type SparseM = FaerSparseMat<f64>;
@@ -31,16 +35,6 @@ const ROBER_REF: [f64; 3] = [
     2.083340149701255e-8,
     8.333360770334713e-14,
     0.9999999791665050,
-];
-const HIRES_REF: [f64; 8] = [
-    7.371312573325668e-4,
-    1.442485726316185e-4,
-    5.888729740967575e-5,
-    1.175651343283149e-3,
-    2.386356198831331e-3,
-    6.238968252742796e-3,
-    2.849998395185769e-3,
-    2.850001604814231e-3,
 ];
 const VDPOL_REF: [f64; 2] = [1.706167732170483, -0.8928097010247975];
 const EPS: f64 = 1e-6;
@@ -144,14 +138,7 @@ fn hires(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failur
         .atol([atol])
         .rhs_implicit(
             |x: &[f64], _p: &[f64], _t: f64, y: &mut [f64]| {
-                y[0] = -1.71 * x[0] + 0.43 * x[1] + 8.32 * x[2] + 0.0007;
-                y[1] = 1.71 * x[0] - 8.75 * x[1];
-                y[2] = -10.03 * x[2] + 0.43 * x[3] + 0.035 * x[4];
-                y[3] = 8.32 * x[1] + 1.71 * x[2] - 1.12 * x[3];
-                y[4] = -1.745 * x[4] + 0.43 * x[5] + 0.43 * x[6];
-                y[5] = -280.0 * x[5] * x[7] + 0.69 * x[3] + 1.71 * x[4] - 0.43 * x[5] + 0.69 * x[6];
-                y[6] = 280.0 * x[5] * x[7] - 1.81 * x[6];
-                y[7] = -280.0 * x[5] * x[7] + 1.81 * x[6];
+                test_set::hires_rhs(x, y);
             },
             |x: &[f64], _p: &[f64], _t: f64, v: &[f64], y: &mut [f64]| {
                 let d = 280.0 * (v[5] * x[7] + x[5] * v[7]);
@@ -167,14 +154,12 @@ fn hires(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failur
         )
         .init(
             |_p: &[f64], _t: f64, y: &mut [f64]| {
-                y.fill(0.0);
-                y[0] = 1.0;
-                y[7] = 0.0057;
+                y.copy_from_slice(&test_set::HIRES_X0);
             },
             8,
         )
         .build();
-    solve_with!(problem, method, 321.8122)
+    solve_with!(problem, method, test_set::HIRES_T_END)
 }
 
 fn vdpol(method: &str, rtol: f64, atol: f64) -> Result<(Vec<f64>, usize), Failure> {

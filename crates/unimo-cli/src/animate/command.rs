@@ -2,9 +2,9 @@
 //! (arguments, the page written to its file, errors printed with exit codes).
 
 use super::{AnimateOptions, AnimateSource, ResultTable};
-use crate::api::{ApiError, ErrorKind};
-use crate::codes::CliCode;
-use crate::{EXIT_MODEL_ERROR, EXIT_OK, EXIT_SIMULATION_FAILURE, EXIT_USAGE};
+use crate::api::ApiError;
+use crate::error::CliError;
+use crate::EXIT_OK;
 use std::path::{Path, PathBuf};
 
 /// Write a 3D animation of a result as one self-contained HTML page (three.js).
@@ -77,13 +77,7 @@ pub fn command(a: &AnimateArgs) -> i32 {
     for p in &a.params {
         match p.split_once('=') {
             Some((n, v)) => params.push((n.trim().to_owned(), v.trim().to_owned())),
-            None => {
-                eprintln!(
-                    "error[{}]: `-p {p}` is not NAME=VALUE",
-                    CliCode::NotNameValue
-                );
-                return EXIT_USAGE;
-            }
+            None => return CliError::NotNameValueFlag { text: p.clone() }.report(),
         }
     }
     let source = AnimateSource {
@@ -108,18 +102,15 @@ fn finish(page: Result<String, ApiError>, output: &Path) -> i32 {
                 eprintln!("wrote {}", output.display());
                 EXIT_OK
             }
-            Err(e) => {
-                eprintln!("error: cannot write `{}`: {e}", output.display());
-                EXIT_USAGE
+            Err(e) => CliError::CannotWrite {
+                what: format!("`{}`", output.display()),
+                reason: e.to_string(),
             }
+            .report(),
         },
         Err(e) => {
             eprintln!("{}", e.rendered);
-            match e.kind {
-                ErrorKind::Model => EXIT_MODEL_ERROR,
-                ErrorKind::Usage => EXIT_USAGE,
-                ErrorKind::Simulation => EXIT_SIMULATION_FAILURE,
-            }
+            e.kind.exit_code()
         }
     }
 }

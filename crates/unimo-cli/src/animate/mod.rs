@@ -12,9 +12,8 @@ mod table;
 pub use spec::{Body, Rotation, Series, Shape};
 pub use table::ResultTable;
 
-use crate::api::{self, ApiError, ErrorKind};
-use crate::codes::CliCode;
-use spec::error;
+use crate::api::{self, ApiError};
+use crate::error::CliError;
 use std::collections::HashMap;
 use std::path::PathBuf;
 use unimo_flat::FlatModel;
@@ -52,28 +51,20 @@ pub fn page(
     options: &AnimateOptions,
 ) -> Result<String, ApiError> {
     if flat.visuals.is_empty() {
-        return Err(error(
-            ErrorKind::Usage,
-            CliCode::NothingToDraw,
-            format!(
-                "`{}` has no component to draw: no class it instantiates declares \
-                 `annotation(__unimo_visual(...))` (see docs/animation.md)",
-                flat.name
-            ),
-        ));
+        return Err(CliError::NothingToDraw {
+            model: flat.name.clone(),
+        }
+        .into());
     }
     let model = spec::ModelValues { flat, constants };
     let bodies = spec::bodies(&model, table)?;
-    let clock = table.column(&options.clock).ok_or_else(|| {
-        let message = format!("the result has no column `{}` for the clock", options.clock);
-        error(ErrorKind::Usage, CliCode::BadClock, message)
+    let clock = &options.clock;
+    let column = table.column(clock).ok_or_else(|| CliError::NoClock {
+        clock: clock.clone(),
     })?;
-    let frames = page::frames(table, clock, options.max_frames).map_err(|m| {
-        error(
-            ErrorKind::Usage,
-            CliCode::BadClock,
-            format!("clock `{}`: {m}", options.clock),
-        )
+    let frames = page::frames(table, column, options.max_frames).map_err(|why| {
+        let clock = clock.clone();
+        CliError::BadClock { clock, why }
     })?;
     let up = options.up.unwrap_or_else(|| up_axis(&bodies, table));
     let o = page::PageOptions {
@@ -187,13 +178,7 @@ pub fn page_from_files(
         let (result, failure) =
             compiled.simulate(&only_initialization, unimo_solve::Method::Auto)?;
         if result.initial_values.is_empty() {
-            return Err(failure.unwrap_or_else(|| {
-                error(
-                    ErrorKind::Simulation,
-                    CliCode::NotInitialized,
-                    "the model could not be initialized for its parameter values".into(),
-                )
-            }));
+            return Err(failure.unwrap_or_else(|| CliError::NotInitialized {}.into()));
         }
         let constants = constants(&compiled.dae, &result.initial_values);
         page(session.flat(), &constants, &table, options)

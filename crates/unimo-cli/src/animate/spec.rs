@@ -3,8 +3,8 @@
 //! entry comes from (a column of the result, or a constant of the model).
 
 use super::table::ResultTable;
-use crate::api::{ApiError, ErrorKind};
-use crate::codes::CliCode;
+use crate::api::ApiError;
+use crate::error::CliError;
 use std::collections::HashMap;
 use unimo_flat::flat::FlatType;
 use unimo_flat::{FlatModel, FlatVisual};
@@ -231,14 +231,12 @@ impl Resolver<'_, '_> {
 
     /// `E0071`: the annotation is malformed.
     fn malformed(&self, what: String) -> ApiError {
-        error(
-            ErrorKind::Model,
-            CliCode::MalformedVisual,
-            format!(
-                "`__unimo_visual` of `{}` (class `{}`): {what}",
-                self.v.path, self.v.class
-            ),
-        )
+        CliError::MalformedVisual {
+            path: self.v.path.clone(),
+            class: self.v.class.clone(),
+            what,
+        }
+        .into()
     }
 
     fn shape(&self) -> Result<Shape, ApiError> {
@@ -282,18 +280,13 @@ impl Resolver<'_, '_> {
 
     /// `E0072`: a name that is no variable of the instance.
     fn not_a_variable(&self, full: &str) -> ApiError {
-        error(
-            ErrorKind::Model,
-            CliCode::VisualNotVariable,
-            format!(
-                "`__unimo_visual` of `{}` (class `{}`) names `{}`, which is not a \
-                 variable of the instance (or not a scalar where one is needed)",
-                self.v.path,
-                self.v.class,
-                full.strip_prefix(&format!("{}.", self.v.path))
-                    .unwrap_or(full)
-            ),
-        )
+        let name = full.strip_prefix(&format!("{}.", self.v.path));
+        CliError::VisualNotVariable {
+            path: self.v.path.clone(),
+            class: self.v.class.clone(),
+            name: name.unwrap_or(full).to_owned(),
+        }
+        .into()
     }
 
     /// The scalar entries of an annotation value: numbers, `{...}` of them, references
@@ -390,15 +383,11 @@ impl Resolver<'_, '_> {
 
     /// `E0073`: a variable the scene needs is neither a column nor a constant.
     fn missing(&self, name: &str) -> ApiError {
-        error(
-            ErrorKind::Usage,
-            CliCode::MissingColumn,
-            format!(
-                "`{name}` (drawing `{}`) is not a column of the result and not a \
-                 parameter of the model: simulate without `--vars`, or include it",
-                self.v.path
-            ),
-        )
+        CliError::MissingColumn {
+            name: name.to_owned(),
+            path: self.v.path.clone(),
+        }
+        .into()
     }
 }
 
@@ -415,16 +404,6 @@ fn scalar_names(name: &str, dims: &[usize]) -> Vec<String> {
             }
         })
         .collect()
-}
-
-pub(super) fn error(kind: ErrorKind, code: CliCode, message: String) -> ApiError {
-    ApiError {
-        kind,
-        code: code.as_str().into(),
-        rendered: format!("error[{code}]: {message}"),
-        message,
-        location: None,
-    }
 }
 
 #[cfg(test)]

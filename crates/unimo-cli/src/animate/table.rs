@@ -1,8 +1,8 @@
 //! The result table an animation reads: a CSV as `simulate` writes it (header names,
 //! quoted when they hold a comma, as `T[1,2]`), or a run's rows in memory.
 
-use crate::api::{ApiError, ErrorKind};
-use crate::codes::CliCode;
+use crate::api::ApiError;
+use crate::error::CliError;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -31,9 +31,13 @@ impl ResultTable {
 
     /// Reads a CSV result file (`E0070` when it cannot be read or is not a table).
     pub fn read_csv(path: &Path) -> Result<ResultTable, ApiError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| table_error(format!("cannot read `{}`: {e}", path.display())))?;
-        ResultTable::parse_csv(&text).map_err(|m| table_error(format!("{}: {m}", path.display())))
+        let text = std::fs::read_to_string(path).map_err(|e| CliError::ResultTable {
+            why: format!("cannot read `{}`: {e}", path.display()),
+        })?;
+        let table = ResultTable::parse_csv(&text);
+        Ok(table.map_err(|m| CliError::ResultTable {
+            why: format!("{}: {m}", path.display()),
+        })?)
     }
 
     /// Parses CSV text: a header of names, then rows of numbers.
@@ -89,17 +93,6 @@ fn split_header(header: &str) -> Result<Vec<String>, String> {
     }
     names.push(current.trim().to_owned());
     Ok(names)
-}
-
-/// `E0070`: the result table is unusable.
-pub fn table_error(message: String) -> ApiError {
-    ApiError {
-        kind: ErrorKind::Usage,
-        code: CliCode::ResultTable.as_str().into(),
-        rendered: format!("error[{}]: {message}", CliCode::ResultTable),
-        message,
-        location: None,
-    }
 }
 
 #[cfg(test)]

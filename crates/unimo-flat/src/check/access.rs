@@ -140,13 +140,7 @@ impl Ctx<'_, '_> {
     /// `E2023`/`E2024` in the modifiers of the components `id` declares.
     pub(super) fn modifications(&mut self, id: ClassId) {
         let def = self.tree.get(id).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
-            return;
-        };
-        for e in &composition.elements {
-            let ElementKind::Component(cc) = &e.kind else {
-                continue;
-            };
+        for (e, cc) in def.component_clauses() {
             for d in &cc.components {
                 let Some(cm) = d.modification.as_ref().and_then(|m| m.class_mod.as_ref()) else {
                     continue;

@@ -127,13 +127,7 @@ impl Ctx<'_, '_> {
     /// `E2028` for a component of a connector type declared `parameter` or `constant`.
     pub(super) fn constant_connectors(&mut self, id: ClassId) {
         let def = self.tree.get(id).def.clone();
-        let ClassBody::Long { composition, .. } = &def.body else {
-            return;
-        };
-        for e in &composition.elements {
-            let ElementKind::Component(cc) = &e.kind else {
-                continue;
-            };
+        for (e, cc) in def.component_clauses() {
             let word = match cc.prefix.variability {
                 Some(Variability::Parameter) => "parameter",
                 Some(Variability::Constant) => "constant",

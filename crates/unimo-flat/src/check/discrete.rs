@@ -10,6 +10,7 @@
 //! `GenerateEvents`, an annotation the flat model does not keep): the check errs on the
 //! side of accepting.
 
+use super::walk::{outside_when, OutsideWhen};
 use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{FlatModel, FlatType, FlatVar, Variability};
@@ -226,30 +227,20 @@ impl Vars<'_> {
     }
 
     fn equations(&self, eqs: &[Equation], out: &mut Vec<Diagnostic>) {
-        for eq in eqs {
-            match &eq.kind {
-                EquationKind::When { .. } => {}
-                EquationKind::If {
-                    branches,
-                    otherwise,
-                } => {
-                    for (_, b) in branches {
-                        self.equations(b, out);
-                    }
-                    self.equations(otherwise, out);
+        outside_when(eqs, &mut |item| {
+            if let OutsideWhen::Equation(Equation {
+                kind: EquationKind::Simple { lhs, rhs },
+                ..
+            }) = item
+            {
+                if let ExprKind::Ref(r) = &lhs.kind {
+                    self.check(r, rhs, out);
                 }
-                EquationKind::For { body, .. } => self.equations(body, out),
-                EquationKind::Simple { lhs, rhs } => {
-                    if let ExprKind::Ref(r) = &lhs.kind {
-                        self.check(r, rhs, out);
-                    }
-                    if let ExprKind::Ref(r) = &rhs.kind {
-                        self.check(r, lhs, out);
-                    }
+                if let ExprKind::Ref(r) = &rhs.kind {
+                    self.check(r, lhs, out);
                 }
-                _ => {}
             }
-        }
+        });
     }
 }
 

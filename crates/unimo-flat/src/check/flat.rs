@@ -4,7 +4,7 @@
 //! neither a binding nor a start value (`W2001`, spec 8.6: a warning, its value is the
 //! type's default start).
 
-use super::walk::{for_each_equation, for_each_statement};
+use super::walk::{for_each_equation, for_each_statement, outside_when, OutsideWhen};
 use crate::error::FlatError;
 use crate::eval::var_key;
 use crate::flat::{
@@ -109,23 +109,10 @@ pub(super) fn assigned_in_when(model: &FlatModel) -> HashSet<String> {
 /// The expressions of equations outside `when` clauses (the `when` clauses, their
 /// conditions included, are left out).
 fn exprs_outside_when(eqs: &[Equation], note: &mut dyn FnMut(&Expr)) {
-    for eq in eqs {
-        match &eq.kind {
-            EquationKind::When { .. } => {}
-            EquationKind::If {
-                branches,
-                otherwise,
-            } => {
-                for (c, b) in branches {
-                    note(c);
-                    exprs_outside_when(b, note);
-                }
-                exprs_outside_when(otherwise, note);
-            }
-            EquationKind::For { body, .. } => exprs_outside_when(body, note),
-            _ => for_each_equation_expr(std::slice::from_ref(eq), note),
-        }
-    }
+    outside_when(eqs, &mut |item| match item {
+        OutsideWhen::Condition(c) => note(c),
+        OutsideWhen::Equation(eq) => for_each_equation_expr(std::slice::from_ref(eq), note),
+    });
 }
 
 /// `E2032` for `pre(x)` outside `when` clauses, where `x` is a Real variable that

@@ -101,3 +101,33 @@ pub(crate) fn for_each_equation(eqs: &[Equation], f: &mut dyn FnMut(&Equation)) 
         eq.for_each_nested(&mut |n| for_each_equation(std::slice::from_ref(n), f));
     }
 }
+
+/// What [`outside_when`] visits: the condition of an `if` equation, or an equation that
+/// is neither `if`, `for` nor `when`.
+pub(crate) enum OutsideWhen<'a> {
+    Condition(&'a Expr),
+    Equation(&'a Equation),
+}
+
+/// Calls `f` with every `if` condition and every other equation of `eqs` outside `when`
+/// clauses, inside `if` branches and `for` bodies (the `when` clauses, their conditions
+/// included, are left out).
+pub(crate) fn outside_when<'a>(eqs: &'a [Equation], f: &mut dyn FnMut(OutsideWhen<'a>)) {
+    for eq in eqs {
+        match &eq.kind {
+            EquationKind::When { .. } => {}
+            EquationKind::If {
+                branches,
+                otherwise,
+            } => {
+                for (c, b) in branches {
+                    f(OutsideWhen::Condition(c));
+                    outside_when(b, f);
+                }
+                outside_when(otherwise, f);
+            }
+            EquationKind::For { body, .. } => outside_when(body, f),
+            _ => f(OutsideWhen::Equation(eq)),
+        }
+    }
+}

@@ -585,32 +585,14 @@ impl<'a> Printer<'a> {
             EquationKind::If {
                 branches,
                 otherwise,
-            } => self.branches(
-                out,
-                depth,
-                ("if", "elseif", "end if"),
-                branches,
-                otherwise,
-                true,
-                &item,
-            ),
+            } => self.branches(out, depth, IF, branches, otherwise, true, &item),
             EquationKind::For { indices, body } => {
-                let _ = writeln!(out, "for {} loop", print::for_indices(indices));
-                for b in body {
-                    self.equation(out, b, depth + 1);
-                }
-                indent(out, depth);
-                out.push_str("end for;\n");
+                let head = format!("for {} loop", print::for_indices(indices));
+                block(out, depth, &head, body, "end for", &item);
             }
-            EquationKind::When { branches } => self.branches(
-                out,
-                depth,
-                ("when", "elsewhen", "end when"),
-                branches,
-                &[],
-                true,
-                &item,
-            ),
+            EquationKind::When { branches } => {
+                self.branches(out, depth, WHEN, branches, &[], true, &item)
+            }
         }
     }
 
@@ -653,44 +635,44 @@ impl<'a> Printer<'a> {
             StatementKind::If {
                 branches,
                 otherwise,
-            } => self.branches(
-                out,
-                depth,
-                ("if", "elseif", "end if"),
-                branches,
-                otherwise,
-                model,
-                &item,
-            ),
+            } => self.branches(out, depth, IF, branches, otherwise, model, &item),
             StatementKind::For { indices, body } => {
-                let _ = writeln!(out, "for {} loop", print::for_indices(indices));
-                for b in body {
-                    self.statement_in(out, b, depth + 1, model);
-                }
-                indent(out, depth);
-                out.push_str("end for;\n");
+                let head = format!("for {} loop", print::for_indices(indices));
+                block(out, depth, &head, body, "end for", &item);
             }
             StatementKind::While { condition, body } => {
-                let _ = writeln!(out, "while {} loop", expr(condition));
-                for b in body {
-                    self.statement_in(out, b, depth + 1, model);
-                }
-                indent(out, depth);
-                out.push_str("end while;\n");
+                let head = format!("while {} loop", expr(condition));
+                block(out, depth, &head, body, "end while", &item);
             }
-            StatementKind::When { branches } => self.branches(
-                out,
-                depth,
-                ("when", "elsewhen", "end when"),
-                branches,
-                &[],
-                model,
-                &item,
-            ),
+            StatementKind::When { branches } => {
+                self.branches(out, depth, WHEN, branches, &[], model, &item)
+            }
             StatementKind::Return => out.push_str("return;\n"),
             StatementKind::Break => out.push_str("break;\n"),
         }
     }
+}
+
+/// The keywords of an `if` equation or statement: first branch, next ones, end.
+const IF: (&str, &str, &str) = ("if", "elseif", "end if");
+/// The keywords of a `when` equation or statement.
+const WHEN: (&str, &str, &str) = ("when", "elsewhen", "end when");
+
+/// A loop (already indented): `head`, the `body` items one level deeper, `end;`.
+fn block<T>(
+    out: &mut String,
+    depth: usize,
+    head: &str,
+    body: &[T],
+    end: &str,
+    item: &dyn Fn(&mut String, &T, usize),
+) {
+    let _ = writeln!(out, "{head}");
+    for b in body {
+        item(out, b, depth + 1);
+    }
+    indent(out, depth);
+    let _ = writeln!(out, "{end};");
 }
 
 fn indent(out: &mut String, depth: usize) {

@@ -187,13 +187,7 @@ impl Instantiator<'_, '_> {
         let mut out: Vec<String> = Vec::new();
         for k in classes {
             let def = self.tree.get(k).def.clone();
-            let ClassBody::Long { composition, .. } = &def.body else {
-                continue;
-            };
-            for e in &composition.elements {
-                let ElementKind::Component(cc) = &e.kind else {
-                    continue;
-                };
+            for (_, cc) in def.component_clauses() {
                 if cc.prefix.causality != Some(Causality::Input) {
                     continue;
                 }

@@ -3,6 +3,9 @@
 //! solutions.
 #![allow(dead_code, clippy::excessive_precision)]
 
+#[path = "test_set.rs"]
+mod test_set;
+
 use unimo_solve::{
     EvalError, JacobianMatrix, Method, Options, SolveError, Solver, Stats, StopReason, System,
 };
@@ -163,18 +166,9 @@ impl Hires {
     pub fn reference() -> Reference {
         Reference {
             name: "HIRES",
-            t_end: 321.8122,
-            x0: vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057],
-            solution: vec![
-                7.371312573325668e-4,
-                1.442485726316185e-4,
-                5.888729740967575e-5,
-                1.175651343283149e-3,
-                2.386356198831331e-3,
-                6.238968252742796e-3,
-                2.849998395185769e-3,
-                2.850001604814231e-3,
-            ],
+            t_end: test_set::HIRES_T_END,
+            x0: test_set::HIRES_X0.to_vec(),
+            solution: test_set::HIRES_REF.to_vec(),
         }
     }
 }
@@ -187,14 +181,7 @@ impl System for Hires {
         &[true; 8]
     }
     fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
-        f[0] = -1.71 * y[0] + 0.43 * y[1] + 8.32 * y[2] + 0.0007;
-        f[1] = 1.71 * y[0] - 8.75 * y[1];
-        f[2] = -10.03 * y[2] + 0.43 * y[3] + 0.035 * y[4];
-        f[3] = 8.32 * y[1] + 1.71 * y[2] - 1.12 * y[3];
-        f[4] = -1.745 * y[4] + 0.43 * y[5] + 0.43 * y[6];
-        f[5] = -280.0 * y[5] * y[7] + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6];
-        f[6] = 280.0 * y[5] * y[7] - 1.81 * y[6];
-        f[7] = -f[6];
+        test_set::hires_rhs(y, f);
         Ok(())
     }
     fn jacobian(
