@@ -243,6 +243,11 @@ fn bench_model(
                 failed: r.error.as_ref().map(|e| e.message()),
             };
             print_row(&meas, rtol, atol, grid);
+            if let Some(last) = r.rows.last() {
+                for line in quantity_lines(&r.names, last, &reference.end, &a.quantities) {
+                    println!("{line}");
+                }
+            }
             all.push(meas);
         }
     }
@@ -271,6 +276,34 @@ fn reference_values(
             Ok(reference_from_result(&r))
         }
     }
+}
+
+/// One line per requested quantity: its value at the end of a run, the reference's value
+/// and the relative error (absolute where the reference is zero).
+fn quantity_lines(
+    names: &[String],
+    last: &[f64],
+    reference: &HashMap<String, f64>,
+    quantities: &[String],
+) -> Vec<String> {
+    quantities
+        .iter()
+        .map(|q| {
+            let value = names.iter().position(|n| n == q).map(|k| last[k]);
+            match (value, reference.get(q)) {
+                (Some(v), Some(&r)) => {
+                    let err = if r == 0.0 {
+                        v.abs()
+                    } else {
+                        ((v - r) / r).abs()
+                    };
+                    format!("  {q} = {v:.12} (reference {r:.12}, error {err:.1e})")
+                }
+                (Some(v), None) => format!("  {q} = {v:.12} (not in the reference)"),
+                (None, _) => format!("  {q}: not an output of the model"),
+            }
+        })
+        .collect()
 }
 
 /// One row of the table on stdout.
@@ -367,6 +400,26 @@ pub fn positive(x: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quantities_report_their_error_against_the_reference() {
+        let names = vec!["Impacts".to_owned(), "tFirstRolling".to_owned()];
+        let reference: HashMap<String, f64> = [
+            ("Impacts".to_owned(), 2168.0),
+            ("tFirstRolling".to_owned(), 0.0),
+        ]
+        .into();
+        let asked = ["Impacts", "tFirstRolling", "Energy"].map(str::to_owned);
+        let lines = quantity_lines(&names, &[2200.0, 0.5], &reference, &asked);
+        assert_eq!(
+            lines,
+            vec![
+                "  Impacts = 2200.000000000000 (reference 2168.000000000000, error 1.5e-2)",
+                "  tFirstRolling = 0.500000000000 (reference 0.000000000000, error 5.0e-1)",
+                "  Energy: not an output of the model",
+            ]
+        );
+    }
 
     #[test]
     fn quoted_fields_keep_their_commas() {

@@ -346,6 +346,11 @@ pub struct BenchArgs {
     /// Write a work-precision plot (SVG) here.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Variables whose values at the end each run reports with their relative error
+    /// against the reference, below its row (counters such as `Impacts`, event times
+    /// such as `tFirstRolling`).
+    #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+    pub quantities: Vec<String>,
     /// How the compiled model is evaluated, as `simulate --engine`: `native` (machine code,
     /// compiled once before the timed runs) or `tape` (the interpreter).
     #[arg(long, value_enum, default_value_t = EngineArg::Native)]
