@@ -491,9 +491,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
 }
 
 /// The fields computed from the rest: which relations are held, the size; checked in
-/// debug builds. Instructions whose results no one reads are removed first.
+/// debug builds.
 fn finish(mut m: CompiledModel) -> CompiledModel {
-    m.remove_dead_instructions();
     m.relation_held = held_relations(&m);
     if cfg!(debug_assertions) {
         if let Err(e) = crate::verify::verify_compiled(&m) {
