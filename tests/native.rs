@@ -298,3 +298,47 @@ fn the_whole_right_hand_side_is_one_native_call() {
     assert_eq!(after[1], 0.0, "the interpreter sees the change");
     assert_ne!(before[1], 0.0);
 }
+
+/// Native code keeps a temporary in a machine register, unstored, only when nothing but
+/// later instructions of the same function read it (`translate::locals`). With one
+/// function per 3 instructions most temporaries are read by another function than
+/// the one computing them, and the models read temporaries through the runtime (zero
+/// crossings, residuals, `when` conditions), the interpreter (relations in event mode,
+/// held roundings) and other tapes: every one must still be stored, so the runs give
+/// the interpreter's bits. Robertson and Hires also take the whole right-hand side
+/// through the step's functions (a step longer than one function).
+#[test]
+fn values_read_elsewhere_are_stored() {
+    let tiny = NativeOptions {
+        max_ops_per_function: 3,
+        ..NativeOptions::default()
+    };
+    for file in [
+        "tests/native/SharedValues.mo",
+        "models/BouncingBall.mo",
+        "models/Robertson.mo",
+        "models/Hires.mo",
+        "models/SampleCounter.mo",
+        "models/FlySlideRoll.mo",
+    ] {
+        let l = common::load(file, None);
+        let o = options(&l, 2.0);
+        for (label, opts) in [
+            ("default", NativeOptions::default()),
+            ("tiny", tiny.clone()),
+        ] {
+            let mut n = l.compiled.clone();
+            let stats = compile_model(&mut n, &opts, execute_shim).expect("native code");
+            assert!(stats.functions > 0);
+            if n.single_step_ops().is_some() {
+                assert!(n.native_rhs.is_some(), "{file}: one explicit step");
+            }
+            let tape = unimo_runtime::sim::simulate(&l.compiled, &o);
+            let native = unimo_runtime::sim::simulate(&n, &o);
+            assert!(tape.error.is_none(), "{file}: {:?}", tape.error);
+            assert!(tape.times.len() > 10);
+            let worst = compare(&format!("{file} ({label})"), &tape, &native);
+            assert_eq!(worst, 0.0, "{file} ({label}): the same bits");
+        }
+    }
+}

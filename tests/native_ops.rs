@@ -77,12 +77,15 @@ fn program() -> Vec<Op> {
     ops
 }
 
+/// A model of one explicit step whose every register counts as a scalar (none is a
+/// temporary, so the native code stores every result, which the tests compare).
 fn model(ops: Vec<Op>, n_registers: usize) -> CompiledModel {
     let mut m = CompiledModel {
         n_registers,
         root_ops: RELS.to_vec(),
         ..CompiledModel::default()
     };
+    m.layout.temp_base = n_registers as u32;
     m.steps.push(CompiledStep::Explicit(Tape::new(ops)));
     m
 }
@@ -179,7 +182,9 @@ fn long_tapes_are_split_and_a_changed_tape_is_interpreted() {
         ..NativeOptions::default()
     };
     let stats = compile_model(&mut m, &options, execute_shim).expect("compiles");
-    assert_eq!(stats.functions, 15);
+    // 15 parts, and the whole right-hand side calling them.
+    assert_eq!(stats.functions, 16);
+    assert!(m.native_rhs.is_some());
     let CompiledStep::Explicit(tape) = &mut m.steps[0] else {
         unreachable!()
     };

@@ -10,8 +10,10 @@ use unimo_dae::collision_args::{CollisionBodyArgs, CollisionWorldArgs};
 mod compile;
 mod compile_external;
 mod compile_initial;
+mod registers;
 
 pub use compile::compile;
+pub use registers::RegisterUse;
 
 /// A Newton block in compiled form.
 #[derive(Clone, Debug)]

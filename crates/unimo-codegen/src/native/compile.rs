@@ -131,17 +131,16 @@ pub fn compile_model(
 ) -> Result<NativeStats, CodegenError> {
     let started = Instant::now();
     let n_registers = m.n_registers;
-    // A plan of one short explicit step also gets a whole right-hand side function.
-    let rhs = m
-        .single_step_ops()
-        .filter(|&n| n <= options.max_ops_per_function)
-        .and_then(|_| match m.steps.first() {
-            Some(CompiledStep::Explicit(t)) => {
-                Some((t.ops.clone(), m.states.clone(), m.derivatives.clone()))
-            }
-            _ => None,
-        });
+    // A plan of one explicit step also gets a whole right-hand side function (for a
+    // long step, one that calls the step's functions).
+    let rhs = m.single_step_ops().and_then(|_| match m.steps.first() {
+        Some(CompiledStep::Explicit(t)) => {
+            Some((t.ops.clone(), m.states.clone(), m.derivatives.clone()))
+        }
+        _ => None,
+    });
     let time = m.layout.time;
+    let registers = crate::model::RegisterUse::of(m);
     let mut tapes = hot_tapes(m);
     let total: usize = tapes.iter().map(|(_, t)| t.ops.len()).sum();
     if total > options.max_model_ops {
@@ -158,13 +157,16 @@ pub fn compile_model(
         .iter()
         .map(|(name, t)| (name.as_str(), t.ops.as_slice()))
         .collect();
+    // The step is the first hot tape (the steps come first, and a step with
+    // instructions is kept).
     let spec = rhs.as_ref().map(|(ops, states, derivatives)| jit::RhsSpec {
         ops,
+        tape: 0,
         time,
         states,
         derivatives,
     });
-    let compiled = jit::compile(&views, spec.as_ref(), options, interpreter)?;
+    let compiled = jit::compile(&views, spec.as_ref(), &registers, options, interpreter)?;
     let mut stats = compiled.stats.clone();
     for ((_, tape), code) in tapes.iter_mut().zip(compiled.tapes) {
         tape.native = Some(NativeTape {

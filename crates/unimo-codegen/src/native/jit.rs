@@ -3,7 +3,7 @@
 
 use crate::native::{ExecuteShim, NativeFn, NativeRhsFn};
 use crate::tape::{Op, Reg};
-use cranelift_codegen::ir::{types, AbiParam, InstBuilder, UserFuncName, Value};
+use cranelift_codegen::ir::{types, AbiParam, FuncRef, InstBuilder, UserFuncName, Value};
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
@@ -11,8 +11,10 @@ use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Module};
 use std::sync::Arc;
 
-use super::translate::{registers, Counts, Interpreted, Params, Signatures, Translator};
+use super::translate::{locals, registers, Counts, Interpreted, Params, Signatures, Translator};
 use super::{CodegenError, NativeOptions, NativeStats};
+use crate::model::RegisterUse;
+use rustc_hash::FxHashSet as HashSet;
 
 /// The code of one model: the JIT module and the instructions its code hands to the
 /// interpreter (their addresses are in the code).
@@ -86,9 +88,28 @@ fn new_module(options: &NativeOptions) -> Result<JITModule, CodegenError> {
 /// derivatives live.
 pub(crate) struct RhsSpec<'a> {
     pub ops: &'a [Op],
+    /// The index of the step's tape among the tapes compiled with it.
+    pub tape: usize,
     pub time: Reg,
     pub states: &'a [Reg],
     pub derivatives: &'a [Reg],
+}
+
+/// What the right-hand side function of `spec` runs: a step of at most `chunk`
+/// instructions translated into it (with its own local values), a longer one as calls
+/// of the step tape's functions (`ids[spec.tape]`).
+fn rhs_body<'a>(
+    spec: &RhsSpec<'_>,
+    ids: &'a [Vec<FuncId>],
+    chunk: usize,
+    registers: &RegisterUse,
+    interpreted: &'a mut Interpreted,
+) -> (&'a mut Interpreted, HashSet<Reg>, &'a [FuncId]) {
+    if spec.ops.len() <= chunk {
+        (interpreted, locals(spec.ops, registers), &[])
+    } else {
+        (interpreted, HashSet::default(), &ids[spec.tape])
+    }
 }
 
 /// The compiled right-hand side.
@@ -102,6 +123,7 @@ pub(crate) struct RhsCode {
 pub(crate) fn compile(
     tapes: &[(&str, &[Op])],
     rhs: Option<&RhsSpec<'_>>,
+    registers: &RegisterUse,
     options: &NativeOptions,
     shim: ExecuteShim,
 ) -> Result<Compiled, CodegenError> {
@@ -133,7 +155,7 @@ pub(crate) fn compile(
                 &mut ctx.func,
                 &mut builder_ctx,
                 part,
-                &mut interpreted_ops,
+                (&mut interpreted_ops, locals(part, registers)),
                 target,
             );
             stats.native_ops += counts.native;
@@ -156,7 +178,7 @@ pub(crate) fn compile(
             (&mut ctx, &mut builder_ctx),
             &signature,
             spec,
-            &mut interpreted_ops,
+            rhs_body(spec, &ids, chunk, registers, &mut interpreted_ops),
             &mut stats,
         )?),
         None => None,
@@ -247,14 +269,14 @@ fn build(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     ops: &[Op],
-    interpreted_ops: &mut Interpreted,
+    (interpreted_ops, local): (&mut Interpreted, HashSet<Reg>),
     target: TargetFrontendConfig,
 ) -> Counts {
     let call_conv = func.signature.call_conv;
     let mut b = FunctionBuilder::new(func, builder_ctx);
     let (params, _) = entry(&mut b);
     let sigs = Signatures::import(&mut b, call_conv);
-    let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
+    let mut t = Translator::new(&mut b, params, sigs, interpreted_ops, local);
     for &op in ops {
         t.op(op);
     }
@@ -265,12 +287,13 @@ fn build(
 }
 
 /// Builds the right-hand side function: time and states into their registers (and
-/// known as values), the step's instructions, the derivatives out.
+/// known as values), the step's instructions (or, for a step longer than one function,
+/// calls of the step's own functions `parts`), the derivatives out.
 fn build_rhs(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     spec: &RhsSpec<'_>,
-    interpreted_ops: &mut Interpreted,
+    body: RhsBody<'_>,
     target: TargetFrontendConfig,
 ) {
     let call_conv = func.signature.call_conv;
@@ -278,15 +301,30 @@ fn build_rhs(
     let (params, rest) = entry(&mut b);
     let (time, states, derivatives) = (rest[0], rest[1], rest[2]);
     let sigs = Signatures::import(&mut b, call_conv);
-    let mut t = Translator::new(&mut b, params, sigs, interpreted_ops);
+    let common = [
+        params.registers,
+        params.n_registers,
+        params.events,
+        params.relations,
+        params.event_mode,
+    ];
+    let mut t = Translator::new(&mut b, params, sigs, body.interpreted, body.local);
     t.set(spec.time, time);
     for (k, &r) in spec.states.iter().enumerate() {
         let flags = cranelift_codegen::ir::MemFlagsData::trusted();
         let v = t.b.ins().load(types::F64, flags, states, (k * 8) as i32);
         t.set(r, v);
     }
-    for &op in spec.ops {
-        t.op(op);
+    if body.parts.is_empty() {
+        for &op in spec.ops {
+            t.op(op);
+        }
+    } else {
+        for &part in &body.parts {
+            t.b.ins().call(part, &common);
+        }
+        // The parts wrote the register file: nothing known before is current.
+        t.forget();
     }
     for (k, &r) in spec.derivatives.iter().enumerate() {
         let v = t.get(r);
@@ -297,13 +335,23 @@ fn build_rhs(
     b.finalize(target);
 }
 
+/// What the right-hand side function is made of besides its specification.
+pub(crate) struct RhsBody<'a> {
+    pub interpreted: &'a mut Interpreted,
+    /// Results kept as values only (see `translate::locals`).
+    pub local: HashSet<Reg>,
+    /// The step's own functions when it is longer than one function (they are called
+    /// in order instead of translating the instructions again), else empty.
+    pub parts: Vec<FuncRef>,
+}
+
 /// Declares, builds and defines the right-hand side function of `spec`.
 fn define_rhs(
     module: &mut JITModule,
     (ctx, builder_ctx): (&mut cranelift_codegen::Context, &mut FunctionBuilderContext),
     signature: &cranelift_codegen::ir::Signature,
     spec: &RhsSpec<'_>,
-    interpreted_ops: &mut Interpreted,
+    (interpreted, local, parts): (&mut Interpreted, HashSet<Reg>, &[FuncId]),
     stats: &mut NativeStats,
 ) -> Result<FuncId, CodegenError> {
     let mut rhs_signature = signature.clone();
@@ -316,7 +364,16 @@ fn define_rhs(
     ctx.func.signature = rhs_signature;
     ctx.func.name = UserFuncName::user(0, id.as_u32());
     let target = module.target_config();
-    build_rhs(&mut ctx.func, builder_ctx, spec, interpreted_ops, target);
+    let parts = parts
+        .iter()
+        .map(|&part| module.declare_func_in_func(part, &mut ctx.func))
+        .collect();
+    let body = RhsBody {
+        interpreted,
+        local,
+        parts,
+    };
+    build_rhs(&mut ctx.func, builder_ctx, spec, body, target);
     module
         .define_function(id, ctx)
         .map_err(|e| compile_error("right-hand side", e))?;

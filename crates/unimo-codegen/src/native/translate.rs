@@ -7,6 +7,7 @@
 //! between events and call the interpreter's instruction in event mode; samples,
 //! tables and held roundings always call it.
 
+use crate::model::RegisterUse;
 use crate::native::ExecuteShim;
 use crate::tape::{Op, Reg};
 use cranelift_codegen::ir::condcodes::FloatCC;
@@ -14,7 +15,7 @@ use cranelift_codegen::ir::{
     types, AbiParam, BlockArg, InstBuilder, MemFlagsData, SigRef, Signature, Value,
 };
 use cranelift_frontend::FunctionBuilder;
-use rustc_hash::FxHashMap as HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use unimo_dae::expr::{Fn1, RelOp};
 
 use super::shims;
@@ -84,8 +85,15 @@ pub(crate) struct Translator<'a, 'b> {
     pub b: &'a mut FunctionBuilder<'b>,
     pub params: Params,
     pub sigs: Signatures,
-    /// Registers whose value is known as an SSA value dominating the current point.
-    known: HashMap<Reg, Value>,
+    /// Registers whose value is known as an SSA value dominating the current point,
+    /// with the number of calls made before it was learnt (`u32::MAX` for a local
+    /// value). A stored value is loaded again after a call (see [`Translator::get`]).
+    known: HashMap<Reg, (Value, u32)>,
+    /// Calls emitted so far.
+    calls: u32,
+    /// Registers that no one reads from the register file (see [`locals`]): their
+    /// values stay SSA values, never stored.
+    local: HashSet<Reg>,
     /// Instructions handed to the interpreter: boxed so that their addresses, baked
     /// into the code, stay valid; kept alive with the code.
     pub interpreted_ops: &'a mut Interpreted,
@@ -105,36 +113,55 @@ impl<'a, 'b> Translator<'a, 'b> {
         params: Params,
         sigs: Signatures,
         interpreted_ops: &'a mut Interpreted,
+        local: HashSet<Reg>,
     ) -> Self {
         Translator {
             b,
             params,
             sigs,
             known: HashMap::default(),
+            calls: 0,
+            local,
             interpreted_ops,
             counts: Counts::default(),
         }
     }
 
-    /// The value of register `r` at this point (loaded once).
+    /// The value of register `r` at this point: loaded once between calls. A value
+    /// that is in the register file is loaded again after a call rather than kept
+    /// live across it (every float register is caller-saved: keeping it would spill
+    /// it to the stack, a store and a load, and lengthen what the register allocator
+    /// works on); a local value is kept.
     pub fn get(&mut self, r: Reg) -> Value {
-        if let Some(&v) = self.known.get(&r) {
-            return v;
+        if let Some(&(v, since)) = self.known.get(&r) {
+            if since == u32::MAX || since == self.calls {
+                return v;
+            }
         }
         let v = self
             .b
             .ins()
             .load(types::F64, FLAGS, self.params.registers, offset(r));
-        self.known.insert(r, v);
+        self.known.insert(r, (v, self.calls));
         v
     }
 
-    /// Stores `v` to register `r` and remembers it.
+    /// Forgets every known value (after a call that wrote the register file).
+    pub fn forget(&mut self) {
+        self.known.clear();
+    }
+
+    /// Stores `v` to register `r` (unless only this function reads it) and remembers it.
     pub fn set(&mut self, r: Reg, v: Value) {
-        self.b
-            .ins()
-            .store(FLAGS, v, self.params.registers, offset(r));
-        self.known.insert(r, v);
+        let since = if self.local.contains(&r) {
+            u32::MAX
+        } else {
+            self.b
+                .ins()
+                .store(FLAGS, v, self.params.registers, offset(r));
+            self.calls
+        };
+        self.known.insert(r, (v, since));
     }
 
     /// 1.0 where `c` is true, else 0.0.
@@ -153,6 +180,7 @@ impl<'a, 'b> Translator<'a, 'b> {
     fn call(&mut self, sig: SigRef, address: usize, args: &[Value]) -> Option<Value> {
         let callee = self.b.ins().iconst(types::I64, address as i64);
         let call = self.b.ins().call_indirect(sig, callee, args);
+        self.calls += 1;
         self.b.inst_results(call).first().copied()
     }
 
@@ -351,6 +379,48 @@ fn float_cc(rel: RelOp) -> FloatCC {
         RelOp::Eq => FloatCC::Equal,
         RelOp::Ne => FloatCC::NotEqual,
     }
+}
+
+/// Whether native code runs `op` by calling the interpreter (always, or in event mode):
+/// it reads its operands from the register file and writes its results there.
+fn calls_interpreter(op: Op) -> bool {
+    matches!(
+        op,
+        Op::Sample(..) | Op::Ext(..) | Op::Held(..) | Op::HeldBounds(..) | Op::RelEvent(..)
+    )
+}
+
+/// The registers the function made of `ops` keeps as SSA values only, never stored:
+/// private temporaries (one writer, never read by the runtime: [`RegisterUse`]) that
+/// one of its machine-code instructions writes and that only later machine-code
+/// instructions of the same function read. Every other result is stored, since
+/// another function, tape, the interpreter or the runtime may read it.
+pub(crate) fn locals(ops: &[Op], registers: &RegisterUse) -> HashSet<Reg> {
+    let mut reads_here: HashMap<Reg, u32> = HashMap::default();
+    let mut shared: HashSet<Reg> = HashSet::default();
+    for &op in ops {
+        let interpreted = calls_interpreter(op);
+        for r in op.read() {
+            match reads_here.get_mut(&r) {
+                Some(count) if !interpreted => *count += 1,
+                _ => {
+                    shared.insert(r);
+                }
+            }
+        }
+        if !interpreted {
+            for r in op.written() {
+                reads_here.insert(r, 0);
+            }
+        }
+    }
+    reads_here
+        .into_iter()
+        .filter(|&(r, count)| {
+            !shared.contains(&r) && registers.is_private(r) && registers.reads(r) == count
+        })
+        .map(|(r, _)| r)
+        .collect()
 }
 
 /// The registers an instruction writes (`Op::written`, the tape's own list).
