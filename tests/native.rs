@@ -190,8 +190,9 @@ fn every_bundled_model_runs_the_same_natively() {
 #[test]
 fn every_simulate_test_model_runs_the_same_natively() {
     let (compared, skipped) = compare_folder(&common::root().join("tests/simulate"), 5.0);
-    // Clocked partitions are refused with a coded error (`tests/simulate.rs`).
-    assert_eq!(skipped, ["ClockedNotSupported.mo"]);
+    // Clocked partitions and an unknown `__unimo_method` are refused with coded
+    // errors (`tests/simulate.rs`).
+    assert_eq!(skipped, ["ClockedNotSupported.mo", "UnknownMethod.mo"]);
     assert!(compared >= 24, "{compared}");
 }
 
