@@ -66,11 +66,6 @@ equation
     end if;
   else
     Drelvn = 0;
-    // added (not in the paper; S13): in contact the gap is an invariant, held by the
-    // simulator's projection after each step and event (docs/backend.md), not only by the
-    // Baumgarte term above, which leaves the integration error (1.6e-9 with Radau5 at
-    // rtol 1e-8); with it |Gap| in contact stays at rounding whatever the tolerance.
-    Unimo.invariant(Gap);
     if Friction and relvtsqrt <= delta then
       State = 2;
       StateIndicator = if Forcen > 0 then 0 else 2;
