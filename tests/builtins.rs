@@ -241,6 +241,7 @@ fn every_builtin_name_has_one_entry() {
         "identity",
         "initial",
         "integer",
+        "invariant",
         "linspace",
         "log",
         "log10",

@@ -355,6 +355,14 @@ pub const BUILTINS: &[Builtin] = &[
         "Largest Integer not above x (floor as an Integer); triggers events",
     ),
     op(
+        "invariant",
+        Kind::Statement,
+        Fixed(1),
+        &[A],
+        Ty::Nothing,
+        "invariant(g): the states are projected onto g = 0 after each step and event (Unimo.invariant)",
+    ),
+    op(
         "linspace",
         Kind::ArrayConstructor,
         Fixed(3),

@@ -595,8 +595,15 @@ fn print_stats(
         ),
         None => String::new(),
     };
+    let projection = match &s.projection {
+        Some(p) => format!(
+            ",\"projection\":{{\"projections\":{},\"evaluations\":{},\"jacobians\":{}}}",
+            p.projections, p.evaluations, p.jacobians
+        ),
+        None => String::new(),
+    };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"jacobian_nonzeros\":{},\"sparse_lu\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"jacobian_nonzeros\":{},\"sparse_lu\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -620,7 +627,8 @@ fn print_stats(
         simulate_ms,
         phases.json(),
         engine_stats(native),
-        collision
+        collision,
+        projection
     );
 }
 

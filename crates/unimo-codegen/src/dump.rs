@@ -166,6 +166,10 @@ pub fn tape_dump(m: &CompiledModel, names: &[String]) -> String {
         let _ = writeln!(o, "  residuals: {}", list(&m.initial_residuals));
     }
     n.tape(&mut o, "assertions", &m.assert_tape);
+    n.tape(&mut o, "invariants", &m.invariant_tape);
+    for (g, active) in &m.invariants {
+        let _ = writeln!(o, "  0 = {} while {}", n.reg(*g), n.reg(*active));
+    }
     n.tape(&mut o, "aliases", &m.alias_tape);
     if let Some((t, entries)) = &m.jacobian {
         let _ = writeln!(o, "symbolic jacobian: {} entries", entries.len());

@@ -93,6 +93,10 @@ pub struct CompiledModel {
     pub conditions: Vec<Reg>,
     pub assert_tape: Tape,
     pub assertions: Vec<(Reg, String, bool)>,
+    /// The invariants (`Unimo.invariant(g)`), computed after a pass of the plan:
+    /// (register of `g`, register of its condition: nonzero while it holds).
+    pub invariant_tape: Tape,
+    pub invariants: Vec<(Reg, Reg)>,
     pub alias_tape: Tape,
     pub states: Vec<Reg>,
     pub derivatives: Vec<Reg>,

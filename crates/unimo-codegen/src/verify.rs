@@ -212,6 +212,7 @@ pub fn verify_compiled(m: &CompiledModel) -> Result<(), VerifyError> {
         ("when conditions", &m.when_tape),
         ("initial equations", &m.initial_tape),
         ("assertions", &m.assert_tape),
+        ("invariants", &m.invariant_tape),
         ("aliases", &m.alias_tape),
     ] {
         c.writes_pre = place == "initial equations";

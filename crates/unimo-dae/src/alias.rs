@@ -224,6 +224,10 @@ fn substitute_aliases(dae: &mut Dae, map: &HashMap<ScalarId, ExprId>) {
     for a in &mut dae.assertions {
         a.condition = dae.arena.substitute(a.condition, &lookup, &mut memo);
     }
+    for i in &mut dae.invariants {
+        i.value = dae.arena.substitute(i.value, &lookup, &mut memo);
+        i.active = dae.arena.substitute(i.active, &lookup, &mut memo);
+    }
     for k in 0..dae.collision.len() {
         let args = dae.collision[k].args;
         dae.collision[k].args = args.map(|x| dae.arena.substitute(x, &lookup, &mut memo));

@@ -151,6 +151,17 @@ pub struct Assertion {
     pub origin: Span,
 }
 
+/// An invariant `Unimo.invariant(g)`: `g = 0` holds on the solution wherever `active`
+/// is true (the conditions of the if-equation branches it stands in). The simulator
+/// projects the states onto `g = 0` after each accepted step and event (coordinate
+/// projection, `docs/backend.md`); `g` is not an equation of the DAE.
+#[derive(Clone, Debug)]
+pub struct Invariant {
+    pub value: ExprId,
+    pub active: ExprId,
+    pub origin: Span,
+}
+
 /// The hybrid DAE of one model.
 #[derive(Clone, Debug, Default)]
 pub struct Dae {
@@ -161,6 +172,8 @@ pub struct Dae {
     pub initial_equations: Vec<Equation>,
     pub whens: Vec<WhenClause>,
     pub assertions: Vec<Assertion>,
+    /// Invariants the states are projected onto (`Unimo.invariant`).
+    pub invariants: Vec<Invariant>,
     pub enumerations: Vec<(String, Vec<String>)>,
     /// `experiment(StartTime, StopTime, Tolerance, Interval)` when given.
     pub experiment: Experiment,

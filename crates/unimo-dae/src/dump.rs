@@ -60,6 +60,12 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
             let _ = writeln!(o, "  assert({}, {:?})", show(a.condition), a.message);
         }
     }
+    if !dae.invariants.is_empty() {
+        let _ = writeln!(o, "invariants: {}", dae.invariants.len());
+        for i in &dae.invariants {
+            let _ = writeln!(o, "  0 = {} when {}", show(i.value), show(i.active));
+        }
+    }
     let zc = zero_crossings(dae);
     if !zc.relations.is_empty() || !zc.samples.is_empty() {
         let _ = writeln!(

@@ -72,6 +72,9 @@ impl Lowerer<'_> {
                     return Err(unsupported("this equation", span));
                 };
                 let name = func.to_dotted();
+                if name == "invariant" {
+                    return self.invariant(args, span);
+                }
                 match self.action_call(&name, args, span)? {
                     Some(WhenAction::Assert { condition, message }) => {
                         let warning = args.positional.get(2).is_some_and(|e| {
@@ -178,6 +181,9 @@ impl Lowerer<'_> {
     ) -> DaeResult<Vec<Equation>> {
         let mut conds = Vec::new();
         let mut bodies = Vec::new();
+        // The invariants of a branch hold where it is taken: the earlier conditions
+        // false and its own true.
+        let mut taken = self.dae.arena.one();
         for (c, body) in branches {
             let c = self.scalar(c)?;
             match self.const_value(c) {
@@ -186,9 +192,16 @@ impl Lowerer<'_> {
                 _ => {}
             }
             conds.push(c);
+            let first = self.dae.invariants.len();
             bodies.push(self.body_rows(body)?);
+            let here = self.dae.arena.and(taken, c);
+            self.guard_invariants(first, here);
+            let not_c = self.dae.arena.not(c);
+            taken = self.dae.arena.and(taken, not_c);
         }
+        let first = self.dae.invariants.len();
         let other = self.body_rows(otherwise)?;
+        self.guard_invariants(first, taken);
         if conds.is_empty() {
             return Ok(other);
         }
@@ -219,6 +232,36 @@ impl Lowerer<'_> {
             });
         }
         Ok(rows)
+    }
+
+    /// `Unimo.invariant(g)`: one invariant per element of `g`, active everywhere until
+    /// an enclosing if-equation guards it ([`Self::guard_invariants`]). No rows: `g = 0`
+    /// is kept by the simulator's projection, not solved for.
+    fn invariant(&mut self, args: &ast::CallArgs, span: Span) -> DaeResult<Vec<Equation>> {
+        let (Some(g), 1, true) = (
+            args.positional.first(),
+            args.positional.len(),
+            args.named.is_empty(),
+        ) else {
+            return Err(DaeError::InvariantArguments { span });
+        };
+        let active = self.dae.arena.one();
+        for value in self.expr(g)?.data {
+            self.dae.invariants.push(Invariant {
+                value,
+                active,
+                origin: span,
+            });
+        }
+        Ok(Vec::new())
+    }
+
+    /// The invariants collected since `first` stand in a branch taken when `c` holds.
+    fn guard_invariants(&mut self, first: usize, c: ExprId) {
+        for k in first..self.dae.invariants.len() {
+            let active = self.dae.invariants[k].active;
+            self.dae.invariants[k].active = self.dae.arena.and(c, active);
+        }
     }
 
     fn body_rows(&mut self, body: &[ast::Equation]) -> DaeResult<Vec<Equation>> {

@@ -239,6 +239,10 @@ unimo_source::coded_errors! {
         #[error("`assert` needs a condition")]
         AssertWithoutCondition { span: Span } = DaeCode::WrongArguments,
         |d| d.at(span, "here"),
+        /// E3005: `Unimo.invariant` with other than one positional argument.
+        #[error("`Unimo.invariant` needs one argument, the expression that stays 0")]
+        InvariantArguments { span: Span } = DaeCode::WrongArguments,
+        |d| d.at(span, "here"),
         /// E3005: more positional arguments than the function has inputs.
         #[error("too many arguments for `{function}`")]
         TooManyArguments { function: String, span: Span } = DaeCode::WrongArguments,

@@ -47,6 +47,11 @@ pub fn zero_crossings_except(dae: &Dae, left_out: &[EqId]) -> Crossings {
     for a in &dae.assertions {
         roots.push(a.condition);
     }
+    // The condition of an invariant is an if-equation's: event semantics (its value
+    // changes at events only, with the equations of its branch).
+    for i in &dae.invariants {
+        roots.push(i.active);
+    }
     for r in roots {
         collect(dae, r, &mut seen, &mut out);
     }

@@ -107,7 +107,7 @@ pub fn prune(dae: &Dae, plan: &mut Plan, wanted: &[ScalarId]) -> usize {
 }
 
 /// The scalars needed whatever steps compute them: state derivatives, the outputs the
-/// user asked for, what zero crossings, `when` clauses, assertions, initial equations
+/// user asked for, what zero crossings, `when` clauses, assertions, invariants, initial equations
 /// and start values read, variables with `fixed = true` and discrete variables.
 fn needed_by_events_and_outputs(
     dae: &Dae,
@@ -166,6 +166,10 @@ fn needed_by_events_and_outputs(
     }
     for a in &dae.assertions {
         add(&mut needed, a.condition);
+    }
+    for i in &dae.invariants {
+        add(&mut needed, i.value);
+        add(&mut needed, i.active);
     }
     // Initialization reads what the initial equations and start values name, even when
     // nothing after the start does (e.g. a closed-form initial guess of an integrated

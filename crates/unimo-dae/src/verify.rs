@@ -80,6 +80,10 @@ fn roots(dae: &Dae) -> Vec<(ExprId, String)> {
     for (k, a) in dae.assertions.iter().enumerate() {
         out.push((a.condition, format!("assertion {k}")));
     }
+    for (k, i) in dae.invariants.iter().enumerate() {
+        out.push((i.value, format!("invariant {k}")));
+        out.push((i.active, format!("invariant {k}'s condition")));
+    }
     for (k, c) in dae.collision.iter().enumerate() {
         for e in c.args.to_flat() {
             out.push((e, format!("collision body {k}")));

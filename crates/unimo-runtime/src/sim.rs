@@ -218,6 +218,8 @@ pub struct SimStats {
     pub jacobian_nonzeros: Option<usize>,
     /// The implicit method factored its iteration matrices with the sparse LU.
     pub sparse_lu: bool,
+    /// The projection onto the model's invariants (`Unimo.invariant`), when it has any.
+    pub projection: Option<unimo_solve::ProjectionStats>,
 }
 
 /// Seconds spent in each phase of a run (`unimo simulate --stats`). `integrate` is the
@@ -457,6 +459,28 @@ impl System for Ode<'_> {
         }
         if t >= self.last_roots.0 {
             self.last_roots = (t, crossings::disagreements(self.m, &self.regs, &self.ev));
+        }
+        Ok(())
+    }
+
+    fn n_invariants(&self) -> usize {
+        self.m.invariants.len()
+    }
+
+    /// The model's `Unimo.invariant`s after a pass of the plan at `(t, x)`; active
+    /// while their if-equation branches are taken (relations read without events).
+    fn invariants(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        out: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), EvalError> {
+        self.load(t, x)?;
+        self.m.invariant_tape.run(&mut self.regs, &mut self.ev);
+        for (k, &(g, on)) in self.m.invariants.iter().enumerate() {
+            out[k] = self.regs[g as usize];
+            active[k] = self.regs[on as usize] != 0.0;
         }
         Ok(())
     }

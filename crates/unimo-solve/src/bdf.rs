@@ -719,6 +719,31 @@ impl Bdf {
         }
     }
 
+    /// The last step's end moved to `x` by a projection: the step's correction `e` (the
+    /// corrector's `x - x_pred`) becomes `e + Δ`, `Δ = x - φ_0`, so every history term
+    /// [`Bdf::complete_step`] added `e` to gets `Δ` too (`φ_0 … φ_k`, and `φ_{k+1}` where
+    /// it holds `e`), and the dense output with them: the interpolant moves by `Δ` at
+    /// the step's end and not at its start, like the corrector's change.
+    fn add_projection(&mut self, x: &[f64]) {
+        let k = self.order_used;
+        let last = if k < self.max_order { k + 1 } else { k };
+        for i in 0..self.setup.size {
+            let delta = x[i] - self.phi[0][i];
+            if delta != 0.0 {
+                for j in 0..=last {
+                    self.phi[j][i] += delta;
+                }
+                self.phi[0][i] = x[i];
+                self.correction[i] += delta;
+            }
+        }
+        if self.started && self.dense.order_used > 0 {
+            self.store_dense_output();
+        } else {
+            self.dense.phi[0].copy_from_slice(x);
+        }
+    }
+
     /// New step and order after an error test failure (IDA's `IDAHandleNFlag`).
     fn after_error_test_failure(&mut self, estimates: ErrorEstimates, failures: usize) {
         let ratio = if failures == 1 {
@@ -756,6 +781,16 @@ impl Integrator for Bdf {
         self.dense.order_used = 0;
         self.dense.phi.truncate(1);
         self.dense.phi[0].copy_from_slice(x);
+        Ok(())
+    }
+
+    fn set_projected_state(
+        &mut self,
+        _system: &mut dyn System,
+        x: &[f64],
+    ) -> Result<(), SolveError> {
+        self.setup.check_len(x)?;
+        self.add_projection(x);
         Ok(())
     }
 

@@ -282,6 +282,31 @@ impl Integrator for Dopri5 {
         self.restart(system, t, x)
     }
 
+    /// The step's end moved by a projection: the next step starts there, with `f`
+    /// evaluated again; the step size and the controller's memory are kept, and the
+    /// dense output gets the correction `θ Δ` (`Δ` at the step's end, 0 at its start).
+    fn set_projected_state(
+        &mut self,
+        system: &mut dyn System,
+        x: &[f64],
+    ) -> Result<(), SolveError> {
+        self.setup.check_len(x)?;
+        if self.dense.end == self.t {
+            for i in 0..x.len() {
+                self.dense.coefficients[1][i] += x[i] - self.x[i];
+            }
+            self.dense.end_state.copy_from_slice(x);
+        }
+        let t = self.t;
+        restart_point(
+            system,
+            (t, x),
+            &mut self.x,
+            &mut self.f_current,
+            &mut self.stats,
+        )
+    }
+
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
         if t_limit <= self.t {
             return Ok(());

@@ -33,6 +33,14 @@ pub trait Integrator {
     /// step. `x` may differ from the current state (event changes).
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError>;
 
+    /// Replaces the state at [`current_time`](Integrator::current_time) by `x`, a
+    /// projection of it onto the system's invariants ([`crate::project`]), keeping the
+    /// step size, order and history: the method continues as if its last step had
+    /// ended at `x` (BDF: the step's correction is changed by `x - state`, as CVODE
+    /// does with its projection's correction; one-step methods: `f` at the new state).
+    fn set_projected_state(&mut self, system: &mut dyn System, x: &[f64])
+        -> Result<(), SolveError>;
+
     /// Takes back the last accepted step: the method returns to that step's start, with the
     /// step size and history it had there, so that the step can be taken again to an
     /// earlier end (a root located inside it). False, with nothing changed, when the method

@@ -692,6 +692,33 @@ impl Integrator for Radau5 {
         self.restart(system, t, x)
     }
 
+    /// The step's end moved by a projection: the next step starts there, with `f`
+    /// evaluated again; the step size and the controller's memory are kept, and the
+    /// dense output gets the correction `Δ (1 + s)` (`Δ` at the step's end, 0 at its
+    /// start: `cont0` and `cont1` plus `Δ`).
+    fn set_projected_state(
+        &mut self,
+        system: &mut dyn System,
+        x: &[f64],
+    ) -> Result<(), SolveError> {
+        self.setup.check_len(x)?;
+        if self.dense.end == self.t {
+            for i in 0..x.len() {
+                let delta = x[i] - self.x[i];
+                self.dense.cont[0][i] += delta;
+                self.dense.cont[1][i] += delta;
+            }
+        }
+        let t = self.t;
+        restart_point(
+            system,
+            (t, x),
+            &mut self.x,
+            &mut self.f_current,
+            &mut self.stats,
+        )
+    }
+
     fn interpolation_error(&self) -> f64 {
         self.interpolation_error
     }

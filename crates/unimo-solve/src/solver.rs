@@ -53,6 +53,17 @@ pub struct Solver {
     max_steps_per_call: usize,
     /// Steps taken again to a located root since the last reported root.
     root_steps: usize,
+    /// Projection onto the system's invariants after each accepted step (none when the
+    /// system declares none).
+    projection: Option<Box<Projection>>,
+}
+
+/// What the projection needs: the projector and the tolerances its weights come from.
+struct Projection {
+    projector: crate::project::Projector,
+    relative: Vec<f64>,
+    absolute: Vec<f64>,
+    scratch: Vec<f64>,
 }
 
 /// A root located inside a step is reached by taking the step again to it at most this
@@ -97,6 +108,20 @@ impl Solver {
         options: Options,
     ) -> Result<Self, SolveError> {
         let max_steps_per_call = options.max_steps_per_call;
+        let projection = if system.n_invariants() > 0 {
+            Some(Box::new(Projection {
+                projector: Default::default(),
+                relative: options
+                    .relative_tolerance
+                    .expand(x0.len(), "relative tolerance")?,
+                absolute: options
+                    .absolute_tolerance
+                    .expand(x0.len(), "absolute tolerance")?,
+                scratch: Vec::with_capacity(x0.len()),
+            }))
+        } else {
+            None
+        };
         let integrator: Box<dyn Integrator + Send> = match method.resolved() {
             Method::Dopri5 => Box::new(Dopri5::new(system, t0, x0, options)?),
             Method::Radau5 => Box::new(Radau5::new(system, t0, x0, options)?),
@@ -111,6 +136,7 @@ impl Solver {
             driver_stats: Stats::default(),
             max_steps_per_call,
             root_steps: 0,
+            projection,
         };
         solver.restart_roots(system, &[])?;
         Ok(solver)
@@ -150,6 +176,9 @@ impl Solver {
             )));
         }
         self.integrator.reset(system, t, x)?;
+        if let Some(p) = self.projection.as_mut() {
+            p.projector.invalidate();
+        }
         self.root_steps = 0;
         let known_zero = if t == self.time {
             std::mem::take(&mut self.reported_at_time)
@@ -273,6 +302,7 @@ impl Solver {
                 });
             }
             self.integrator.step(system, t_stop)?;
+            self.project_step(system)?;
             steps_taken += 1;
         }
     }
@@ -364,6 +394,54 @@ impl Solver {
         let beyond = ROOT_STEP_BEYOND * (t_root - start);
         self.integrator
             .step(system, (t_root + beyond).min(t_right))?;
+        self.project_step(system)?;
         Ok(true)
+    }
+
+    /// Projects the state at the end of the step just taken onto the system's active
+    /// invariants and hands the projected state to the method.
+    fn project_step(&mut self, system: &mut dyn System) -> Result<(), SolveError> {
+        let Some(p) = self.projection.as_mut() else {
+            return Ok(());
+        };
+        let t = self.integrator.current_time();
+        p.scratch.clear();
+        p.scratch.extend_from_slice(self.integrator.state());
+        let moved = p
+            .projector
+            .project(system, t, &mut p.scratch, &p.relative, &p.absolute)
+            .map_err(|error| SolveError::Eval {
+                time: t,
+                message: format!("invariants: {error}"),
+            })?;
+        if moved {
+            self.integrator.set_projected_state(system, &p.scratch)?;
+        }
+        Ok(())
+    }
+
+    /// Projects `x` at `t` onto the system's active invariants (an event's state, an
+    /// interpolated output point), with the weights of the solver's tolerances; true
+    /// when `x` moved. Nothing is handed to the method (a reset follows an event).
+    pub fn project(
+        &mut self,
+        system: &mut dyn System,
+        t: f64,
+        x: &mut [f64],
+    ) -> Result<bool, SolveError> {
+        let Some(p) = self.projection.as_mut() else {
+            return Ok(false);
+        };
+        p.projector
+            .project(system, t, x, &p.relative, &p.absolute)
+            .map_err(|error| SolveError::Eval {
+                time: t,
+                message: format!("invariants: {error}"),
+            })
+    }
+
+    /// The projection's counters (`None`: the system has no invariants).
+    pub fn projection_stats(&self) -> Option<crate::project::ProjectionStats> {
+        self.projection.as_ref().map(|p| p.projector.stats.clone())
     }
 }

@@ -54,6 +54,25 @@ pub trait System {
         let _ = (t, x, out);
         Ok(())
     }
+
+    /// Number of invariants `c(t, x) = 0` the solution keeps where they are active: the
+    /// solver projects each accepted step's state onto them ([`crate::project`]).
+    fn n_invariants(&self) -> usize {
+        0
+    }
+
+    /// Evaluates the invariants `c(t, x)` into `out` and whether each holds now (is
+    /// active) into `active` (both of length `n_invariants()`).
+    fn invariants(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        out: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), EvalError> {
+        let _ = (t, x, out, active);
+        Ok(())
+    }
 }
 
 /// Column-compressed pattern of a square matrix: for each column, the sorted rows that may be

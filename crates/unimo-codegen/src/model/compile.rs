@@ -315,6 +315,25 @@ fn compile_assertions(dae: &Dae, c: &mut Compiler<'_>) -> (Tape, Vec<(Reg, Strin
     (assert_tape, assertions)
 }
 
+/// The invariants: their tape and (value, condition) each; the condition with event
+/// semantics (its relations hold their values between events, like the if-equation's).
+fn compile_invariants(dae: &Dae, c: &mut Compiler<'_>) -> (Tape, Vec<(Reg, Reg)>) {
+    let mut tape = Tape::default();
+    // One memo per semantics: a relation shared by both is compiled twice.
+    let (mut values, mut conditions) = (HashMap::default(), HashMap::default());
+    let invariants = dae
+        .invariants
+        .iter()
+        .map(|i| {
+            (
+                c.expr_no_event(i.value, &mut tape, &mut values),
+                c.expr(i.active, &mut tape, &mut conditions),
+            )
+        })
+        .collect();
+    (tape, invariants)
+}
+
 /// The aliases' tape.
 fn compile_aliases(dae: &Dae, c: &mut Compiler<'_>) -> Tape {
     let mut alias_tape = Tape::default();
@@ -421,6 +440,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     let samples = compile_samples(dae, &zc, &mut c, &mut parameters);
     let (when_tape, whens, conditions) = compile_whens(dae, layout, &mut c);
     let (assert_tape, assertions) = compile_assertions(dae, &mut c);
+    let (invariant_tape, invariants) = compile_invariants(dae, &mut c);
     let alias_tape = compile_aliases(dae, &mut c);
     let initial = compile_initial(dae, plan, &mut c);
     let (fixed_constraints_tape, fixed_constraints) = compile_fixed_constraints(dae, &mut c);
@@ -452,6 +472,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         conditions,
         assert_tape,
         assertions,
+        invariant_tape,
+        invariants,
         alias_tape,
         jacobian,
         states: plan.states.iter().map(|&s| layout.var(s)).collect(),

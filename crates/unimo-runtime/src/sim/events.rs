@@ -260,7 +260,11 @@ impl Simulator<'_> {
         components: &[(usize, Direction)],
         mut solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
-        self.load_state(t, x)?;
+        // The event starts from the state at the crossing on the active invariants
+        // (an interpolated state is off them by the interpolant's error).
+        let mut x = x.to_vec();
+        self.project(solver.as_deref_mut(), t, &mut x)?;
+        self.load_state(t, &x)?;
         self.record(t);
         for &(k, dir) in components {
             self.force_crossing(k, dir);
@@ -359,10 +363,16 @@ impl Simulator<'_> {
         t: f64,
         what: String,
         crossing: Option<usize>,
-        solver: Option<&mut Solver>,
+        mut solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
         if let Err(e) = self.event_iteration(t, false) {
             return Err(self.assertion_first(t, e));
+        }
+        // The invariants active after the event (e.g. a contact that just began) hold
+        // from its end on.
+        let mut x = self.states();
+        if self.project(solver.as_deref_mut(), t, &mut x)? {
+            self.load_state(t, &x)?;
         }
         self.result.stats.events += 1;
         self.result.events.push(EventRecord { time: t, what });
@@ -398,6 +408,26 @@ impl Simulator<'_> {
             }),
             None => Ok(()),
         }
+    }
+
+    /// Projects `x` at `t` onto the model's active invariants (`Unimo.invariant`) with
+    /// the solver's weights; true when `x` moved. Without a solver (an FMU's Model
+    /// Exchange) or invariants, nothing.
+    pub(super) fn project(
+        &mut self,
+        solver: Option<&mut Solver>,
+        t: f64,
+        x: &mut [f64],
+    ) -> Result<bool, SimError> {
+        let Some(solver) = solver else {
+            return Ok(false);
+        };
+        if self.m().invariants.is_empty() {
+            return Ok(false);
+        }
+        solver
+            .project(&mut self.ode, t, x)
+            .map_err(|e| self.solver_error(e))
     }
 
     /// An evaluation that failed right after an event's `reinit`s: when one of the

@@ -173,7 +173,7 @@ impl Simulator<'_> {
         times.linear_algebra += linear_algebra_seconds() - linear_before;
         let (prev, now, reason) = advanced?;
         let started = Instant::now();
-        self.write_grid(solver, run, prev, now, &reason)?;
+        self.write_grid(&mut *solver, run, prev, now, &reason)?;
         self.refine_step(solver, now, &reason)?;
         if let Some(e) = self.take_non_finite(Some(now - prev)) {
             return Err(e);
@@ -252,7 +252,7 @@ impl Simulator<'_> {
     /// Output grid points inside (prev, now].
     fn write_grid(
         &mut self,
-        solver: &Solver,
+        solver: &mut Solver,
         run: &mut Integration<'_>,
         prev: f64,
         now: f64,
@@ -263,6 +263,14 @@ impl Simulator<'_> {
         {
             let tg = run.grid(run.next_output).min(now);
             if tg > prev && solver.interpolate(tg, &mut run.buf).is_ok() {
+                if tg < solver.internal_time() {
+                    // An interpolated row lies on the invariants to the interpolant's
+                    // error only: written projected onto them.
+                    let mut buf = std::mem::take(&mut run.buf);
+                    let projected = self.project(Some(&mut *solver), tg, &mut buf);
+                    run.buf = buf;
+                    projected?;
+                }
                 if let Some((tp, xp)) = self.refine.needed_before(tg, &run.buf) {
                     self.load_state(tp, &xp)?;
                     self.record(tp);
@@ -376,6 +384,7 @@ impl Simulator<'_> {
             self.result.error.get_or_insert(e);
         }
         self.result.stats.solver = solver.stats();
+        self.result.stats.projection = solver.projection_stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
         self.result.final_states = self.states();
