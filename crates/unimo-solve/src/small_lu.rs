@@ -15,6 +15,9 @@ pub(crate) struct SmallLu<T: LuScalar> {
     factors: Vec<T>,
     /// Row `k` of the factors is row `permutation[k]` of the matrix.
     permutation: Vec<usize>,
+    /// `1 / U_kk`: the solve multiplies (a division on the back substitution's chain of
+    /// dependent rows costs several times a multiplication, a complex one far more).
+    inverse_pivots: Vec<T>,
     /// The permuted right-hand side while solving.
     work: Vec<T>,
 }
@@ -25,6 +28,7 @@ impl<T: LuScalar> SmallLu<T> {
             size,
             factors: vec![T::from(0.0); size * size],
             permutation: (0..size).collect(),
+            inverse_pivots: vec![T::from(1.0); size],
             work: vec![T::from(0.0); size],
         }
     }
@@ -75,10 +79,16 @@ impl<T: LuScalar> SmallLu<T> {
             }
             let (upper, lower) = a.split_at_mut((k + 1) * n);
             let pivot = &upper[k * n + k..(k + 1) * n];
-            let d = pivot[0];
+            // LAPACK's getf2 scales by the reciprocal as well.
+            let inverse = T::from(1.0) / pivot[0];
+            if !inverse.is_usable_pivot() {
+                // A subnormal pivot: its reciprocal overflows.
+                return Err(SingularMatrix);
+            }
+            self.inverse_pivots[k] = inverse;
             for row in lower.chunks_exact_mut(n) {
                 let row = &mut row[k..];
-                let f = row[0] / d;
+                let f = row[0] * inverse;
                 row[0] = f;
                 if f != T::from(0.0) {
                     for (x, &y) in row[1..].iter_mut().zip(&pivot[1..]) {
@@ -109,12 +119,12 @@ impl<T: LuScalar> SmallLu<T> {
         }
         // U x = y, from the last row up.
         for i in (0..n).rev() {
-            let row = &a[i * n + i..(i + 1) * n];
+            let row = &a[i * n + i + 1..(i + 1) * n];
             let mut s = y[i];
-            for (&u, &xj) in row[1..].iter().zip(&y[i + 1..]) {
+            for (&u, &xj) in row.iter().zip(&y[i + 1..]) {
                 s -= u * xj;
             }
-            y[i] = s / row[0];
+            y[i] = s * self.inverse_pivots[i];
         }
         b[..n].copy_from_slice(y);
     }
