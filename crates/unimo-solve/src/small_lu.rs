@@ -13,13 +13,13 @@ pub(crate) struct SmallLu<T: LuScalar> {
     size: usize,
     /// Row-major `size × size`: `U` on and above the diagonal, `L` below it.
     factors: Vec<T>,
-    /// Row `k` of the factors is row `permutation[k]` of the matrix.
-    permutation: Vec<usize>,
+    /// The row interchanges, as LAPACK's `ipiv`: at elimination step `k`, row `k` was
+    /// swapped with row `swaps[k] >= k` (applied to the right-hand side in place: no
+    /// gather into scratch and copy back).
+    swaps: Vec<usize>,
     /// `1 / U_kk`: the solve multiplies (a division on the back substitution's chain of
     /// dependent rows costs several times a multiplication, a complex one far more).
     inverse_pivots: Vec<T>,
-    /// The permuted right-hand side while solving.
-    work: Vec<T>,
 }
 
 impl<T: LuScalar> SmallLu<T> {
@@ -27,9 +27,8 @@ impl<T: LuScalar> SmallLu<T> {
         SmallLu {
             size,
             factors: vec![T::from(0.0); size * size],
-            permutation: (0..size).collect(),
+            swaps: (0..size).collect(),
             inverse_pivots: vec![T::from(1.0); size],
-            work: vec![T::from(0.0); size],
         }
     }
 
@@ -55,9 +54,6 @@ impl<T: LuScalar> SmallLu<T> {
     /// Factors the matrix held in `factors` in place.
     fn factor(&mut self) -> Result<(), SingularMatrix> {
         let n = self.size;
-        for (k, p) in self.permutation.iter_mut().enumerate() {
-            *p = k;
-        }
         let a = &mut self.factors[..n * n];
         for k in 0..n {
             let mut pivot_row = k;
@@ -72,10 +68,10 @@ impl<T: LuScalar> SmallLu<T> {
             if !(best > 0.0 && best.is_finite()) {
                 return Err(SingularMatrix);
             }
+            self.swaps[k] = pivot_row;
             if pivot_row != k {
                 let (upper, lower) = a.split_at_mut(pivot_row * n);
                 upper[k * n..(k + 1) * n].swap_with_slice(&mut lower[..n]);
-                self.permutation.swap(k, pivot_row);
             }
             let (upper, lower) = a.split_at_mut((k + 1) * n);
             let pivot = &upper[k * n + k..(k + 1) * n];
@@ -104,9 +100,9 @@ impl<T: LuScalar> SmallLu<T> {
     pub fn solve(&mut self, b: &mut [T]) {
         let n = self.size;
         let a = &self.factors[..n * n];
-        let y = &mut self.work[..n];
-        for (yk, &p) in y.iter_mut().zip(&self.permutation) {
-            *yk = b[p];
+        let y = &mut b[..n];
+        for (k, &swap) in self.swaps.iter().enumerate() {
+            y.swap(k, swap);
         }
         // L y = P b (unit diagonal), row by row.
         for i in 1..n {
@@ -126,7 +122,6 @@ impl<T: LuScalar> SmallLu<T> {
             }
             y[i] = s * self.inverse_pivots[i];
         }
-        b[..n].copy_from_slice(y);
     }
 }
 
