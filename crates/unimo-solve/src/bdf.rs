@@ -454,14 +454,19 @@ impl Bdf {
 
     fn predict(&mut self) {
         let k = self.order;
-        self.y_pred.copy_from_slice(&self.phi[0]);
-        self.yp_pred.fill(0.0);
-        for j in 1..=k {
-            let gamma = self.gamma[j];
-            for i in 0..self.setup.size {
-                self.y_pred[i] += self.phi[j][i];
-                self.yp_pred[i] += gamma * self.phi[j][i];
+        // Component by component, the sums in registers (the same order of additions as
+        // difference by difference, without a store and load per difference).
+        let phi = &self.phi[..=k];
+        let gamma = &self.gamma[..=k];
+        for i in 0..self.setup.size {
+            let mut y = phi[0][i];
+            let mut yp = 0.0;
+            for (difference, g) in phi[1..].iter().zip(&gamma[1..]) {
+                y += difference[i];
+                yp += g * difference[i];
             }
+            self.y_pred[i] = y;
+            self.yp_pred[i] = yp;
         }
     }
 }
@@ -610,7 +615,11 @@ impl Bdf {
         };
         if k > 1 {
             let mut difference = std::mem::take(&mut self.difference);
-            for ((d, p), e) in difference.iter_mut().zip(&self.phi[k]).zip(&self.correction) {
+            for ((d, p), e) in difference
+                .iter_mut()
+                .zip(&self.phi[k])
+                .zip(&self.correction)
+            {
                 *d = p + e;
             }
             let error_km1 = self.sigma[k - 1] * self.error_norm(&difference);
@@ -679,7 +688,11 @@ impl Bdf {
             error_k
         } else {
             let mut difference = std::mem::take(&mut self.difference);
-            for ((d, e), p) in difference.iter_mut().zip(&self.correction).zip(&self.phi[k + 1]) {
+            for ((d, e), p) in difference
+                .iter_mut()
+                .zip(&self.correction)
+                .zip(&self.phi[k + 1])
+            {
                 *d = e - p;
             }
             let error_kp1 = self.error_norm(&difference) / (k + 2) as f64;
