@@ -4,8 +4,8 @@
 
 use super::{SimError, SimOptions, SimResult, Simulator, MAX_STEPS};
 use std::time::Instant;
-use unimo_solve::{fine_timing, linear_algebra_seconds};
 use unimo_solve::newton::NewtonTolerance;
+use unimo_solve::{fine_timing, linear_algebra_seconds};
 use unimo_solve::{Direction, LinearSolverChoice, Options, SolveError, Solver, StopReason, System};
 
 /// The integration loop's state between its steps.
