@@ -185,6 +185,27 @@ mod tests {
         }
     }
 
+    /// A subnormal pivot passes the nonzero test, but its reciprocal (which the solve
+    /// multiplies by) overflows: the matrix is reported singular, not solved into infinities.
+    #[test]
+    fn subnormal_pivot_is_singular() {
+        let mut jacobian = JacobianMatrix::dense(2);
+        assert!(jacobian.set(0, 0, -1.0));
+        assert!(jacobian.set(1, 1, -1e-310));
+        let mut lu = ShiftedLu::<f64>::dense(2);
+        assert_eq!(
+            lu.factor(&jacobian, &[false, false], 1.0),
+            Err(SingularMatrix)
+        );
+        // A tiny but normal pivot (a power of two: exact reciprocal) is factored and solved.
+        let tiny = 2f64.powi(-1000);
+        assert!(jacobian.set(1, 1, -tiny));
+        assert_eq!(lu.factor(&jacobian, &[false, false], 1.0), Ok(()));
+        let mut x = [2.0, 3.0 * tiny];
+        lu.solve(&mut x);
+        assert_eq!(x, [2.0, 3.0]);
+    }
+
     #[test]
     fn zero_column_is_singular() {
         let mut jacobian = JacobianMatrix::dense(3);
