@@ -154,6 +154,8 @@ pub struct Bdf {
     yp_pred: Vec<f64>,
     correction: Vec<f64>,
     delta: Vec<f64>,
+    /// Scratch for the error estimates at neighbouring orders (no allocation per step).
+    difference: Vec<f64>,
     f_value: Vec<f64>,
     scale: Vec<f64>,
     error_mask: Vec<bool>,
@@ -218,6 +220,7 @@ impl Bdf {
             yp_pred: zeros(),
             correction: zeros(),
             delta: zeros(),
+            difference: zeros(),
             f_value: zeros(),
             scale: zeros(),
             error_mask,
@@ -451,14 +454,19 @@ impl Bdf {
 
     fn predict(&mut self) {
         let k = self.order;
-        self.y_pred.copy_from_slice(&self.phi[0]);
-        self.yp_pred.fill(0.0);
-        for j in 1..=k {
-            let gamma = self.gamma[j];
-            for i in 0..self.setup.size {
-                self.y_pred[i] += self.phi[j][i];
-                self.yp_pred[i] += gamma * self.phi[j][i];
+        // Component by component, the sums in registers (the same order of additions as
+        // difference by difference, without a store and load per difference).
+        let phi = &self.phi[..=k];
+        let gamma = &self.gamma[..=k];
+        for i in 0..self.setup.size {
+            let mut y = phi[0][i];
+            let mut yp = 0.0;
+            for (difference, g) in phi[1..].iter().zip(&gamma[1..]) {
+                y += difference[i];
+                yp += g * difference[i];
             }
+            self.y_pred[i] = y;
+            self.yp_pred[i] = yp;
         }
     }
 }
@@ -573,7 +581,13 @@ impl Bdf {
                     return Ok(());
                 }
             } else {
-                let rate = (norm / first_norm).powf(1.0 / iteration as f64);
+                let ratio = norm / first_norm;
+                // The rate's root without `powf` in the usual cases (a libm call a step).
+                let rate = match iteration {
+                    1 => ratio,
+                    2 => ratio.sqrt(),
+                    _ => ratio.powf(1.0 / iteration as f64),
+                };
                 if rate > MAX_RATE {
                     return Err(CorrectorFailure::Convergence);
                 }
@@ -600,11 +614,14 @@ impl Bdf {
             passed: self.error_constant * norm_k <= 1.0,
         };
         if k > 1 {
-            let mut difference: Vec<f64> = self.phi[k]
-                .iter()
+            let mut difference = std::mem::take(&mut self.difference);
+            for ((d, p), e) in difference
+                .iter_mut()
+                .zip(&self.phi[k])
                 .zip(&self.correction)
-                .map(|(p, e)| p + e)
-                .collect();
+            {
+                *d = p + e;
+            }
             let error_km1 = self.sigma[k - 1] * self.error_norm(&difference);
             let weighted_km1 = k as f64 * error_km1;
             estimates.at_order_minus_1 = error_km1;
@@ -621,6 +638,7 @@ impl Bdf {
             } else if weighted_km1 <= 0.5 * weighted_k {
                 estimates.new_order = k - 1;
             }
+            self.difference = difference;
         }
         if !norm_k.is_finite() {
             estimates.passed = false;
@@ -669,13 +687,16 @@ impl Bdf {
         } else if k == self.max_order || k + 1 >= self.constant_steps || order_change == 1 {
             error_k
         } else {
-            let difference: Vec<f64> = self
-                .correction
-                .iter()
+            let mut difference = std::mem::take(&mut self.difference);
+            for ((d, e), p) in difference
+                .iter_mut()
+                .zip(&self.correction)
                 .zip(&self.phi[k + 1])
-                .map(|(e, p)| e - p)
-                .collect();
+            {
+                *d = e - p;
+            }
             let error_kp1 = self.error_norm(&difference) / (k + 2) as f64;
+            self.difference = difference;
             let raise = if k == 1 {
                 error_kp1 < 0.5 * error_k
             } else if estimates.at_order_minus_1 <= error_k.min(error_kp1) {

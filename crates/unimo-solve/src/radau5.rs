@@ -141,6 +141,8 @@ pub struct Radau5 {
     real_lu: ShiftedLu<f64>,
     complex_lu: ShiftedLu<c64>,
     factored_for: Option<f64>,
+    /// [`eigenvalues`], computed once (two cube roots: a few percent of a small step).
+    eigenvalues: (f64, f64, f64),
     z: [Vec<f64>; 3],
     w: [Vec<f64>; 3],
     stage_state: Vec<f64>,
@@ -233,6 +235,7 @@ impl Radau5 {
             real_lu,
             complex_lu,
             factored_for: None,
+            eigenvalues: eigenvalues(),
             z: std::array::from_fn(|_| zeros()),
             w: std::array::from_fn(|_| zeros()),
             stage_state: zeros(),
@@ -354,7 +357,7 @@ impl Radau5 {
         if self.factored_for == Some(h) {
             return true;
         }
-        let (gamma, alpha, beta) = eigenvalues();
+        let (gamma, alpha, beta) = self.eigenvalues;
         self.stats.lu_factorizations += 1;
         let matrix = self.jacobian.matrix();
         let differential = &self.setup.differential;
@@ -412,7 +415,7 @@ impl Radau5 {
     /// One simplified Newton correction: on entry `z` holds the stage values of `f`, on exit
     /// the transformed increments `Δw`.
     fn solve_correction(&mut self, h: f64) {
-        let (gamma, alpha, beta) = eigenvalues();
+        let (gamma, alpha, beta) = self.eigenvalues;
         let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
         for i in 0..self.setup.size {
             let (a1, a2, a3) = (self.z[0][i], self.z[1][i], self.z[2][i]);

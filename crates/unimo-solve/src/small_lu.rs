@@ -13,10 +13,13 @@ pub(crate) struct SmallLu<T: LuScalar> {
     size: usize,
     /// Row-major `size × size`: `U` on and above the diagonal, `L` below it.
     factors: Vec<T>,
-    /// Row `k` of the factors is row `permutation[k]` of the matrix.
-    permutation: Vec<usize>,
-    /// The permuted right-hand side while solving.
-    work: Vec<T>,
+    /// The row interchanges, as LAPACK's `ipiv`: at elimination step `k`, row `k` was
+    /// swapped with row `swaps[k] >= k` (applied to the right-hand side in place: no
+    /// gather into scratch and copy back).
+    swaps: Vec<usize>,
+    /// `1 / U_kk`: the solve multiplies (a division on the back substitution's chain of
+    /// dependent rows costs several times a multiplication, a complex one far more).
+    inverse_pivots: Vec<T>,
 }
 
 impl<T: LuScalar> SmallLu<T> {
@@ -24,8 +27,8 @@ impl<T: LuScalar> SmallLu<T> {
         SmallLu {
             size,
             factors: vec![T::from(0.0); size * size],
-            permutation: (0..size).collect(),
-            work: vec![T::from(0.0); size],
+            swaps: (0..size).collect(),
+            inverse_pivots: vec![T::from(1.0); size],
         }
     }
 
@@ -51,9 +54,6 @@ impl<T: LuScalar> SmallLu<T> {
     /// Factors the matrix held in `factors` in place.
     fn factor(&mut self) -> Result<(), SingularMatrix> {
         let n = self.size;
-        for (k, p) in self.permutation.iter_mut().enumerate() {
-            *p = k;
-        }
         let a = &mut self.factors[..n * n];
         for k in 0..n {
             let mut pivot_row = k;
@@ -68,17 +68,23 @@ impl<T: LuScalar> SmallLu<T> {
             if !(best > 0.0 && best.is_finite()) {
                 return Err(SingularMatrix);
             }
+            self.swaps[k] = pivot_row;
             if pivot_row != k {
                 let (upper, lower) = a.split_at_mut(pivot_row * n);
                 upper[k * n..(k + 1) * n].swap_with_slice(&mut lower[..n]);
-                self.permutation.swap(k, pivot_row);
             }
             let (upper, lower) = a.split_at_mut((k + 1) * n);
             let pivot = &upper[k * n + k..(k + 1) * n];
-            let d = pivot[0];
+            // LAPACK's getf2 scales by the reciprocal as well.
+            let inverse = T::from(1.0) / pivot[0];
+            if !inverse.is_usable_pivot() {
+                // A subnormal pivot: its reciprocal overflows.
+                return Err(SingularMatrix);
+            }
+            self.inverse_pivots[k] = inverse;
             for row in lower.chunks_exact_mut(n) {
                 let row = &mut row[k..];
-                let f = row[0] / d;
+                let f = row[0] * inverse;
                 row[0] = f;
                 if f != T::from(0.0) {
                     for (x, &y) in row[1..].iter_mut().zip(&pivot[1..]) {
@@ -94,9 +100,9 @@ impl<T: LuScalar> SmallLu<T> {
     pub fn solve(&mut self, b: &mut [T]) {
         let n = self.size;
         let a = &self.factors[..n * n];
-        let y = &mut self.work[..n];
-        for (yk, &p) in y.iter_mut().zip(&self.permutation) {
-            *yk = b[p];
+        let y = &mut b[..n];
+        for (k, &swap) in self.swaps.iter().enumerate() {
+            y.swap(k, swap);
         }
         // L y = P b (unit diagonal), row by row.
         for i in 1..n {
@@ -109,14 +115,13 @@ impl<T: LuScalar> SmallLu<T> {
         }
         // U x = y, from the last row up.
         for i in (0..n).rev() {
-            let row = &a[i * n + i..(i + 1) * n];
+            let row = &a[i * n + i + 1..(i + 1) * n];
             let mut s = y[i];
-            for (&u, &xj) in row[1..].iter().zip(&y[i + 1..]) {
+            for (&u, &xj) in row.iter().zip(&y[i + 1..]) {
                 s -= u * xj;
             }
-            y[i] = s / row[0];
+            y[i] = s * self.inverse_pivots[i];
         }
-        b[..n].copy_from_slice(y);
     }
 }
 
@@ -178,6 +183,27 @@ mod tests {
                 assert!((x[i] - y[i]).norm() <= 1e-12 * scale, "n {n} row {i}");
             }
         }
+    }
+
+    /// A subnormal pivot passes the nonzero test, but its reciprocal (which the solve
+    /// multiplies by) overflows: the matrix is reported singular, not solved into infinities.
+    #[test]
+    fn subnormal_pivot_is_singular() {
+        let mut jacobian = JacobianMatrix::dense(2);
+        assert!(jacobian.set(0, 0, -1.0));
+        assert!(jacobian.set(1, 1, -1e-310));
+        let mut lu = ShiftedLu::<f64>::dense(2);
+        assert_eq!(
+            lu.factor(&jacobian, &[false, false], 1.0),
+            Err(SingularMatrix)
+        );
+        // A tiny but normal pivot (a power of two: exact reciprocal) is factored and solved.
+        let tiny = 2f64.powi(-1000);
+        assert!(jacobian.set(1, 1, -tiny));
+        assert_eq!(lu.factor(&jacobian, &[false, false], 1.0), Ok(()));
+        let mut x = [2.0, 3.0 * tiny];
+        lu.solve(&mut x);
+        assert_eq!(x, [2.0, 3.0]);
     }
 
     #[test]
