@@ -153,7 +153,8 @@ impl Dopri5 {
         Ok(integrator)
     }
 
-    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+    /// The state `x` at `t` and `f` evaluated there: where the next step starts.
+    fn start_at(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.t = t;
         restart_point(
             system,
@@ -161,7 +162,11 @@ impl Dopri5 {
             &mut self.x,
             &mut self.f_current,
             &mut self.stats,
-        )?;
+        )
+    }
+
+    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        self.start_at(system, t, x)?;
         self.step_size = self.setup.options.initial_step;
         self.previous_error = 1e-4;
         self.last_rejected = false;
@@ -297,14 +302,7 @@ impl Integrator for Dopri5 {
             }
             self.dense.end_state.copy_from_slice(x);
         }
-        let t = self.t;
-        restart_point(
-            system,
-            (t, x),
-            &mut self.x,
-            &mut self.f_current,
-            &mut self.stats,
-        )
+        self.start_at(system, self.t, x)
     }
 
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {

@@ -283,7 +283,8 @@ impl Radau5 {
         Ok(integrator)
     }
 
-    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+    /// The state `x` at `t` and `f` evaluated there: where the next step starts.
+    fn start_at(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.t = t;
         restart_point(
             system,
@@ -291,7 +292,11 @@ impl Radau5 {
             &mut self.x,
             &mut self.f_current,
             &mut self.stats,
-        )?;
+        )
+    }
+
+    fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+        self.start_at(system, t, x)?;
         self.update_scale();
         self.step_size = self.setup.options.initial_step;
         self.jacobian_valid = false;
@@ -712,14 +717,7 @@ impl Integrator for Radau5 {
                 self.dense.cont[1][i] += delta;
             }
         }
-        let t = self.t;
-        restart_point(
-            system,
-            (t, x),
-            &mut self.x,
-            &mut self.f_current,
-            &mut self.stats,
-        )
+        self.start_at(system, self.t, x)
     }
 
     fn interpolation_error(&self) -> f64 {
