@@ -396,6 +396,25 @@ fn calls_interpreter(op: Op) -> bool {
 /// instructions of the same function read. Every other result is stored, since
 /// another function, tape, the interpreter or the runtime may read it.
 pub(crate) fn locals(ops: &[Op], registers: &RegisterUse) -> HashSet<Reg> {
+    locals_where(ops, |r, count| {
+        registers.is_private(r) && registers.reads(r) == count
+    })
+}
+
+/// The registers a whole right-hand side function (`crate::native::NativeRhs`) made of
+/// the plan's one step `ops` keeps as SSA values only: every result of a machine-code
+/// instruction that the interpreter's instructions called during the same function do
+/// not read and that the step does not read before writing it (a value the next call
+/// would read). Other tapes, the simulator and the next pass of the plan do not read
+/// them: after a native right-hand side the plan runs again before anything reads its
+/// values from the register file (the contract of `NativeRhs`).
+pub(crate) fn rhs_locals(ops: &[Op]) -> HashSet<Reg> {
+    locals_where(ops, |_, _| true)
+}
+
+/// The results of machine-code instructions of `ops` read only by later machine-code
+/// instructions of `ops` (`count` times) and for which `unread_elsewhere(r, count)`.
+fn locals_where(ops: &[Op], unread_elsewhere: impl Fn(Reg, u32) -> bool) -> HashSet<Reg> {
     let mut reads_here: HashMap<Reg, u32> = HashMap::default();
     let mut shared: HashSet<Reg> = HashSet::default();
     for &op in ops {
@@ -416,9 +435,7 @@ pub(crate) fn locals(ops: &[Op], registers: &RegisterUse) -> HashSet<Reg> {
     }
     reads_here
         .into_iter()
-        .filter(|&(r, count)| {
-            !shared.contains(&r) && registers.is_private(r) && registers.reads(r) == count
-        })
+        .filter(|&(r, count)| !shared.contains(&r) && unread_elsewhere(r, count))
         .map(|(r, _)| r)
         .collect()
 }
