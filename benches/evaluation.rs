@@ -1,7 +1,13 @@
 //! Compiled evaluation against hand-written Rust: right-hand-side evaluations of ROBER,
 //! HIRES and a 1,000-state chain, through the runtime's register tape, through native
 //! code compiled from the tapes with Cranelift (`unimo-codegen`) and as plain Rust
-//! functions, measured in one run (`cargo bench --bench evaluation`).
+//! functions, measured in one run (`cargo bench --bench evaluation`). A model of one
+//! state and one negation (`tiny`) measures the fixed cost of a call.
+//!
+//! Both sides compute the same thing: the hand-written functions take the time and the
+//! states and write the derivatives, called through a function pointer (not inlined
+//! into the loop), as the evaluator's native code is; the same arithmetic, except
+//! where the compiler orders it differently (ROBER's `y3 = -((y1 + y2) + -1)`).
 
 use std::path::PathBuf;
 use unimo_runtime::eval::RhsEvaluator;
@@ -28,8 +34,20 @@ fn chain_file(n: usize) -> PathBuf {
     path
 }
 
+fn tiny_file() -> PathBuf {
+    let path = std::env::temp_dir().join("unimo-bench-tiny.mo");
+    let text =
+        "model Tiny\n  Real x(start = 1, fixed = true);\nequation\n  der(x) = -x;\nend Tiny;\n";
+    std::fs::write(&path, text).expect("temp file");
+    path
+}
+
 /// A hand-written right-hand side.
 type Rhs = fn(f64, &[f64], &mut [f64]);
+
+fn tiny_hand(_t: f64, x: &[f64], f: &mut [f64]) {
+    f[0] = -x[0];
+}
 
 fn rober_hand(_t: f64, y: &[f64], f: &mut [f64]) {
     // y3 = 1 - y1 - y2 (the algebraic equation, solved)
@@ -57,11 +75,12 @@ fn load(which: &str) -> unimo_cli::LoadedModel {
     match which {
         "rober" => model("models/Robertson.mo"),
         "hires" => model("models/Hires.mo"),
+        "tiny" => unimo_cli::load_model(&[tiny_file()], None).expect("tiny"),
         _ => unimo_cli::load_model(&[chain_file(1000)], None).expect("chain"),
     }
 }
 
-#[divan::bench(args = ["rober", "hires", "chain1000"])]
+#[divan::bench(args = ["tiny", "rober", "hires", "chain1000"])]
 fn native(bencher: divan::Bencher, which: &str) {
     let mut m = load(which);
     let options = unimo_codegen::NativeOptions::default();
@@ -96,17 +115,18 @@ fn native_compile(bencher: divan::Bencher, which: &str) {
         });
 }
 
-#[divan::bench(args = ["rober", "hires", "chain1000"])]
+#[divan::bench(args = ["tiny", "rober", "hires", "chain1000"])]
 fn compiled(bencher: divan::Bencher, which: &str) {
     let m = load(which);
     bench_rhs(bencher, &m);
 }
 
-#[divan::bench(args = ["rober", "hires", "chain1000"])]
+#[divan::bench(args = ["tiny", "rober", "hires", "chain1000"])]
 fn hand_written(bencher: divan::Bencher, which: &str) {
     let (f, n): (Rhs, usize) = match which {
         "rober" => (rober_hand, 2),
         "hires" => (hires_hand, 8),
+        "tiny" => (tiny_hand, 1),
         _ => (chain_hand, 1000),
     };
     let x = state(n);

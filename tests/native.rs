@@ -15,11 +15,17 @@ use unimo_runtime::native::execute_shim;
 use unimo_runtime::sim::{Overrides, SimOptions, SimResult};
 use unimo_solve::Method;
 
-/// A copy of the compiled model with native code for its hot tapes.
+/// A copy of the compiled model with native code for its hot tapes. The whole
+/// right-hand side writes NaN to the registers it leaves unwritten
+/// (`NativeOptions::poison_unstored`), so that a reader of the register file that does
+/// not run the plan first after it changes the results.
 fn native(m: &CompiledModel) -> (CompiledModel, NativeStats) {
     let mut n = m.clone();
-    let stats =
-        compile_model(&mut n, &NativeOptions::default(), execute_shim).expect("native code");
+    let options = NativeOptions {
+        poison_unstored: true,
+        ..NativeOptions::default()
+    };
+    let stats = compile_model(&mut n, &options, execute_shim).expect("native code");
     assert!(!stats.above_threshold);
     for step in &n.steps {
         match step {
@@ -341,5 +347,31 @@ fn values_read_elsewhere_are_stored() {
             let worst = compare(&format!("{file} ({label})"), &tape, &native);
             assert_eq!(worst, 0.0, "{file} ({label}): the same bits");
         }
+    }
+}
+
+/// The whole native right-hand side leaves the plan's values out of the register file
+/// (`NativeRhs`); the simulator checks assertions after each solver step from the
+/// registers, so it runs the plan first (`Ode::refresh`): the tape's outcome and bits,
+/// with the registers left as they were (an earlier pass's values) and with NaN in
+/// them. Without the refresh the assertion reads `lag` of an earlier point and fails.
+#[test]
+fn assertions_after_a_step_read_the_plans_current_values() {
+    let l = common::load("tests/native/StaleAssert.mo", None);
+    let o = options(&l, 2.0);
+    let tape = unimo_runtime::sim::simulate(&l.compiled, &o);
+    assert!(tape.error.is_none(), "{:?}", tape.error);
+    assert!(tape.stats.solver.steps > 10, "{:?}", tape.stats.solver);
+    for poison in [false, true] {
+        let mut n = l.compiled.clone();
+        let options = NativeOptions {
+            poison_unstored: poison,
+            ..NativeOptions::default()
+        };
+        compile_model(&mut n, &options, execute_shim).expect("native code");
+        assert!(n.native_rhs.is_some(), "a plan of one explicit step");
+        let native = unimo_runtime::sim::simulate(&n, &o);
+        let worst = compare(&format!("StaleAssert (poison {poison})"), &tape, &native);
+        assert_eq!(worst, 0.0);
     }
 }

@@ -6,7 +6,7 @@ use unimo_codegen::tape::{Op, Rounding, Tape};
 use unimo_codegen::{compile_model, NativeOptions};
 use unimo_dae::expr::{Fn1, Fn2, RelOp};
 use unimo_runtime::exec::{EventState, Run};
-use unimo_runtime::native::execute_shim;
+use unimo_runtime::native::{execute_shim, RhsCall};
 
 /// Interesting values: signed zeros, infinities, NaN, integers, halves, large.
 const VALUES: [f64; 12] = [
@@ -148,6 +148,82 @@ fn native_code_computes_the_interpreters_bits() {
         }
     }
     assert_eq!(checked, 3 * 12 * 12 * 3);
+}
+
+/// The whole right-hand side function (`NativeRhs`, called through `RhsCall`) made of
+/// the same program, with every result a derivative: the interpreter's bits, in and
+/// out of event mode (where the function gets no relation values and asks the
+/// interpreter), and the same relation and held states afterwards; with and without
+/// NaN written to the registers it does not store.
+#[test]
+fn the_right_hand_side_function_computes_the_interpreters_bits() {
+    let ops = program();
+    let used = ops
+        .iter()
+        .flat_map(|op| op.written())
+        .max()
+        .expect("results")
+        + 1;
+    let n = 400;
+    let mut m = model(ops, n);
+    let results: Vec<u32> = (3..used).collect();
+    // The inputs x, y, c as states, then unused registers, one state per derivative.
+    let fillers = 200..(200 + results.len() as u32 - 3);
+    m.states = [0, 1, 2].into_iter().chain(fillers).collect();
+    m.derivatives = results.clone();
+    m.layout.time = (n - 1) as u32;
+    let CompiledStep::Explicit(tape) = &m.steps[0] else {
+        unreachable!()
+    };
+    let tape = tape.clone();
+    let (mut checked, mut poisoned) = (0, 0);
+    for poison in [false, true] {
+        let mut c = m.clone();
+        let options = NativeOptions {
+            poison_unstored: poison,
+            ..NativeOptions::default()
+        };
+        compile_model(&mut c, &options, execute_shim).expect("compiles");
+        let call = RhsCall::new(&c).expect("the right-hand side fits its model");
+        for &(event_mode, sticky) in &[(false, false), (true, false), (true, true)] {
+            for &x in &VALUES {
+                for &y in &VALUES {
+                    for &cond in &[0.0, 1.0, f64::NAN] {
+                        let mut ra = vec![0.0; n];
+                        ra[..3].copy_from_slice(&[x, y, cond]);
+                        let mut rb = ra.clone();
+                        let (mut ea, mut eb) =
+                            (events(event_mode, sticky), events(event_mode, sticky));
+                        let xs: Vec<f64> = c.states.iter().map(|&s| ra[s as usize]).collect();
+                        let mut out = vec![0.0; results.len()];
+                        assert!(call.call(0.25, &xs, &mut out, &mut ra, &mut ea));
+                        tape.interpret(&mut rb, &mut eb);
+                        for (k, &r) in results.iter().enumerate() {
+                            assert!(
+                                same(out[k], rb[r as usize]),
+                                "register {r} at ({x}, {y}, {cond}), event mode \
+                                 {event_mode}: {} vs {}",
+                                out[k],
+                                rb[r as usize]
+                            );
+                        }
+                        assert_eq!(format!("{:?}", ea.relations), format!("{:?}", eb.relations));
+                        assert_eq!(format!("{:?}", ea.held), format!("{:?}", eb.held));
+                        checked += 1;
+                        if poison {
+                            poisoned += results
+                                .iter()
+                                .filter(|&&r| ra[r as usize].is_nan() && !rb[r as usize].is_nan())
+                                .count();
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 2 * 3 * 12 * 12 * 3);
+    // Results left in machine registers read NaN in the register file.
+    assert!(poisoned > 0);
 }
 
 #[test]

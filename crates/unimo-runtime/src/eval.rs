@@ -2,7 +2,7 @@
 //! solve crate's, on the block's residual and symbolic Jacobian tapes).
 
 use crate::exec::{Instance, Run};
-use crate::native::{call_rhs, rhs_fits};
+use crate::native::RhsCall;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use unimo_solve::newton::{self, NewtonProblem, NewtonTolerance, NewtonWork};
@@ -244,9 +244,12 @@ pub(crate) fn residual_norm(b: &CompiledBlock, r: &[f64]) -> f64 {
 /// tests): parameters and start values are set once, then `rhs` runs the plan.
 pub struct RhsEvaluator<'m> {
     model: &'m CompiledModel,
-    registers: Vec<f64>,
+    /// Boxed: its length cannot change after `new` checked the native code fits it.
+    registers: Box<[f64]>,
     events: EventState,
     work: Workspace,
+    /// The model's whole right-hand side as one native call, if it has one.
+    native: Option<RhsCall<'m>>,
 }
 
 impl<'m> RhsEvaluator<'m> {
@@ -256,32 +259,37 @@ impl<'m> RhsEvaluator<'m> {
         // A table that cannot be built leaves its lookups NaN (the simulator reports it).
         let _ = model.run_parameters(&mut registers, &mut events);
         model.starts.run(&mut registers, &mut events);
+        let registers = registers.into_boxed_slice();
+        let native = RhsCall::new(model).filter(|c| c.fits(&registers, &events));
         RhsEvaluator {
             model,
             registers,
             events,
             work: Workspace::default(),
+            native,
         }
     }
 
     /// The state derivatives at `(t, x)`.
+    #[inline]
     pub fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), BlockFailure> {
-        let m = self.model;
-        if let Some(native) = &m.native_rhs {
-            if self.work.profile.is_none()
-                && rhs_fits(
-                    native,
-                    m.single_step_ops(),
-                    x.len(),
-                    &self.registers,
-                    &self.events,
-                )
-                && out.len() == x.len()
-            {
-                call_rhs(native, t, x, out, &mut self.registers, &mut self.events);
+        if let Some(native) = &self.native {
+            // SAFETY: `new` checked that the code fits this register file, whose length
+            // a boxed slice keeps, and this event state, whose relation vector nothing
+            // resizes (the plan's instructions and native code write its values only).
+            let done =
+                unsafe { native.call_fitted(t, x, out, &mut self.registers, &mut self.events) };
+            if done {
                 return Ok(());
             }
         }
+        self.rhs_by_plan(t, x, out)
+    }
+
+    /// [`RhsEvaluator::rhs`] by running the plan.
+    #[inline(never)]
+    fn rhs_by_plan(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), BlockFailure> {
+        let m = self.model;
         self.registers[m.layout.time as usize] = t;
         for (k, &r) in m.states.iter().enumerate() {
             self.registers[r as usize] = x[k];

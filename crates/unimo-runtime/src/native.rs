@@ -6,7 +6,9 @@
 //! one-instruction interpreter the code calls back ([`execute_shim`]).
 
 use crate::exec::EventState;
-use unimo_codegen::native::{Events, NativeRhs, NativeTape};
+use std::marker::PhantomData;
+use unimo_codegen::model::CompiledModel;
+use unimo_codegen::native::{Events, NativeRhsFn, NativeTape};
 use unimo_codegen::tape::Op;
 
 /// The event state as the opaque pointer native code passes on.
@@ -54,54 +56,101 @@ fn call_tape(native: &NativeTape, registers: &mut [f64], ev: &mut EventState) {
     }
 }
 
-/// Whether a whole right-hand side's code may run: compiled from a plan of one
-/// explicit step with `plan_ops` instructions and `n_states` states, on a register file
-/// and event state as large as it assumes.
-#[inline]
-pub fn rhs_fits(
-    native: &NativeRhs,
-    plan_ops: Option<usize>,
+/// A model's compiled right-hand side, checked once against the model (see
+/// [`RhsCall::new`]), so that a call checks only the lengths of its arguments.
+///
+/// The code leaves the time and the states in the register file but not the plan's
+/// values at them (`unimo_codegen::native::NativeRhs`): a caller that reads the plan's
+/// values from the register file after [`RhsCall::call`] runs the plan first.
+#[derive(Clone, Copy)]
+pub struct RhsCall<'m> {
+    function: NativeRhsFn,
     n_states: usize,
-    registers: &[f64],
-    ev: &EventState,
-) -> bool {
-    plan_ops == Some(native.n_ops)
-        && n_states == native.n_states
-        && registers.len() >= native.min_registers
-        && ev.relations.len() >= native.min_relations
+    min_registers: usize,
+    min_relations: usize,
+    /// The model holds the code's memory (`NativeRhs::owner`) and cannot change while
+    /// it is borrowed.
+    _model: PhantomData<&'m CompiledModel>,
 }
 
-/// Evaluates the right-hand side. The caller has checked [`rhs_fits`], and `x` and
-/// `out` hold `n_states` values each.
-#[inline]
-pub fn call_rhs(
-    native: &NativeRhs,
-    t: f64,
-    x: &[f64],
-    out: &mut [f64],
-    registers: &mut [f64],
-    ev: &mut EventState,
-) {
-    assert!(x.len() == native.n_states && out.len() == native.n_states);
-    let relations = ev.relations.as_ptr();
-    let event_mode = u32::from(ev.event_mode);
-    let (regs, n) = (registers.as_mut_ptr(), registers.len());
-    let events = events_ptr(ev);
-    // SAFETY: as in `call_tape` (the caller checked `rhs_fits`); besides the register
-    // file the code reads `n_states` values at `x` and writes `n_states` at `out`, both
-    // checked above.
-    unsafe {
-        (native.function)(
-            regs,
-            n,
-            events,
-            relations,
-            event_mode,
-            t,
-            x.as_ptr(),
-            out.as_mut_ptr(),
-        )
-    };
+impl<'m> RhsCall<'m> {
+    /// The right-hand side code of `m`, when it has some and it was compiled from the
+    /// model as it is: a plan of one explicit step with the instruction count the code
+    /// was compiled from, the same states, a register file as large as the code uses.
+    pub fn new(m: &'m CompiledModel) -> Option<RhsCall<'m>> {
+        let native = m.native_rhs.as_ref()?;
+        let fits = m.single_step_ops() == Some(native.n_ops)
+            && m.states.len() == native.n_states
+            && m.derivatives.len() == native.n_states
+            && m.n_registers >= native.min_registers;
+        fits.then_some(RhsCall {
+            function: native.function,
+            n_states: native.n_states,
+            min_registers: native.min_registers,
+            min_relations: native.min_relations,
+            _model: PhantomData,
+        })
+    }
+
+    /// Whether the code may run on `registers` and `ev`: they are as large as it assumes.
+    #[inline]
+    pub fn fits(&self, registers: &[f64], ev: &EventState) -> bool {
+        registers.len() >= self.min_registers && ev.relations.len() >= self.min_relations
+    }
+
+    /// Evaluates the right-hand side at `(t, x)` into `out` on `registers` and `ev`
+    /// (those of the model `self` was made from); false, doing nothing, when `x` and
+    /// `out` do not hold one value per state or the register file or relation state is
+    /// smaller than the code assumes.
+    #[inline]
+    pub fn call(
+        &self,
+        t: f64,
+        x: &[f64],
+        out: &mut [f64],
+        registers: &mut [f64],
+        ev: &mut EventState,
+    ) -> bool {
+        // SAFETY: `fits` is checked first.
+        self.fits(registers, ev) && unsafe { self.call_fitted(t, x, out, registers, ev) }
+    }
+
+    /// [`RhsCall::call`] without checking [`RhsCall::fits`]: for a caller that checked
+    /// it once on a register file and relation state that cannot have shrunk since.
+    ///
+    /// # Safety
+    /// `self.fits(registers, ev)` holds.
+    #[inline]
+    pub unsafe fn call_fitted(
+        &self,
+        t: f64,
+        x: &[f64],
+        out: &mut [f64],
+        registers: &mut [f64],
+        ev: &mut EventState,
+    ) -> bool {
+        if x.len() != self.n_states || out.len() != self.n_states {
+            return false;
+        }
+        // In event mode the code reads no relation values (it asks the interpreter).
+        let relations = if ev.event_mode {
+            std::ptr::null()
+        } else {
+            ev.relations.as_ptr()
+        };
+        let (regs, n) = (registers.as_mut_ptr(), registers.len());
+        let events = events_ptr(ev);
+        // SAFETY: `unimo-codegen` compiled the function from the plan's one step as it
+        // is (checked by `new`; the model is borrowed, so it has not changed since), it
+        // reads and writes registers below `min_registers <= n`, relation values below
+        // `min_relations <= ev.relations.len()` (none in event mode; both guaranteed by
+        // the caller), `n_states` values at `x` and `out` (checked above), and passes
+        // `events` only to
+        // [`execute_shim`], which does not resize the relation vector, so `relations`
+        // stays valid during the call. The model holds the code's memory.
+        unsafe { (self.function)(regs, x.as_ptr(), out.as_mut_ptr(), relations, events, n, t) };
+        true
+    }
 }
 
 /// Executes one instruction with the interpreter's semantics: what native code calls

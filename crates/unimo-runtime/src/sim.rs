@@ -6,7 +6,7 @@
 use crate::eval::{eval_steps, BlockFailure, Workspace};
 use crate::exec::EventState;
 use crate::exec::{Instance, Run};
-use crate::native::{call_rhs, rhs_fits};
+use crate::native::RhsCall;
 use starts::LoopStarts;
 use std::time::Instant;
 use unimo_codegen::model::CompiledModel;
@@ -285,6 +285,12 @@ struct Ode<'a> {
     /// step and then for the root functions at the same point: the second evaluation
     /// is skipped. Outside a step (`None`) the simulator writes the registers itself.
     evaluated_at: Option<Option<(f64, Vec<f64>)>>,
+    /// The model's whole right-hand side as one native call, if it has one (not while
+    /// the plan's steps are profiled).
+    native: Option<RhsCall<'a>>,
+    /// The last evaluation was a native right-hand side: the registers hold its time
+    /// and states but not the plan's values there (see `RhsCall`), until the plan runs.
+    plan_stale: bool,
 }
 
 impl Ode<'_> {
@@ -292,6 +298,7 @@ impl Ode<'_> {
     /// [`LoopStarts::choose`] picks; when that fails, once more from each fallback
     /// ([`LoopStarts::fallbacks`]) until one succeeds.
     fn eval_from_starts(&mut self, t: f64) -> Result<(), BlockFailure> {
+        self.plan_stale = false;
         let start = self.loop_starts.choose(t);
         if let Some(s) = start {
             self.loop_starts.write(s, &mut self.regs);
@@ -308,6 +315,17 @@ impl Ode<'_> {
             }
         }
         evaluated
+    }
+
+    /// Runs the plan at the time and states in the registers when the last evaluation
+    /// was a native right-hand side, so that the plan's values there can be read from
+    /// the registers (as after the tape's right-hand side).
+    fn refresh(&mut self) -> Result<(), BlockFailure> {
+        if self.plan_stale {
+            let t = self.regs[self.m.layout.time as usize];
+            self.eval_from_starts(t)?;
+        }
+        Ok(())
     }
 
     /// Starts (`true`) or ends a solver step: see `evaluated_at`.
@@ -365,32 +383,22 @@ impl System for Ode<'_> {
 
     fn rhs(&mut self, t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
         let n = self.m.states.len();
-        match &self.m.native_rhs {
-            // The whole right-hand side in one native call (a plan of one explicit step).
-            Some(native)
-                if self.work.profile.is_none()
-                    && rhs_fits(native, self.m.single_step_ops(), n, &self.regs, &self.ev) =>
-            {
-                self.evaluations += 1;
-                let started = unimo_solve::fine_timing().then(Instant::now);
-                call_rhs(
-                    native,
-                    t,
-                    &x[..n],
-                    &mut out[..n],
-                    &mut self.regs,
-                    &mut self.ev,
-                );
-                if let Some(at) = self.evaluated_at.as_mut() {
-                    *at = None;
-                }
-                self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
+        // The whole right-hand side in one native call (a plan of one explicit step).
+        let started = unimo_solve::fine_timing().then(Instant::now);
+        let native = self.native.as_ref().is_some_and(|native| {
+            native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev)
+        });
+        if native {
+            self.evaluations += 1;
+            self.plan_stale = true;
+            if let Some(at) = self.evaluated_at.as_mut() {
+                *at = None;
             }
-            _ => {
-                self.load(t, x)?;
-                for (k, &reg) in self.m.derivatives.iter().enumerate() {
-                    out[k] = self.regs[reg as usize];
-                }
+            self.eval_seconds += started.map_or(0.0, |s| s.elapsed().as_secs_f64());
+        } else {
+            self.load(t, x)?;
+            for (k, &reg) in self.m.derivatives.iter().enumerate() {
+                out[k] = self.regs[reg as usize];
             }
         }
         for (k, &v) in out[..n].iter().enumerate() {
@@ -576,6 +584,8 @@ impl<'a> Simulator<'a> {
             pattern: jacobian_pattern(m),
             loop_starts: LoopStarts::new(m),
             evaluated_at: None,
+            native: RhsCall::new(m),
+            plan_stale: false,
         };
         Simulator {
             ode,
@@ -608,6 +618,7 @@ impl<'a> Simulator<'a> {
         sink: std::sync::Arc<std::sync::Mutex<Vec<std::time::Duration>>>,
     ) -> Self {
         self.ode.work.profile = Some(crate::eval::StepProfile::new(sink));
+        self.ode.native = None;
         self
     }
 

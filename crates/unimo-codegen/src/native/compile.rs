@@ -56,6 +56,12 @@ pub struct NativeOptions {
     pub max_model_ops: usize,
     /// Cranelift's optimisation level: `none`, `speed` or `speed_and_size`.
     pub opt_level: &'static str,
+    /// The whole right-hand side function (`NativeRhs`) writes NaN to every register
+    /// its step computes but does not store, so that a reader of the register file
+    /// that does not run the plan first after a native right-hand side reads NaN
+    /// rather than a value of an earlier pass (the differential tests then see it).
+    /// On in debug builds.
+    pub poison_unstored: bool,
 }
 
 impl Default for NativeOptions {
@@ -64,6 +70,7 @@ impl Default for NativeOptions {
             max_ops_per_function: 2_000,
             max_model_ops: 120_000,
             opt_level: "none",
+            poison_unstored: cfg!(debug_assertions),
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::native::{ExecuteShim, NativeFn, NativeRhsFn};
 use crate::tape::{Op, Reg};
+use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{types, AbiParam, FuncRef, InstBuilder, UserFuncName, Value};
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_codegen::settings::{self, Configurable};
@@ -11,7 +12,9 @@ use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Module};
 use std::sync::Arc;
 
-use super::translate::{locals, registers, Counts, Interpreted, Params, Signatures, Translator};
+use super::translate::{
+    locals, registers, rhs_locals, Counts, Interpreted, Params, Signatures, Translator,
+};
 use super::{CodegenError, NativeOptions, NativeStats};
 use crate::model::RegisterUse;
 use rustc_hash::FxHashSet as HashSet;
@@ -102,11 +105,10 @@ fn rhs_body<'a>(
     spec: &RhsSpec<'_>,
     ids: &'a [Vec<FuncId>],
     chunk: usize,
-    registers: &RegisterUse,
     interpreted: &'a mut Interpreted,
 ) -> (&'a mut Interpreted, HashSet<Reg>, &'a [FuncId]) {
     if spec.ops.len() <= chunk {
-        (interpreted, locals(spec.ops, registers), &[])
+        (interpreted, rhs_locals(spec.ops), &[])
     } else {
         (interpreted, HashSet::default(), &ids[spec.tape])
     }
@@ -176,10 +178,9 @@ pub(crate) fn compile(
         Some(spec) => Some(define_rhs(
             &mut module,
             (&mut ctx, &mut builder_ctx),
-            &signature,
             spec,
-            rhs_body(spec, &ids, chunk, registers, &mut interpreted_ops),
-            &mut stats,
+            rhs_body(spec, &ids, chunk, &mut interpreted_ops),
+            (options.poison_unstored, &mut stats),
         )?),
         None => None,
     };
@@ -189,8 +190,8 @@ pub(crate) fn compile(
     let rhs = rhs.zip(rhs_id).map(|(spec, id)| {
         let address = module.get_finalized_function(id);
         RhsCode {
-            // SAFETY: built with the signature `NativeRhsFn` describes (`NativeFn`'s
-            // arguments, an `f64` and two pointers, the platform's C calling
+            // SAFETY: built with the signature `NativeRhsFn` describes (six
+            // pointer-sized arguments and an `f64`, the platform's C calling
             // convention) and finalized.
             function: unsafe { std::mem::transmute::<*const u8, NativeRhsFn>(address) },
             min_registers: min_registers(spec.ops).max(spec.time as usize + 1).max(
@@ -288,30 +289,39 @@ fn build(
 
 /// Builds the right-hand side function: time and states into their registers (and
 /// known as values), the step's instructions (or, for a step longer than one function,
-/// calls of the step's own functions `parts`), the derivatives out.
+/// calls of the step's own functions `parts`), the derivatives out. With `poison`, NaN
+/// into every register the step computes and the function does not store.
 fn build_rhs(
     func: &mut cranelift_codegen::ir::Function,
     builder_ctx: &mut FunctionBuilderContext,
     spec: &RhsSpec<'_>,
-    body: RhsBody<'_>,
+    (body, poison): (RhsBody<'_>, bool),
     target: TargetFrontendConfig,
 ) {
     let call_conv = func.signature.call_conv;
     let mut b = FunctionBuilder::new(func, builder_ctx);
-    let (params, rest) = entry(&mut b);
-    let (time, states, derivatives) = (rest[0], rest[1], rest[2]);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    b.seal_block(entry);
+    let p = b.block_params(entry).to_vec();
+    let [registers, states, derivatives, relations, events, n_registers, time] = p[..] else {
+        unreachable!("the right-hand side's seven parameters")
+    };
+    // Event mode is a null relation pointer (no values to read).
+    let event_mode = b.ins().icmp_imm_u(IntCC::Equal, relations, 0);
+    let params = Params {
+        registers,
+        n_registers,
+        events,
+        relations,
+        event_mode,
+    };
     let sigs = Signatures::import(&mut b, call_conv);
-    let common = [
-        params.registers,
-        params.n_registers,
-        params.events,
-        params.relations,
-        params.event_mode,
-    ];
-    let mut t = Translator::new(&mut b, params, sigs, body.interpreted, body.local);
+    let mut t = Translator::new(&mut b, params, sigs, body.interpreted, body.local.clone());
     t.set(spec.time, time);
+    let flags = cranelift_codegen::ir::MemFlagsData::trusted();
     for (k, &r) in spec.states.iter().enumerate() {
-        let flags = cranelift_codegen::ir::MemFlagsData::trusted();
         let v = t.b.ins().load(types::F64, flags, states, (k * 8) as i32);
         t.set(r, v);
     }
@@ -320,6 +330,8 @@ fn build_rhs(
             t.op(op);
         }
     } else {
+        let mode = t.b.ins().uextend(types::I32, event_mode);
+        let common = [registers, n_registers, events, relations, mode];
         for &part in &body.parts {
             t.b.ins().call(part, &common);
         }
@@ -328,8 +340,15 @@ fn build_rhs(
     }
     for (k, &r) in spec.derivatives.iter().enumerate() {
         let v = t.get(r);
-        let flags = cranelift_codegen::ir::MemFlagsData::trusted();
         t.b.ins().store(flags, v, derivatives, (k * 8) as i32);
+    }
+    if poison {
+        let nan = t.b.ins().f64const(f64::NAN);
+        let mut unstored: Vec<Reg> = body.local.into_iter().collect();
+        unstored.sort_unstable();
+        for r in unstored {
+            t.b.ins().store(flags, nan, registers, (r as i32) * 8);
+        }
     }
     b.ins().return_(&[]);
     b.finalize(target);
@@ -345,19 +364,21 @@ pub(crate) struct RhsBody<'a> {
     pub parts: Vec<FuncRef>,
 }
 
-/// Declares, builds and defines the right-hand side function of `spec`.
+/// Declares, builds and defines the right-hand side function of `spec` (with
+/// `poison`: see `NativeOptions::poison_unstored`).
 fn define_rhs(
     module: &mut JITModule,
     (ctx, builder_ctx): (&mut cranelift_codegen::Context, &mut FunctionBuilderContext),
-    signature: &cranelift_codegen::ir::Signature,
     spec: &RhsSpec<'_>,
     (interpreted, local, parts): (&mut Interpreted, HashSet<Reg>, &[FuncId]),
-    stats: &mut NativeStats,
+    (poison, stats): (bool, &mut NativeStats),
 ) -> Result<FuncId, CodegenError> {
-    let mut rhs_signature = signature.clone();
+    // `NativeRhsFn`: six pointer-sized arguments and the time.
+    let ptr = types::I64;
+    let mut rhs_signature = module.make_signature();
     rhs_signature
         .params
-        .extend([types::F64, types::I64, types::I64].map(AbiParam::new));
+        .extend([ptr, ptr, ptr, ptr, ptr, ptr, types::F64].map(AbiParam::new));
     let id = module
         .declare_anonymous_function(&rhs_signature)
         .map_err(|e| compile_error("right-hand side", e))?;
@@ -373,7 +394,7 @@ fn define_rhs(
         local,
         parts,
     };
-    build_rhs(&mut ctx.func, builder_ctx, spec, body, target);
+    build_rhs(&mut ctx.func, builder_ctx, spec, (body, poison), target);
     module
         .define_function(id, ctx)
         .map_err(|e| compile_error("right-hand side", e))?;

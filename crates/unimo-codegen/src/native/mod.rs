@@ -27,17 +27,21 @@ pub type NativeFn = unsafe extern "C" fn(
     event_mode: u32,
 );
 
-/// The signature of a compiled right-hand side: [`NativeFn`]'s arguments, then the
-/// time, the states (`n_states` values) and where the derivatives go (`n_states`).
+/// The signature of a compiled right-hand side: the register file, the states
+/// (`n_states` values), where the derivatives go (`n_states`), the relation values
+/// (null in event mode: the code then decides relations with events by the
+/// interpreter's instruction instead of reading them), the event state, the number of
+/// registers and the time. Every argument is passed in a machine register (six
+/// integer ones and a float one: on x86-64 with the System V convention and on
+/// AArch64), so the code of a small step needs no stack frame.
 pub type NativeRhsFn = unsafe extern "C" fn(
     registers: *mut f64,
-    n_registers: usize,
-    events: *mut Events,
-    relations: *const f64,
-    event_mode: u32,
-    time: f64,
     states: *const f64,
     derivatives: *mut f64,
+    relations: *const f64,
+    events: *mut Events,
+    n_registers: usize,
+    time: f64,
 );
 
 /// The runtime's interpreter of one instruction, which native code calls for the
@@ -78,8 +82,18 @@ impl std::fmt::Debug for NativeTape {
 
 /// Machine code for a whole right-hand side evaluation of a plan that is one explicit
 /// step: it writes the time and the states into the register file, runs the step and
-/// copies the derivatives out, in one call (the per-call bookkeeping of the tape path
-/// costs as much as a small model's arithmetic).
+/// writes the derivatives to its output, in one call (the per-call bookkeeping of the
+/// tape path costs as much as a small model's arithmetic).
+///
+/// **What it leaves in the register file.** The time and the states of the call, and
+/// the values the interpreter's instructions read during the call (samples, tables,
+/// held roundings, relations in event mode); the step's other results (algebraic
+/// variables, temporaries, the derivatives) stay in machine registers. So after a call
+/// the register file holds the plan's inputs but not its values at them: whoever reads
+/// the plan's values from the register file runs the plan first (the simulator does:
+/// `docs/backend.md`, "One call per right-hand side"). Code compiled with
+/// `NativeOptions::poison_unstored` (the default in debug builds) writes NaN to each
+/// of those registers instead, so that a reader that does not is seen.
 #[derive(Clone)]
 pub struct NativeRhs {
     pub function: NativeRhsFn,

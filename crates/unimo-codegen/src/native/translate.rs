@@ -91,6 +91,10 @@ pub(crate) struct Translator<'a, 'b> {
     known: HashMap<Reg, (Value, u32)>,
     /// Calls emitted so far.
     calls: u32,
+    /// Float constants made since the last call, by their bits: a non-zero one costs
+    /// two instructions on x86-64 (an integer move and a transfer), so it is made once
+    /// between calls (not kept across one: it would be spilled, like a loaded value).
+    constants: HashMap<u64, (Value, u32)>,
     /// Registers that no one reads from the register file (see [`locals`]): their
     /// values stay SSA values, never stored.
     local: HashSet<Reg>,
@@ -101,6 +105,9 @@ pub(crate) struct Translator<'a, 'b> {
 }
 
 const FLAGS: MemFlagsData = MemFlagsData::trusted();
+
+/// The sign bit of an `f64`.
+const SIGN: u64 = 1 << 63;
 
 fn offset(r: Reg) -> i32 {
     // Registers are checked below 2^28 before translation.
@@ -121,6 +128,7 @@ impl<'a, 'b> Translator<'a, 'b> {
             sigs,
             known: HashMap::default(),
             calls: 0,
+            constants: HashMap::default(),
             local,
             interpreted_ops,
             counts: Counts::default(),
@@ -164,9 +172,21 @@ impl<'a, 'b> Translator<'a, 'b> {
         self.known.insert(r, (v, since));
     }
 
+    /// The float with bits `bits`, made at most once between two calls.
+    fn constant(&mut self, bits: u64) -> Value {
+        if let Some(&(v, since)) = self.constants.get(&bits) {
+            if since == self.calls {
+                return v;
+            }
+        }
+        let v = self.b.ins().f64const(f64::from_bits(bits));
+        self.constants.insert(bits, (v, self.calls));
+        v
+    }
+
     /// 1.0 where `c` is true, else 0.0.
     fn number_of(&mut self, c: Value) -> Value {
-        let one = self.b.ins().f64const(1.0);
+        let one = self.constant(1f64.to_bits());
         let zero = self.b.ins().f64const(0.0);
         self.b.ins().select(c, one, zero)
     }
@@ -250,13 +270,19 @@ impl<'a, 'b> Translator<'a, 'b> {
             }
             Op::Neg(d, a) => {
                 let x = self.get(a);
-                let v = self.b.ins().fneg(x);
+                // The sign bit flipped (what `fneg` does), with the mask made once.
+                let sign = self.constant(SIGN);
+                let v = self.b.ins().bxor(x, sign);
                 self.set(d, v);
             }
             Op::Fn1(f, d, a) => {
                 let x = self.get(a);
                 let v = match f {
-                    Fn1::Abs => self.b.ins().fabs(x),
+                    Fn1::Abs => {
+                        // The sign bit cleared (what `fabs` does).
+                        let magnitude = self.constant(!SIGN);
+                        self.b.ins().band(x, magnitude)
+                    }
                     Fn1::Sqrt => self.b.ins().sqrt(x),
                     _ => self.unary_call(shims::unary_of(f), x),
                 };
@@ -316,7 +342,7 @@ impl<'a, 'b> Translator<'a, 'b> {
             .brif(self.params.event_mode, event, &[], between, &[]);
         // Values defined in either branch do not dominate the merge: the register
         // cache must not learn them.
-        let saved = self.known.clone();
+        let saved = (self.known.clone(), self.constants.clone());
         self.b.switch_to_block(event);
         self.b.seal_block(event);
         self.interpret(op);
@@ -335,7 +361,7 @@ impl<'a, 'b> Translator<'a, 'b> {
         self.b.ins().jump(merge, &[BlockArg::Value(held)]);
         self.b.switch_to_block(merge);
         self.b.seal_block(merge);
-        self.known = saved;
+        (self.known, self.constants) = saved;
         let v = self.b.block_params(merge)[0];
         self.set(d, v);
     }
@@ -360,7 +386,7 @@ impl<'a, 'b> Translator<'a, 'b> {
             }
             base = self.b.ins().fmul(base, base);
         }
-        let one = self.b.ins().f64const(1.0);
+        let one = self.constant(1f64.to_bits());
         let product = product.unwrap_or(one);
         if n < 0 {
             self.b.ins().fdiv(one, product)
@@ -396,6 +422,25 @@ fn calls_interpreter(op: Op) -> bool {
 /// instructions of the same function read. Every other result is stored, since
 /// another function, tape, the interpreter or the runtime may read it.
 pub(crate) fn locals(ops: &[Op], registers: &RegisterUse) -> HashSet<Reg> {
+    locals_where(ops, |r, count| {
+        registers.is_private(r) && registers.reads(r) == count
+    })
+}
+
+/// The registers a whole right-hand side function (`crate::native::NativeRhs`) made of
+/// the plan's one step `ops` keeps as SSA values only: every result of a machine-code
+/// instruction that the interpreter's instructions called during the same function do
+/// not read and that the step does not read before writing it (a value the next call
+/// would read). Other tapes, the simulator and the next pass of the plan do not read
+/// them: after a native right-hand side the plan runs again before anything reads its
+/// values from the register file (the contract of `NativeRhs`).
+pub(crate) fn rhs_locals(ops: &[Op]) -> HashSet<Reg> {
+    locals_where(ops, |_, _| true)
+}
+
+/// The results of machine-code instructions of `ops` read only by later machine-code
+/// instructions of `ops` (`count` times) and for which `unread_elsewhere(r, count)`.
+fn locals_where(ops: &[Op], unread_elsewhere: impl Fn(Reg, u32) -> bool) -> HashSet<Reg> {
     let mut reads_here: HashMap<Reg, u32> = HashMap::default();
     let mut shared: HashSet<Reg> = HashSet::default();
     for &op in ops {
@@ -416,9 +461,7 @@ pub(crate) fn locals(ops: &[Op], registers: &RegisterUse) -> HashSet<Reg> {
     }
     reads_here
         .into_iter()
-        .filter(|&(r, count)| {
-            !shared.contains(&r) && registers.is_private(r) && registers.reads(r) == count
-        })
+        .filter(|&(r, count)| !shared.contains(&r) && unread_elsewhere(r, count))
         .map(|(r, _)| r)
         .collect()
 }

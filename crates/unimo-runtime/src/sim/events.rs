@@ -241,6 +241,11 @@ impl Simulator<'_> {
         if m.assertions.is_empty() {
             return Ok(());
         }
+        // After a native right-hand side the registers hold its point but not the
+        // plan's values there.
+        self.ode
+            .refresh()
+            .map_err(|failure| SimError::Block { time: t, failure })?;
         m.assert_tape.run(&mut self.ode.regs, &mut self.ode.ev);
         for (r, msg, warning) in &m.assertions {
             if self.ode.regs[*r as usize] == 0.0 && !warning {
