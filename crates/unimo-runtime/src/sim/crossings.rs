@@ -7,7 +7,7 @@ use crate::exec::EventState;
 use crate::exec::Run;
 use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
-use unimo_solve::{Direction, Solver};
+use unimo_solve::{group_window, Direction, Solver};
 
 /// What settling the relations after an event found.
 pub(super) struct Settled {
@@ -59,12 +59,13 @@ pub(super) fn disagreements(m: &CompiledModel, regs: &[f64], ev: &EventState) ->
 
 /// Whether a root function with value `g` (operands of size up to `size`) and slope
 /// `slope` at `t` is at zero after an event: inside the noise band that
-/// [`disagreements`] ignores, or within the root search's grouping window (64 ulp of
-/// `t`) of its root along the flow. The two bands agree, so a relation settled on the
-/// side the flow moves to is never one that disagrees with its operands at the next
-/// step (the function crosses within the window, before any step ends).
+/// [`disagreements`] ignores, or within the root search's grouping window
+/// ([`group_window`], 64 ulp of `t`) of its root along the flow. The two bands agree,
+/// so a relation settled on the side the flow moves to is never one that disagrees
+/// with its operands at the next step (the function crosses within the window, before
+/// any step ends).
 pub(super) fn at_zero(t: f64, g: f64, size: f64, slope: f64) -> bool {
-    g.abs() <= ROOT_NOISE * size.max(1.0) + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs()
+    g.abs() <= ROOT_NOISE * size.max(1.0) + group_window(t) * slope.abs()
 }
 
 impl Simulator<'_> {
