@@ -1005,6 +1005,29 @@ fn a_comparator_in_positive_feedback_flips_at_the_fold() {
     }
 }
 
+/// A located crossing whose event leaves the function off zero on the side it came
+/// from (a `reinit` 1e-11 back above the threshold, beyond the relations' noise
+/// band) while the flow drives it back down: the relation keeps the side its
+/// function is on, and the second crossing, 1e-8 s later, is an edge of the `when`.
+/// Before, the relation took the side the flow goes to at once (the settling band
+/// was 1e-10 wide, the disagreement check's 1e-14): the second edge was lost (n = 1,
+/// with an extra event), and where the function moves slowly the held value
+/// disagreed with its operands at every next step (E4006 in SlideRollSwitch and
+/// MarkeevEllipsoid with Radau5 at rtol 1e-4).
+#[test]
+fn a_relation_off_zero_after_its_event_keeps_its_side() {
+    let m = load("tests/simulate/SettleOffZero.mo");
+    for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
+        let r = run(&m, method, 1e-6, 1e-8, 2.0, 200);
+        assert_eq!(value(&r, "n"), 2.0, "{method:?}: {:?}", r.events);
+        let times: Vec<f64> = r.events.iter().map(|e| e.time).collect();
+        assert_eq!(times.len(), 2, "{method:?}: {:?}", r.events);
+        assert!((times[0] - 1.0).abs() < 1e-9, "{method:?}: {times:?}");
+        let second = times[0] + 1e-11 / 1e-3;
+        assert!((times[1] - second).abs() < 1e-12, "{method:?}: {times:?}");
+    }
+}
+
 /// Index reduction that passes through the equation of a discrete variable: its
 /// derivative is identically zero and stands as `der(b) = 0` (before: E3204 "no dummy
 /// derivatives can be chosen ... for 0 = 0", the MSL's `KinematicPTP2` and RobotR3).

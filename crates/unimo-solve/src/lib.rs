@@ -103,7 +103,7 @@ pub use newton::{NewtonError, NewtonProblem, NewtonTolerance, NewtonWork};
 pub use options::{LinearSolverChoice, Method, Options, Tolerance, SPARSE_AUTO_THRESHOLD};
 pub use project::{ProjectionStats, Projector};
 pub use radau5::{Radau5, Radau5DenseOutput};
-pub use roots::Direction;
+pub use roots::{group_window, Direction};
 pub use solver::{Solver, StopReason};
 pub use stats::Stats;
 pub use system::{JacobianMatrix, SparsityPattern, System};

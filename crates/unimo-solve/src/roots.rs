@@ -59,8 +59,10 @@ pub(crate) fn root_tolerance(t: f64) -> f64 {
     4.0 * f64::EPSILON * t.abs().max(1.0)
 }
 
-/// Roots this close after the located one are reported with it.
-pub(crate) fn group_window(t: f64) -> f64 {
+/// Roots this close after the located one are reported with it (the runtime's
+/// settling of relations after an event counts a function that the flow takes across
+/// zero within this window as at zero).
+pub fn group_window(t: f64) -> f64 {
     64.0 * f64::EPSILON * t.abs().max(1.0)
 }
 

@@ -7,7 +7,7 @@ use crate::exec::EventState;
 use crate::exec::Run;
 use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
-use unimo_solve::{Direction, Solver};
+use unimo_solve::{group_window, Direction, Solver};
 
 /// What settling the relations after an event found.
 pub(super) struct Settled {
@@ -55,6 +55,17 @@ pub(super) fn disagreements(m: &CompiledModel, regs: &[f64], ev: &EventState) ->
         }
     }
     out
+}
+
+/// Whether a root function with value `g` (operands of size up to `size`) and slope
+/// `slope` at `t` is at zero after an event: inside the noise band that
+/// [`disagreements`] ignores, or within the root search's grouping window
+/// ([`group_window`], 64 ulp of `t`) of its root along the flow. The two bands agree,
+/// so a relation settled on the side the flow moves to is never one that disagrees
+/// with its operands at the next step (the function crosses within the window, before
+/// any step ends).
+pub(super) fn at_zero(t: f64, g: f64, size: f64, slope: f64) -> bool {
+    g.abs() <= ROOT_NOISE * size.max(1.0) + group_window(t) * slope.abs()
 }
 
 impl Simulator<'_> {
@@ -211,7 +222,14 @@ impl Simulator<'_> {
 
     /// Per component (a relation, at its root at `(t, x)`): the value the relation
     /// takes just after `t` along the flow with the current relation values, `None`
-    /// when its function is not at zero or does not move.
+    /// when its function does not move or the relation has no sides (`==`, `<>`).
+    ///
+    /// A function at zero (see [`at_zero`]) takes the side the flow moves it to; one
+    /// off zero keeps the side it is on, where the flow moves it does not matter: a
+    /// relation that disagrees with its operands beyond the noise is a crossing
+    /// ([`disagreements`]), so holding the flow's side early would be an event again
+    /// at the next step (the root search locates the crossing when the flow gets
+    /// there).
     fn flow_sides(
         &mut self,
         t: f64,
@@ -220,16 +238,18 @@ impl Simulator<'_> {
     ) -> Option<Vec<Option<f64>>> {
         let m = self.m();
         let n = x.len();
-        let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<f64>> {
-            let mut out = vec![0.0; m.roots.len()];
-            // Raw differences, not the ones with Newton noise flushed to zero that the
-            // solver sees: a function that moves slowly off its root has a slope.
+        // Raw differences and their operands' size, not the differences with Newton
+        // noise flushed to zero that the solver sees: a function that moves slowly off
+        // its root has a slope.
+        let g = |me: &mut Self, t: f64, x: &[f64]| -> Option<Vec<(f64, f64)>> {
             me.ode.load(t, x).ok()?;
             m.roots_tape.run(&mut me.ode.regs, &mut me.ode.ev);
-            for (k, &(a, b)) in m.roots.iter().enumerate() {
-                out[k] = me.ode.regs[a as usize] - me.ode.regs[b as usize];
-            }
-            Some(out)
+            let regs = &me.ode.regs;
+            let out = m.roots.iter().map(|&(a, b)| {
+                let (a, b) = (regs[a as usize], regs[b as usize]);
+                (a - b, a.abs().max(b.abs()))
+            });
+            Some(out.collect())
         };
         let g0 = g(self, t, x)?;
         let dx: Vec<f64> = m
@@ -247,17 +267,20 @@ impl Simulator<'_> {
             if k >= m.root_ops.len() {
                 return None;
             }
-            let slope = (g1[k] - g0[k]) / delta;
-            let near_zero = g0[k].abs()
-                <= 1e-10 * (1.0 + g0[k].abs())
-                    + 64.0 * f64::EPSILON * t.abs().max(1.0) * slope.abs();
-            if !near_zero || slope == 0.0 {
-                return None;
-            }
-            let dir = if slope > 0.0 {
+            let ((value, size), slope) = (g0[k], (g1[k].0 - g0[k].0) / delta);
+            let dir = if !at_zero(t, value, size, slope) {
+                // Off zero: the side it is on.
+                if value > 0.0 {
+                    Direction::Rising
+                } else {
+                    Direction::Falling
+                }
+            } else if slope > 0.0 {
                 Direction::Rising
-            } else {
+            } else if slope < 0.0 {
                 Direction::Falling
+            } else {
+                return None;
             };
             after_crossing(m.root_ops[k], dir)
         };
