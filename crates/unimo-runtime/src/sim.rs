@@ -689,6 +689,7 @@ impl<'a> Simulator<'a> {
         if self.select_states(false) {
             self.result.stats.state_selections += 1;
             self.eval_plan()?;
+            self.refine_after_switch(t);
             let x = self.states();
             self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
             solver
@@ -696,6 +697,24 @@ impl<'a> Simulator<'a> {
                 .map_err(|e| self.solver_error(e))?;
         }
         Ok(())
+    }
+
+    /// After a switch of the state set at `t` (registers at `t`, the new set chosen):
+    /// the output refinement's last row and pending step hold the old set's states,
+    /// which the new set's slots read as other variables, so the chord test starts
+    /// again here, from a row at `t` (written unless the last row is at `t`).
+    fn refine_after_switch(&mut self, t: f64) {
+        if !self.refine.enabled() {
+            return;
+        }
+        if self.result.times.last() == Some(&t) {
+            let mut x = self.refine.take_scratch();
+            self.states_into(&mut x);
+            self.refine.written(t, &x);
+            self.refine.put_scratch(x);
+        } else {
+            self.record(t);
+        }
     }
 
     fn m(&self) -> &'a CompiledModel {
