@@ -7,8 +7,11 @@ on the chain model at growing N, and the growth exponents (log-log slopes).
                          [--engine tape|native]
 
 Prints one Markdown table per (kind, method): the median of each phase over the
-repeats per N, then the slope between successive N and the least-squares slope over
-all N for the total, `simulate` and `integrate`.
+repeats per N (wall times; `cpu` is the process's user and system CPU time), then the
+slope between successive N and the least-squares slope over all N for the total, the
+CPU time, `simulate`, `integrate`, `output` and the compile-time phases. The load
+average at the start and the end is printed too (a shared machine's wall times grow
+with it).
 """
 import argparse
 import json
@@ -31,16 +34,23 @@ PHASES = ["parse", "flatten", "lower", "structure", "compile", "native", "initia
 
 def run_once(binary, path, method, engine):
     started = time.perf_counter()
+    before = os.times()
     args = [binary, "simulate", path, "--method", method, "--stats", "-o", os.devnull]
     if engine:
         args += ["--engine", engine]
     done = subprocess.run(args, capture_output=True, text=True)
     wall = (time.perf_counter() - started) * 1e3
+    after = os.times()
+    # User and system CPU time of the process (all its threads): on a shared machine
+    # the wall times also hold the time the process waited for a core.
+    cpu = ((after.children_user - before.children_user)
+           + (after.children_system - before.children_system)) * 1e3
     if done.returncode != 0:
         raise SystemExit(f"{path} ({method}) failed:\n{done.stderr}")
     stats = json.loads(done.stderr.strip().splitlines()[-1])
     row = dict(stats["phases_ms"])
     row["total"] = wall
+    row["cpu"] = cpu
     row["steps"] = stats["steps"]
     row["rhs"] = stats["rhs"]
     row["sparse_lu"] = stats["sparse_lu"]
@@ -56,14 +66,14 @@ def slope(xs, ys):
 
 def table(kind, method, sizes, rows):
     print(f"\n### {kind} chain, {method}\n")
-    cols = ["total"] + PHASES
+    cols = ["total", "cpu"] + PHASES
     print("| N | steps | rhs | sparse LU | " + " | ".join(cols) + " |")
     print("|---" * (len(cols) + 4) + "|")
     for n in sizes:
         r = rows[n]
         cells = [f"{r[c]:.0f}" for c in cols]
         print(f"| {n} | {r['steps']} | {r['rhs']} | {r['sparse_lu']} | " + " | ".join(cells) + " |")
-    for c in ["total", "simulate", "integrate", "structure", "compile", "write"]:
+    for c in ["total", "cpu", "simulate", "integrate", "output", "structure", "compile", "write"]:
         ys = [rows[n][c] for n in sizes]
         steps = [math.log(ys[k + 1] / max(ys[k], 1e-9)) / math.log(sizes[k + 1] / sizes[k])
                  for k in range(len(sizes) - 1)]
@@ -83,6 +93,7 @@ def main():
     p.add_argument("--engine", default="", help="passed to --engine (default: unimo's choice)")
     a = p.parse_args()
     sizes = [int(s) for s in a.sizes.split(",")]
+    print("load average at start: " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
     with tempfile.TemporaryDirectory() as tmp:
         for kind in a.kinds.split(","):
             for method in a.methods.split(","):
@@ -98,6 +109,7 @@ def main():
                     print(f"{kind} {method} N={n}: {rows[n]['total']:.0f} ms",
                           file=sys.stderr, flush=True)
                 table(kind, method, sizes, rows)
+    print("\nload average at end: " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
 
 
 if __name__ == "__main__":

@@ -157,8 +157,11 @@ fn simulate_flat(
     unimo_solve::set_fine_timing(a.stats);
     // --cost times every plan step of the run.
     let profile = a.cost.map(|_| Arc::new(Mutex::new(Vec::new())));
-    let csv = csv_stream(a, &compiled, &cols);
-    let sink = csv.as_ref().map(|stream| stream.sink(&cols));
+    let mut csv = csv_stream(a, &compiled, &cols);
+    // The rows stay in memory only for what reads them after the run (--animate).
+    let sink = csv
+        .as_mut()
+        .map(|stream| (stream.sink(&cols), a.animate.is_some()));
     let result = run(&compiled, &options, sim_started, profile.clone(), sink);
     let simulate_ms = ms_since(sim_started);
     (phases.simulate, phases.run) = (simulate_ms, result.phase_times.clone());
@@ -296,7 +299,7 @@ fn run(
     options: &SimOptions,
     sim_started: Instant,
     profile: Option<Arc<Mutex<Vec<Duration>>>>,
-    row_sink: Option<unimo_runtime::sim::RowSink<'_>>,
+    row_sink: Option<(unimo_runtime::sim::RowSink<'_>, bool)>,
 ) -> SimResult {
     let (start, stop) = (options.start, options.stop);
     let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
@@ -326,8 +329,12 @@ fn run(
     if let Some(sink) = profile {
         simulator = simulator.profile(sink);
     }
-    if let Some(sink) = row_sink {
-        simulator = simulator.on_row(sink);
+    if let Some((sink, keep_rows)) = row_sink {
+        simulator = if keep_rows {
+            simulator.on_row(sink)
+        } else {
+            simulator.on_row_only(sink)
+        };
     }
     let result = simulator.run_with_progress(options, &mut report);
     if let Some(bar) = &bar {

@@ -556,6 +556,10 @@ pub struct Simulator<'a> {
     refine: refine::Refine,
     /// Called with each row as it is recorded (see [`Simulator::on_row`]).
     row_sink: Option<RowSink<'a>>,
+    /// The rows go into the result (else only to the sink: [`Simulator::on_row_only`]).
+    keep_rows: bool,
+    /// The row being recorded, reused when the rows are not kept.
+    row_scratch: Vec<f64>,
 }
 
 /// A receiver of result rows as they are recorded: time, then the row (one value per
@@ -600,6 +604,8 @@ impl<'a> Simulator<'a> {
             selections: m.state_sets.iter().map(|s| s.initial.clone()).collect(),
             refine: refine::Refine::default(),
             row_sink: None,
+            keep_rows: true,
+            row_scratch: Vec::new(),
         }
     }
 
@@ -608,6 +614,15 @@ impl<'a> Simulator<'a> {
     /// only ever appended, so the rows the sink saw are the result's rows.
     pub fn on_row(mut self, sink: RowSink<'a>) -> Self {
         self.row_sink = Some(sink);
+        self
+    }
+
+    /// Hands every result row to `sink` as it is recorded and keeps only its time in
+    /// the result (`rows` stays empty): a caller that writes the result file while the
+    /// run goes on needs no second copy of a large model's result in memory.
+    pub fn on_row_only(mut self, sink: RowSink<'a>) -> Self {
+        self.row_sink = Some(sink);
+        self.keep_rows = false;
         self
     }
 
@@ -742,11 +757,9 @@ impl<'a> Simulator<'a> {
         }
         let m = self.m();
         m.alias_tape.run(&mut self.ode.regs, &mut self.ode.ev);
-        let row: Vec<f64> = m
-            .outputs
-            .iter()
-            .map(|&(_, r)| self.ode.regs[r as usize])
-            .collect();
+        let mut row = std::mem::take(&mut self.row_scratch);
+        row.clear();
+        row.extend(m.outputs.iter().map(|&(_, r)| self.ode.regs[r as usize]));
         if let Some(k) = row.iter().position(|v| !v.is_finite()) {
             let (name, reg) = &m.outputs[k];
             let defining = match m.states.iter().position(|s| s == reg) {
@@ -760,13 +773,18 @@ impl<'a> Simulator<'a> {
                 value: row[k],
                 equation: m.definitions.get(&defining).copied(),
             });
+            self.row_scratch = row;
             return;
         }
         if let Some(sink) = self.row_sink.as_mut() {
             sink(t, &row);
         }
         self.result.times.push(t);
-        self.result.rows.push(row);
+        if self.keep_rows {
+            self.result.rows.push(row);
+        } else {
+            self.row_scratch = row;
+        }
         if self.refine.enabled() {
             let mut x = self.refine.take_scratch();
             self.states_into(&mut x);

@@ -7,7 +7,7 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::{channel, Sender};
+use std::sync::mpsc::{channel, Receiver, Sender};
 use std::thread::JoinHandle;
 use unimo_runtime::sim::{RowSink, SimResult};
 
@@ -47,25 +47,49 @@ pub fn write_csv(out: &mut dyn Write, r: &SimResult, cols: &[usize]) -> std::io:
     Ok(())
 }
 
-/// Rows handed over in batches (one channel message per batch, not per row).
-const BATCH_ROWS: usize = 64;
+/// Rows handed over in batches of about this many values (one channel message per
+/// batch, not per row; at least one row a batch).
+const BATCH_VALUES: usize = 1 << 16;
 
-/// A batch of rows: time and the selected values of each.
-type RowBatch = Vec<(f64, Vec<f64>)>;
+/// The batches in circulation, at most (256 MiB of values): the simulation does not
+/// wait for a writer that falls behind (formatting the numbers may take longer than
+/// computing them) until that many are queued, and the written ones are reused (a
+/// large model's rows are not allocated and faulted in anew when the writer keeps up).
+const BATCHES: usize = 512;
+
+/// A batch of rows: the times, and the selected values of each row one after the other.
+#[derive(Default)]
+struct RowBatch {
+    times: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl RowBatch {
+    fn with_capacity(rows: usize, width: usize) -> RowBatch {
+        RowBatch {
+            times: Vec::with_capacity(rows),
+            values: Vec::with_capacity(rows * width),
+        }
+    }
+}
 
 /// A CSV file (or stdout) written on its own thread from rows sent while the run goes
 /// on. The rows sent must be the result's rows, in order ([`Self::sink`]); then
 /// [`Self::finish`] waits for the writer and returns its outcome.
 pub struct CsvStream {
     sender: Option<Sender<RowBatch>>,
+    /// Written batches coming back, to be filled again.
+    spent: Option<Receiver<RowBatch>>,
     writer: JoinHandle<std::io::Result<()>>,
 }
 
 impl CsvStream {
     /// Starts the writer: it creates `output` (stdout when `None`) and writes the header
-    /// of `names` selected by `cols` at once, then every batch of rows it receives.
+    /// of `names` selected by `cols` at once, then every batch of rows it receives, one
+    /// line at a time (the line buffer holds one row, whatever the batch's size).
     pub fn start(output: Option<&Path>, names: Vec<String>, cols: Vec<usize>) -> CsvStream {
         let (sender, receiver) = channel::<RowBatch>();
+        let (give_back, spent) = channel::<RowBatch>();
         let output: Option<PathBuf> = output.map(Path::to_path_buf);
         let writer = std::thread::spawn(move || -> std::io::Result<()> {
             let mut out: Box<dyn Write> = match &output {
@@ -75,33 +99,50 @@ impl CsvStream {
             write_header(&mut out, &names, &cols)?;
             let mut line = Vec::with_capacity(24 * (cols.len() + 1));
             for batch in receiver {
-                line.clear();
-                for (t, values) in batch {
-                    push_line(&mut line, t, values.into_iter());
+                let width = cols.len();
+                for (k, &t) in batch.times.iter().enumerate() {
+                    line.clear();
+                    let row = &batch.values[k * width..(k + 1) * width];
+                    push_line(&mut line, t, row.iter().copied());
+                    out.write_all(&line)?;
                 }
-                out.write_all(&line)?;
+                // The simulation may have finished: then the batch is dropped here.
+                let _ = give_back.send(batch);
             }
             out.flush()
         });
         CsvStream {
             sender: Some(sender),
+            spent: Some(spent),
             writer,
         }
     }
 
     /// The receiver of the simulation's rows: keeps the columns `cols` of each and sends
     /// them to the writer in batches (the last, partial batch when the sink is dropped).
-    pub fn sink<'a>(&self, cols: &'a [usize]) -> RowSink<'a> {
+    /// Only the first sink reuses the written batches.
+    pub fn sink<'a>(&mut self, cols: &'a [usize]) -> RowSink<'a> {
+        self.sink_with(cols, BATCHES)
+    }
+
+    /// [`Self::sink`] with at most `batches` batches in circulation.
+    fn sink_with<'a>(&mut self, cols: &'a [usize], batches: usize) -> RowSink<'a> {
         let Some(sender) = self.sender.clone() else {
             return Box::new(|_, _| {});
         };
+        let width = cols.len();
+        let rows = (BATCH_VALUES / width.max(1)).max(1);
         let mut batch = Batch {
             sender,
-            rows: Vec::with_capacity(BATCH_ROWS),
+            spent: self.spent.take(),
+            new_ones: batches.max(1) - 1,
+            rows: RowBatch::with_capacity(rows, width),
+            capacity: (rows, width),
         };
         Box::new(move |t, row| {
-            batch.rows.push((t, cols.iter().map(|&c| row[c]).collect()));
-            if batch.rows.len() >= BATCH_ROWS {
+            batch.rows.times.push(t);
+            batch.rows.values.extend(cols.iter().map(|&c| row[c]));
+            if batch.rows.times.len() >= rows {
                 batch.send();
             }
         })
@@ -110,6 +151,7 @@ impl CsvStream {
     /// Waits until every row sent is written (the sinks must have been dropped).
     pub fn finish(mut self) -> std::io::Result<()> {
         self.sender = None;
+        self.spent = None;
         match self.writer.join() {
             Ok(written) => written,
             Err(_) => Err(std::io::Error::other("the CSV writer thread panicked")),
@@ -120,20 +162,38 @@ impl CsvStream {
 /// Rows waiting to be sent; the rest go when it is dropped.
 struct Batch {
     sender: Sender<RowBatch>,
+    /// The written batches (none for a second sink: it allocates each batch).
+    spent: Option<Receiver<RowBatch>>,
+    /// How many more batches may be allocated before waiting for a written one.
+    new_ones: usize,
     rows: RowBatch,
+    /// Rows a batch and values a row.
+    capacity: (usize, usize),
 }
 
 impl Batch {
     fn send(&mut self) {
-        let rows = std::mem::replace(&mut self.rows, Vec::with_capacity(BATCH_ROWS));
-        // A writer that stopped (an I/O error) reports it from `finish`.
+        let mut next = match &self.spent {
+            Some(spent) if self.new_ones == 0 => spent.recv().ok(),
+            Some(spent) => spent.try_recv().ok(),
+            None => None,
+        }
+        .unwrap_or_else(|| {
+            // A writer that stopped (an I/O error) sends nothing back: no waiting then.
+            self.new_ones = self.new_ones.saturating_sub(1);
+            RowBatch::with_capacity(self.capacity.0, self.capacity.1)
+        });
+        next.times.clear();
+        next.values.clear();
+        let rows = std::mem::replace(&mut self.rows, next);
+        // A writer that stopped reports its error from `finish`.
         let _ = self.sender.send(rows);
     }
 }
 
 impl Drop for Batch {
     fn drop(&mut self) {
-        if !self.rows.is_empty() {
+        if !self.rows.times.is_empty() {
             self.send();
         }
     }
@@ -154,10 +214,12 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("unimo-csv-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("streamed.csv");
-        let stream = CsvStream::start(Some(&path), names, cols.clone());
+        let mut stream = CsvStream::start(Some(&path), names, cols.clone());
         {
-            let mut sink = stream.sink(&cols);
-            for k in 0..(3 * BATCH_ROWS + 5) {
+            // Two batches in circulation and five to write: the sink waits for written
+            // ones and reuses them.
+            let mut sink = stream.sink_with(&cols, 2);
+            for k in 0..(5 * (BATCH_VALUES / cols.len()) + 5) {
                 let t = k as f64 * 0.1;
                 let row = vec![t.sin(), -0.0, 1e-300 * k as f64];
                 sink(t, &row);

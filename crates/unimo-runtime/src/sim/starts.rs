@@ -127,28 +127,43 @@ impl LoopStarts {
         }
     }
 
-    fn read(&self, time: f64, regs: &[f64]) -> Option<Point> {
-        if self.regs.is_empty() {
-            return None;
+    /// Stores the registers' values at `time` into `slot`, reusing its buffer (this
+    /// runs at every evaluation of the plan: no allocation of a large model's loops).
+    fn store(regs_of: &[Reg], slot: &mut Option<Point>, time: f64, regs: &[f64]) {
+        if regs_of.is_empty() {
+            return;
         }
-        Some(Point {
+        let p = slot.get_or_insert_with(|| Point {
             time,
-            values: self.regs.iter().map(|&r| regs[r as usize]).collect(),
-        })
+            values: Vec::with_capacity(regs_of.len()),
+        });
+        p.time = time;
+        p.values.clear();
+        p.values.extend(regs_of.iter().map(|&r| regs[r as usize]));
+    }
+
+    fn read(&self, time: f64, regs: &[f64]) -> Option<Point> {
+        let mut p = None;
+        Self::store(&self.regs, &mut p, time, regs);
+        p
     }
 
     /// Notes the registers' values after a successful evaluation at `time`.
     pub(super) fn note_latest(&mut self, time: f64, regs: &[f64]) {
-        if let Some(p) = self.read(time, regs) {
-            self.latest = Some(p);
-        }
+        Self::store(&self.regs, &mut self.latest, time, regs);
     }
 
     /// The solver accepted the step the last evaluation belonged to: its solution
     /// becomes the committed point.
     pub(super) fn accept_latest(&mut self) {
         if let Some(p) = &self.latest {
-            self.committed = Some(p.clone());
+            match &mut self.committed {
+                Some(c) => {
+                    c.time = p.time;
+                    c.values.clone_from(&p.values);
+                }
+                None => self.committed = Some(p.clone()),
+            }
         }
     }
 
@@ -159,9 +174,7 @@ impl LoopStarts {
 
     /// Takes the registers' values at `time` as the committed point.
     pub(super) fn commit(&mut self, time: f64, regs: &[f64]) {
-        if let Some(p) = self.read(time, regs) {
-            self.committed = Some(p);
-        }
+        Self::store(&self.regs, &mut self.committed, time, regs);
     }
 }
 
