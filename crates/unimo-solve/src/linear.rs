@@ -8,9 +8,8 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor as dense_factor, solve as dense_solve};
-use faer::linalg::solvers::SolveCore;
 use faer::perm::PermRef;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
@@ -124,7 +123,14 @@ struct SparseBackend<T: LuScalar> {
     jacobian_positions: Option<Vec<usize>>,
     values: Vec<T>,
     symbolic: Option<SymbolicLu<usize>>,
-    numeric: Option<Lu<usize, T>>,
+    /// The factors, overwritten in place by every refactorization (no allocation once
+    /// their storage has grown to size).
+    numeric: NumericLu<usize, T>,
+    /// Whether `numeric` holds the factors of the last matrix (false after a failure).
+    factored: bool,
+    /// Workspace of the numeric factorization and the solves, sized with the symbolic
+    /// analysis.
+    buffer: Option<MemBuffer>,
 }
 
 impl<T: LuScalar> ShiftedLu<T> {
@@ -173,7 +179,9 @@ impl<T: LuScalar> ShiftedLu<T> {
                 jacobian_positions: None,
                 values,
                 symbolic: None,
-                numeric: None,
+                numeric: NumericLu::new(),
+                factored: false,
+                buffer: None,
             })),
         }
     }
@@ -264,11 +272,7 @@ impl<T: LuScalar> ShiftedLu<T> {
                     MemStack::new(buffer),
                 );
             }
-            Backend::Sparse(sparse) => {
-                if let Some(numeric) = &sparse.numeric {
-                    numeric.solve_in_place_with_conj(Conj::No, rhs_matrix);
-                }
-            }
+            Backend::Sparse(sparse) => sparse.solve(rhs_matrix),
         }
     }
 }
@@ -294,16 +298,44 @@ impl<T: LuScalar> SparseBackend<T> {
             self.pattern.row_indices(),
         );
         if self.symbolic.is_none() {
-            self.symbolic = Some(SymbolicLu::try_new(symbolic_matrix).map_err(|_| SingularMatrix)?);
+            let symbolic = factorize_symbolic_lu(symbolic_matrix, Default::default())
+                .map_err(|_| SingularMatrix)?;
+            let scratch = symbolic
+                .factorize_numeric_lu_scratch::<T>(Par::Seq, Default::default())
+                .or(symbolic.solve_in_place_scratch::<T>(1, Par::Seq));
+            self.buffer = Some(MemBuffer::try_new(scratch).map_err(|_| SingularMatrix)?);
+            self.symbolic = Some(symbolic);
         }
-        let Some(symbolic) = self.symbolic.clone() else {
+        let (Some(symbolic), Some(buffer)) = (&self.symbolic, &mut self.buffer) else {
             return Err(SingularMatrix);
         };
         let matrix = SparseColMatRef::new(symbolic_matrix, &self.values);
-        self.numeric = None;
-        let numeric = Lu::try_new_with_symbolic(symbolic, matrix).map_err(|_| SingularMatrix)?;
-        self.numeric = Some(numeric);
+        self.factored = false;
+        symbolic
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                matrix,
+                Par::Seq,
+                MemStack::new(buffer),
+                Default::default(),
+            )
+            .map_err(|_| SingularMatrix)?;
+        self.factored = true;
         Ok(())
+    }
+
+    fn solve(&mut self, rhs: MatMut<'_, T>) {
+        let (true, Some(symbolic), Some(buffer)) =
+            (self.factored, &self.symbolic, &mut self.buffer)
+        else {
+            return;
+        };
+        LuRef::new_unchecked(symbolic, &self.numeric).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(buffer),
+        );
     }
 
     /// Writes `-J` into the values of `pattern`.

@@ -35,7 +35,7 @@ use crate::integrator::{common_accessors, eval_failure, restart_point, Integrato
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, worst_components, Tolerances};
-use crate::options::{LinearSolverChoice, Method, Options};
+use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
 use crate::system::System;
@@ -67,14 +67,51 @@ const TI32: f64 = 2.571_926_949_855_605_429_2;
 const TI33: f64 = -0.596_039_204_828_224_924_97;
 
 const MAX_NEWTON_ITERATIONS: usize = 7;
-const JACOBIAN_REUSE_THETA: f64 = 0.001;
 const SAFETY: f64 = 0.9;
-const QUOT_LOW: f64 = 1.0;
-const QUOT_HIGH: f64 = 1.2;
 const FACTOR_MIN: f64 = 1.0 / 8.0; // h_new <= 8 h
 const FACTOR_MAX: f64 = 5.0; // h_new >= h / 5
 const MAX_CONSECUTIVE_FAILURES: usize = 30;
 const MAX_SINGULAR: usize = 6;
+
+/// When a Jacobian is kept and when a factorization is kept: Hairer's `WORK(3)` (the
+/// Newton contraction up to which the Jacobian is reused) and `WORK(5)`, `WORK(6)` (the
+/// range of step-size ratios in which the step size, and so the factorization, stays).
+#[derive(Debug, Clone, Copy)]
+struct ReusePolicy {
+    theta: f64,
+    quot_low: f64,
+    quot_high: f64,
+}
+
+impl ReusePolicy {
+    /// Hairer's defaults, for systems whose factorization costs about as much as a few
+    /// Newton iterations.
+    const SMALL: ReusePolicy = ReusePolicy {
+        theta: 0.001,
+        quot_low: 1.0,
+        quot_high: 1.2,
+    };
+
+    /// Hairer's advice for large systems (`WORK(3) = 0.1`, `WORK(5) = 0.99`,
+    /// `WORK(6) = 2`): there the real and the complex factorization of a step cost as much
+    /// as tens of Newton iterations (BRUSS2D, 2,048 unknowns: 20 ms against 1 ms), so a
+    /// slower contraction and a step size kept in a wider band pay.
+    const LARGE: ReusePolicy = ReusePolicy {
+        theta: 0.1,
+        quot_low: 0.99,
+        quot_high: 2.0,
+    };
+
+    /// [`Self::LARGE`] from [`SPARSE_AUTO_THRESHOLD`] unknowns on (where a sparse LU, or a
+    /// dense one of at least that size, is used), [`Self::SMALL`] below.
+    fn for_size(size: usize) -> ReusePolicy {
+        if size >= SPARSE_AUTO_THRESHOLD {
+            ReusePolicy::LARGE
+        } else {
+            ReusePolicy::SMALL
+        }
+    }
+}
 
 /// Real eigenvalue `γ` and complex pair `α ± iβ` of the inverse Radau IIA matrix.
 fn eigenvalues() -> (f64, f64, f64) {
@@ -151,6 +188,7 @@ pub struct Radau5 {
     error_vector: Vec<f64>,
     theta: f64,
     contraction_factor: f64,
+    reuse: ReusePolicy,
     newton_tolerance: f64,
     first_step: bool,
     last_rejected: bool,
@@ -242,8 +280,9 @@ impl Radau5 {
             complex_rhs: vec![c64::new(0.0, 0.0); size],
             scale: zeros(),
             error_vector: zeros(),
-            theta: JACOBIAN_REUSE_THETA,
+            theta: ReusePolicy::for_size(size).theta,
             contraction_factor: 1.0,
+            reuse: ReusePolicy::for_size(size),
             newton_tolerance,
             first_step: true,
             last_rejected: false,
@@ -302,7 +341,7 @@ impl Radau5 {
         self.jacobian_valid = false;
         self.jacobian_fresh = false;
         self.factored_for = None;
-        self.theta = JACOBIAN_REUSE_THETA;
+        self.theta = self.reuse.theta;
         self.contraction_factor = 1.0;
         self.first_step = true;
         self.last_rejected = false;
@@ -463,7 +502,7 @@ impl Radau5 {
     fn newton(&mut self, system: &mut dyn System, h: f64) -> NewtonOutcome {
         self.newton_start(h);
         self.contraction_factor = self.contraction_factor.max(f64::EPSILON).powf(0.8);
-        self.theta = JACOBIAN_REUSE_THETA;
+        self.theta = self.reuse.theta;
         let mut iterations = 0usize;
         let mut previous_norm = 0.0f64;
         let mut previous_quotient = 0.0f64;
@@ -816,8 +855,8 @@ impl Integrator for Radau5 {
                 h_next = h_next.max(h.min(max_step));
             }
             let quotient = h_next / h_try;
-            if self.theta <= JACOBIAN_REUSE_THETA {
-                if (QUOT_LOW..=QUOT_HIGH).contains(&quotient) {
+            if self.theta <= self.reuse.theta {
+                if (self.reuse.quot_low..=self.reuse.quot_high).contains(&quotient) {
                     h_next = h_try;
                 }
             } else {

@@ -402,3 +402,92 @@ fn solver_can_move_between_threads() {
     assert_send::<unimo_solve::Radau5>();
     assert_send::<unimo_solve::Dopri5>();
 }
+
+/// Hairer and Wanner's 1-D Brusselator (BRUSS) with `n` grid points, `u` and `v`
+/// interleaved (a band of width 5), with its pattern: a nonlinear stiff system large
+/// enough for the sparse LU.
+struct Brusselator1d {
+    n: usize,
+    pattern: SparsityPattern,
+    differential: Vec<bool>,
+}
+
+impl Brusselator1d {
+    fn new(n: usize) -> Self {
+        let size = 2 * n;
+        let entries = (0..size).flat_map(move |j: usize| {
+            (j.saturating_sub(2)..(j + 3).min(size)).map(move |i| (i, j))
+        });
+        Brusselator1d {
+            n,
+            pattern: SparsityPattern::from_entries(size, entries).unwrap(),
+            differential: vec![true; size],
+        }
+    }
+
+    fn initial(&self) -> Vec<f64> {
+        let h = 1.0 / (self.n as f64 + 1.0);
+        (0..self.n)
+            .flat_map(|i| {
+                [
+                    1.0 + (2.0 * std::f64::consts::PI * (i + 1) as f64 * h).sin(),
+                    3.0,
+                ]
+            })
+            .collect()
+    }
+}
+
+impl System for Brusselator1d {
+    fn len(&self) -> usize {
+        2 * self.n
+    }
+    fn differential(&self) -> &[bool] {
+        &self.differential
+    }
+    fn rhs(&mut self, _t: f64, x: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        let n = self.n;
+        let c = (n as f64 + 1.0).powi(2) / 50.0;
+        for i in 0..n {
+            let (u, v) = (x[2 * i], x[2 * i + 1]);
+            let (ul, vl) = if i > 0 {
+                (x[2 * i - 2], x[2 * i - 1])
+            } else {
+                (1.0, 3.0)
+            };
+            let (ur, vr) = if i + 1 < n {
+                (x[2 * i + 2], x[2 * i + 3])
+            } else {
+                (1.0, 3.0)
+            };
+            out[2 * i] = 1.0 + u * u * v - 4.0 * u + c * (ul - 2.0 * u + ur);
+            out[2 * i + 1] = 3.0 * u - u * u * v + c * (vl - 2.0 * v + vr);
+        }
+        Ok(())
+    }
+    fn sparsity(&self) -> Option<&SparsityPattern> {
+        Some(&self.pattern)
+    }
+}
+
+/// On a large system Radau5 keeps its Jacobian while Newton contracts by 0.1 or better
+/// and its step size (so its two factorizations) for step-size ratios in 0.99..2
+/// (Hairer's settings for large systems): most steps reuse the last factorization, at
+/// the requested accuracy.
+#[test]
+fn radau5_reuses_factorizations_on_a_large_system() {
+    let mut system = Brusselator1d::new(100);
+    let initial = system.initial();
+    let tight = Options::with_tolerances(1e-12, 1e-12);
+    let (reference, _) = solve_to(Method::Radau5, &mut system, &initial, 10.0, tight).unwrap();
+    let options = Options::with_tolerances(1e-6, 1e-8);
+    let (x, stats) = solve_to(Method::Radau5, &mut system, &initial, 10.0, options).unwrap();
+    let digits = significant_digits(&x, &reference);
+    eprintln!("{stats:?}, {digits:.2} digits");
+    assert!(digits > 6.0, "{digits}");
+    assert!(
+        2 * stats.lu_factorizations < stats.steps + stats.rejected_steps,
+        "{stats:?}"
+    );
+    assert!(2 * stats.jacobian_evals < stats.steps, "{stats:?}");
+}
