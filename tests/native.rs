@@ -139,7 +139,9 @@ fn models_of(file: &Path) -> Result<Vec<(String, unimo_cli::LoadedModel)>, Strin
 /// Runs every model of every file of `dir` with both engines. Returns the number of
 /// models compared and the files none of whose models compiles (the tests of refused
 /// constructs).
-fn compare_folder(dir: &Path, max_stop: f64) -> (usize, Vec<String>) {
+/// With `must_succeed`, each run must also end without an error (the bundled models,
+/// under the command line's defaults; the test models include failures on purpose).
+fn compare_folder(dir: &Path, max_stop: f64, must_succeed: bool) -> (usize, Vec<String>) {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .expect("folder")
         .map(|e| e.expect("entry").path())
@@ -165,6 +167,13 @@ fn compare_folder(dir: &Path, max_stop: f64) -> (usize, Vec<String>) {
             let tape = unimo_runtime::sim::simulate(&l.compiled, &o);
             let native = unimo_runtime::sim::simulate(&n, &o);
             let worst = compare(&name, &tape, &native);
+            if must_succeed {
+                assert!(
+                    tape.error.is_none(),
+                    "{name}: {:?}",
+                    tape.error.as_ref().map(|e| e.message())
+                );
+            }
             eprintln!(
                 "{name}: {} rows, {} events, {} native functions ({} instructions, {} \
                  interpreted), largest difference {worst:e}",
@@ -186,16 +195,19 @@ fn compare_folder(dir: &Path, max_stop: f64) -> (usize, Vec<String>) {
     (compared, skipped)
 }
 
+/// Every model of `models/` ends without an error under its experiment's settings and
+/// the command line's defaults (rows between grid points included), and native code
+/// gives the interpreter's results.
 #[test]
-fn every_bundled_model_runs_the_same_natively() {
-    let (compared, skipped) = compare_folder(&common::root().join("models"), 5.0);
+fn every_bundled_model_runs_and_runs_the_same_natively() {
+    let (compared, skipped) = compare_folder(&common::root().join("models"), 5.0, true);
     assert!(skipped.is_empty(), "{skipped:?}");
     assert!(compared >= 28, "{compared}");
 }
 
 #[test]
 fn every_simulate_test_model_runs_the_same_natively() {
-    let (compared, skipped) = compare_folder(&common::root().join("tests/simulate"), 5.0);
+    let (compared, skipped) = compare_folder(&common::root().join("tests/simulate"), 5.0, false);
     // Clocked partitions and an unknown `__unimo_method` are refused with coded
     // errors (`tests/simulate.rs`).
     assert_eq!(skipped, ["ClockedNotSupported.mo", "UnknownMethod.mo"]);
