@@ -252,6 +252,9 @@ impl Simulator<'_> {
             let x = solver.state().to_vec();
             self.commit_collision(now, &x)?;
         }
+        if !matches!(reason, StopReason::Root { .. }) {
+            self.commit_delays(prev, now, solver.state(), Some(&*solver))?;
+        }
         if run.steps_taken.is_multiple_of(256) {
             progress(now);
         }
@@ -417,6 +420,7 @@ impl Simulator<'_> {
                 self.result.error = Some(e);
                 break;
             }
+            self.record_delays(t);
             self.record(t);
             if let Some(e) = self.take_non_finite(Some(o.interval)) {
                 self.result.error = Some(e);
