@@ -110,7 +110,11 @@ fn a_delayed_jump_comes_later_and_whole() {
     }
     // x = integral of y = t - 1.5 after 1.5.
     let x = column(&r, "x");
-    assert!((x.last().unwrap() - 1.5).abs() < 1e-8, "{}", x.last().unwrap());
+    assert!(
+        (x.last().unwrap() - 1.5).abs() < 1e-8,
+        "{}",
+        x.last().unwrap()
+    );
 }
 
 #[test]

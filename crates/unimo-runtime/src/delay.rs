@@ -199,6 +199,10 @@ fn lagrange_slope(x: &[f64], y: &[f64], k: usize) -> f64 {
 #[derive(Clone, Debug, Default)]
 pub struct Delays {
     pub lines: Vec<DelayLine>,
+    /// The simulator's scratch space: registers saved while the history is refined,
+    /// and interpolated states.
+    pub(crate) saved: Vec<f64>,
+    pub(crate) states: Vec<f64>,
 }
 
 impl Delays {
@@ -206,6 +210,7 @@ impl Delays {
     pub fn new(n: usize) -> Delays {
         Delays {
             lines: vec![DelayLine::default(); n],
+            ..Delays::default()
         }
     }
 

@@ -47,49 +47,51 @@ impl Simulator<'_> {
         }
         self.load_state(t, x)?;
         self.record_delays(t);
-        let Some(solver) = solver else {
+        let Some(solver) = solver.filter(|_| prev < t) else {
             return Ok(());
         };
-        let mut buf = vec![0.0; x.len()];
-        if self.refine_history(solver, prev, t, MAX_HALVINGS, &mut buf)? {
-            self.load_state(t, x)?;
+        let mut d = std::mem::take(&mut self.ode.ev.delays);
+        d.saved.clone_from(&self.ode.regs);
+        d.states.resize(x.len(), 0.0);
+        self.ode.ev.delays = d;
+        if self.refine_history(solver, prev, t, MAX_HALVINGS) {
+            let d = &mut self.ode.ev.delays;
+            self.ode.regs.copy_from_slice(&d.saved);
         }
         Ok(())
     }
 
     /// The middle of `(a, b)` added to the histories where they miss it (and its
     /// halves then refined, `depth` times at most). Whether the registers changed.
-    fn refine_history(
-        &mut self,
-        solver: &Solver,
-        a: f64,
-        b: f64,
-        depth: u32,
-        buf: &mut [f64],
-    ) -> Result<bool, SimError> {
+    fn refine_history(&mut self, solver: &Solver, a: f64, b: f64, depth: u32) -> bool {
         let mid = 0.5 * (a + b);
-        if depth == 0 || mid <= a || mid >= b || solver.interpolate(mid, buf).is_err() {
-            return Ok(false);
+        if depth == 0 || mid <= a || mid >= b {
+            return false;
         }
-        self.load_state(mid, buf)?;
-        let values = self.delay_values();
+        let mut x = std::mem::take(&mut self.ode.ev.delays.states);
+        let evaluated =
+            solver.interpolate(mid, &mut x).is_ok() && self.ode.load_anew(mid, &x).is_ok();
+        self.ode.ev.delays.states = x;
+        if !evaluated {
+            return true;
+        }
+        let m = self.m();
+        m.delay_tape.run(&mut self.ode.regs, &mut self.ode.ev);
         let tol = self.ode.work.tolerance;
-        let lines = &mut self.ode.ev.delays.lines;
-        let mut missed = false;
-        for (line, &v) in lines.iter_mut().zip(&values) {
-            let guess = line.value(mid, false);
-            if (guess - v).abs() > tol.relative * v.abs() + tol.absolute {
-                missed = true;
-            }
-        }
+        let regs = &self.ode.regs;
+        let d = &mut self.ode.ev.delays;
+        let missed = m.delay_inputs.iter().zip(&d.lines).any(|(&r, line)| {
+            let v = regs[r as usize];
+            (line.value(mid, false) - v).abs() > tol.relative * v.abs() + tol.absolute
+        });
         if missed {
-            for (line, &v) in lines.iter_mut().zip(&values) {
-                line.insert(mid, v);
+            for (&r, line) in m.delay_inputs.iter().zip(&mut d.lines) {
+                line.insert(mid, regs[r as usize]);
             }
-            self.refine_history(solver, a, mid, depth - 1, buf)?;
-            self.refine_history(solver, mid, b, depth - 1, buf)?;
+            self.refine_history(solver, a, mid, depth - 1);
+            self.refine_history(solver, mid, b, depth - 1);
         }
-        Ok(true)
+        true
     }
 
     /// The delayed expressions' values at the registers' point.
