@@ -5,8 +5,9 @@
 //! happen at events; alias elimination removes it when `e` is a variable), a
 //! [`DelaySite`] holding its value as an expression (the runtime records it after
 //! every accepted step, at initialization and before and after every event), and the
-//! node `Ext(Delay, [k, delayMax, time - delayTime, 0])`, which reads the recorded
-//! history. The node names no unknown, so a delayed value is known from the past:
+//! node `Ext(Delay, [k, delayMax, time - delayTime, d])`, which reads the recorded
+//! history (`d` is the delay time when it is a parameter expression, else NaN: the
+//! simulator's steps then end where the delay moves a discontinuity of `e`). The node names no unknown, so a delayed value is known from the past:
 //! no algebraic loop runs through it (a transmission line's two ends).
 //!
 //! Without `delayMax` the delay time must be a parameter expression (it then is its
@@ -80,16 +81,22 @@ impl Lowerer<'_> {
         }
         let time = self.dae.arena.time();
         let at = self.dae.arena.sub(time, delay_time);
+        // A constant delay: the runtime's steps stop where it moves a discontinuity.
+        let fixed = if self.is_parameter_expr(delay_time) {
+            delay_time
+        } else {
+            self.dae.arena.constant(f64::NAN)
+        };
         let data = e
             .data
             .iter()
-            .map(|&x| self.delay_site(x, delay_max, at, span))
+            .map(|&x| self.delay_site(x, [delay_max, at, fixed], span))
             .collect();
         Ok(Tensor { dims: e.dims, data })
     }
 
     /// One scalar delay of `x`: its hidden variable, site and lookup node.
-    fn delay_site(&mut self, x: ExprId, delay_max: ExprId, at: ExprId, span: Span) -> ExprId {
+    fn delay_site(&mut self, x: ExprId, ops: [ExprId; 3], span: Span) -> ExprId {
         let k = self.dae.delays.len();
         let mut s = Scalar::new(
             format!("$delay{}", k + 1),
@@ -108,7 +115,7 @@ impl Lowerer<'_> {
         });
         self.dae.delays.push(DelaySite { input: lhs, span });
         let site = self.dae.arena.constant(k as f64);
-        self.ext_node(ExtFn::Delay, &[site, delay_max, at])
+        self.ext_node(ExtFn::Delay, &[site, ops[0], ops[1], ops[2]])
     }
 
     /// Whether `e` is a parameter expression: it reads only parameters and constants,

@@ -57,8 +57,8 @@ pub enum ExtFn {
     /// Output of a real FFT, `(site, k, n)`: 0 amplitude `k`, 1 phase `k`, 2 `info`,
     /// of the `n` values pushed to the site.
     RealFft(u8),
-    /// `delay`'s value, `(site, delayMax, at)`: the history the runtime records of
-    /// site `site` read at time `at` (`delay.rs`).
+    /// `delay`'s value, `(site, delayMax, at, d)`: the history the runtime records of
+    /// site `site` read at time `at`; `d` the constant delay time, or NaN (`delay.rs`).
     Delay,
     /// Its derivative with respect to `at`.
     DelaySlope,

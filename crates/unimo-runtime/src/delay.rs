@@ -18,6 +18,10 @@
 
 /// Points on each side of the one whose slope a stencil estimates.
 const STENCIL: usize = 2;
+/// Multiples of a constant delay after a discontinuity where the steps end: the
+/// discontinuity is smoothed by one derivative at each (a state delayed into its own
+/// derivative), so past the solvers' highest order it no longer matters.
+const BREAKPOINTS: usize = 5;
 
 /// One site's history.
 #[derive(Clone, Debug, Default)]
@@ -32,6 +36,11 @@ pub struct DelayLine {
     guess: f64,
     /// The first entry: the value before it (kept when older entries are dropped).
     start: Option<(f64, f64)>,
+    /// The delay time, when it is constant (from the reads).
+    fixed: Option<f64>,
+    /// Times where the recorded expression may be discontinuous (the start, events)
+    /// whose consequences a constant delay has not yet moved past the last entry.
+    marks: Vec<f64>,
 }
 
 impl DelayLine {
@@ -78,6 +87,20 @@ impl DelayLine {
         }
     }
 
+    /// Ends a piece of the history at its last entry (a restart or event at `t`, where
+    /// the expression's derivatives may jump): the entry is repeated, and no slope
+    /// stencil reaches across it.
+    pub fn split(&mut self, t: f64) {
+        if let (Some(&lt), Some(&lv)) = (self.times.last(), self.values.last()) {
+            let n = self.len();
+            let split = n >= 2 && self.times[n - 2] == lt;
+            if lt == t && !split {
+                self.times.push(t);
+                self.values.push(lv);
+            }
+        }
+    }
+
     /// Inserts `(t, v)` among the entries (a point inside the last step).
     pub fn insert(&mut self, t: f64, v: f64) {
         let i = self.head + self.times[self.head..].partition_point(|&x| x <= t);
@@ -88,13 +111,46 @@ impl DelayLine {
         self.values.insert(i, v);
     }
 
-    /// The value at `at` (`slope`: its derivative with respect to `at`); `delay_max`
-    /// is the read's `delayMax`.
-    pub fn read(&mut self, at: f64, delay_max: f64, slope: bool) -> f64 {
+    /// The value at `at` (`slope`: its derivative with respect to `at`); `bounds` are
+    /// the read's `delayMax` and constant delay time (NaN: it varies).
+    pub fn read(&mut self, at: f64, bounds: [f64; 2], slope: bool) -> f64 {
+        let [delay_max, fixed] = bounds;
         if self.delay_max != Some(delay_max) && delay_max.is_finite() {
             self.delay_max = Some(delay_max.max(0.0));
         }
+        if fixed.is_finite() && fixed > 0.0 && self.fixed != Some(fixed) {
+            self.fixed = Some(fixed);
+        }
         self.value(at, slope)
+    }
+
+    /// Notes a possible discontinuity of the expression at `t` (the start, an event);
+    /// forgets those whose consequences lie before `t`.
+    pub fn mark(&mut self, t: f64) {
+        let reach = self.fixed.map_or(0.0, |d| BREAKPOINTS as f64 * d);
+        self.marks.retain(|&m| m + reach >= t && m != t);
+        self.marks.push(t);
+    }
+
+    /// The first time after `t` where the constant delay moves a marked
+    /// discontinuity (up to [`BREAKPOINTS`] delays after it); infinite without.
+    fn next_breakpoint(&self, t: f64) -> f64 {
+        let Some(d) = self.fixed else {
+            return f64::INFINITY;
+        };
+        let after = t + 1e-12 * t.abs().max(d);
+        let mut next = f64::INFINITY;
+        for &m in &self.marks {
+            let k = ((after - m) / d).floor().max(0.0) + 1.0;
+            let mut b = m + k * d;
+            if b <= after {
+                b += d;
+            }
+            if b <= m + BREAKPOINTS as f64 * d * (1.0 + 1e-12) {
+                next = next.min(b);
+            }
+        }
+        next
     }
 
     /// [`DelayLine::read`] without a `delayMax`.
@@ -214,13 +270,36 @@ impl Delays {
         }
     }
 
-    /// Site `site`'s value (or slope) at `at`; NaN for a site that does not exist.
+    /// Site `site`'s value (or slope) at `at` (`bounds`: see [`DelayLine::read`]);
+    /// NaN for a site that does not exist.
     #[inline]
-    pub fn read(&mut self, site: f64, delay_max: f64, at: f64, slope: bool) -> f64 {
+    pub fn read(&mut self, site: f64, bounds: [f64; 2], at: f64, slope: bool) -> f64 {
         match self.lines.get_mut(site as usize) {
-            Some(line) if site >= 0.0 => line.read(at, delay_max, slope),
+            Some(line) if site >= 0.0 => line.read(at, bounds, slope),
             _ => f64::NAN,
         }
+    }
+
+    /// Notes a possible discontinuity of every site's expression at `t`.
+    pub fn mark(&mut self, t: f64) {
+        for line in &mut self.lines {
+            line.mark(t);
+        }
+    }
+
+    /// Ends every history's piece at its last entry at `t` ([`DelayLine::split`]).
+    pub fn split(&mut self, t: f64) {
+        for line in &mut self.lines {
+            line.split(t);
+        }
+    }
+
+    /// The first time after `t` where a constant delay moves a discontinuity.
+    pub fn next_breakpoint(&self, t: f64) -> f64 {
+        self.lines
+            .iter()
+            .map(|l| l.next_breakpoint(t))
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Appends the values `v` (one per site) at `t`.
@@ -281,7 +360,7 @@ mod tests {
         for k in 0..100 {
             let at = 0.019 * k as f64;
             assert!(
-                (l.read(at, f64::INFINITY, false) - cubic(at)).abs() < 1e-12,
+                (l.read(at, [f64::INFINITY, f64::NAN], false) - cubic(at)).abs() < 1e-12,
                 "{at}"
             );
         }
@@ -291,7 +370,7 @@ mod tests {
             let mut l = line(f64::sin, &times);
             (0..300)
                 .map(|k| 0.5 + 0.01 * k as f64)
-                .map(|at| (l.read(at, f64::INFINITY, false) - at.sin()).abs())
+                .map(|at| (l.read(at, [f64::INFINITY, f64::NAN], false) - at.sin()).abs())
                 .fold(0.0, f64::max)
         };
         let ratio = err(0.1) / err(0.05);
@@ -302,7 +381,7 @@ mod tests {
     #[test]
     fn before_the_start_beyond_the_end_and_at_a_jump() {
         let mut l = DelayLine::default();
-        assert_eq!(l.read(0.0, 1.0, false), 0.0);
+        assert_eq!(l.read(0.0, [1.0, 1.0], false), 0.0);
         for k in 0..=10 {
             l.push(0.1 * k as f64, 0.0);
         }
@@ -310,11 +389,11 @@ mod tests {
         for k in 11..=20 {
             l.push(0.1 * k as f64, 1.0);
         }
-        assert_eq!(l.read(-5.0, 1.0, false), 0.0);
-        assert_eq!(l.read(0.95, 1.0, false), 0.0);
-        assert_eq!(l.read(1.0, 1.0, false), 1.0);
-        assert_eq!(l.read(1.05, 1.0, false), 1.0);
-        assert_eq!(l.read(3.0, 1.0, false), 1.0);
+        assert_eq!(l.read(-5.0, [1.0, 1.0], false), 0.0);
+        assert_eq!(l.read(0.95, [1.0, 1.0], false), 0.0);
+        assert_eq!(l.read(1.0, [1.0, 1.0], false), 1.0);
+        assert_eq!(l.read(1.05, [1.0, 1.0], false), 1.0);
+        assert_eq!(l.read(3.0, [1.0, 1.0], false), 1.0);
         // A repeated point is stored once.
         let n = l.len();
         l.push(2.0, 1.0);
@@ -322,15 +401,38 @@ mod tests {
     }
 
     #[test]
+    fn breakpoints_follow_marks_and_splits_bound_the_stencils() {
+        let mut l = DelayLine::default();
+        l.read(0.0, [1.0, 0.4], false);
+        l.push(0.0, 0.0);
+        l.mark(0.0);
+        let next = |l: &DelayLine, t: f64| l.next_breakpoint(t);
+        assert_eq!(next(&l, 0.0), 0.4);
+        assert!((next(&l, 0.4) - 0.8).abs() < 1e-15);
+        assert!((next(&l, 1.95) - 2.0).abs() < 1e-15);
+        assert!(next(&l, 2.05).is_infinite());
+        l.mark(1.0);
+        assert!((next(&l, 1.1) - 1.2).abs() < 1e-15);
+        // |t| on both sides of a split at 0: the slopes see no kink.
+        let mut l = line(|t: f64| t.abs(), &[-0.3, -0.2, -0.1, 0.0]);
+        l.split(0.0);
+        for t in [0.1, 0.2, 0.3] {
+            l.push(t, t);
+        }
+        assert!((l.value(-0.05, false) - 0.05).abs() < 1e-15);
+        assert!((l.value(0.05, false) - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
     fn old_entries_are_dropped() {
         let mut l = DelayLine::default();
-        l.read(0.0, 0.5, false);
+        l.read(0.0, [0.5, 0.5], false);
         for k in 0..100_000 {
             l.push(0.001 * k as f64, k as f64);
         }
         assert!(l.len() - l.head < 520, "{} entries", l.len() - l.head);
         assert!(l.times.len() < 1200);
         let at = 99.999 - 0.5;
-        assert!((l.read(at, 0.5, false) - at * 1000.0).abs() < 1e-6);
+        assert!((l.read(at, [0.5, 0.5], false) - at * 1000.0).abs() < 1e-6);
     }
 }

@@ -128,9 +128,10 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
             let (base, k, n) = (r[base as usize], r[k as usize], r[n as usize]);
             r[d as usize] = ev.fft.output(base, kind, k, n);
         }
-        Op::Ext(f @ (ExtFn::Delay | ExtFn::DelaySlope), d, [site, dmax, at, _]) => {
-            let (site, dmax, at) = (r[site as usize], r[dmax as usize], r[at as usize]);
-            r[d as usize] = ev.delays.read(site, dmax, at, f == ExtFn::DelaySlope);
+        Op::Ext(f @ (ExtFn::Delay | ExtFn::DelaySlope), d, [site, dmax, at, fixed]) => {
+            let (site, at) = (r[site as usize], r[at as usize]);
+            let bounds = [r[dmax as usize], r[fixed as usize]];
+            r[d as usize] = ev.delays.read(site, bounds, at, f == ExtFn::DelaySlope);
         }
         Op::Ext(f, d, [o, a, b, _]) => {
             let object = r[o as usize];

@@ -94,6 +94,31 @@ impl Simulator<'_> {
         true
     }
 
+    /// The solver stopped at `(t, x)` before the stop time: at no sample instant, this
+    /// is a breakpoint of a constant delay (where it moves a discontinuity of its
+    /// expression), and the solver restarts there, as after an event. Whether it was
+    /// one.
+    pub(super) fn restart_at_breakpoint(
+        &mut self,
+        solver: &mut Solver,
+        t: f64,
+        x: &[f64],
+    ) -> Result<bool, SimError> {
+        let sample_due = self
+            .sample_next
+            .iter()
+            .any(|&s| s <= t * (1.0 + 1e-15) + 1e-300);
+        if sample_due || self.m().delay_inputs.is_empty() {
+            return Ok(false);
+        }
+        self.ode.ev.delays.split(t);
+        self.ode.last_roots = (f64::NEG_INFINITY, Vec::new());
+        solver
+            .reset(&mut self.ode, t, x)
+            .map_err(|e| self.solver_error(e))?;
+        Ok(true)
+    }
+
     /// The delayed expressions' values at the registers' point.
     fn delay_values(&mut self) -> Vec<f64> {
         let m = self.m();
@@ -135,6 +160,7 @@ impl Simulator<'_> {
             guesses = values;
             if agree {
                 self.record_delays(t0);
+                self.ode.ev.delays.mark(t0);
                 return Ok(());
             }
         }

@@ -386,6 +386,8 @@ impl Simulator<'_> {
         }
         self.chatter.1 = t;
         self.record_delays(t);
+        self.ode.ev.delays.split(t);
+        self.ode.ev.delays.mark(t);
         if self.chatter.0 >= CHATTER_COUNT {
             let m = self.m();
             let crossing = crossing

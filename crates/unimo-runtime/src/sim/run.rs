@@ -176,11 +176,13 @@ impl Simulator<'_> {
         run: &mut Integration<'_>,
         progress: &mut dyn FnMut(f64),
     ) -> Result<bool, SimError> {
-        let t_event = self
+        let t_sample = self
             .sample_next
             .iter()
             .copied()
             .fold(f64::INFINITY, f64::min);
+        // The steps also end where a constant delay moves a discontinuity.
+        let t_event = t_sample.min(self.ode.ev.delays.next_breakpoint(solver.current_time()));
         // Three clock readings a step, and only with the fine timers (`--stats`): for a
         // small model they cost a tenth of the step.
         let mut clock = fine_timing().then(Instant::now);
@@ -211,7 +213,7 @@ impl Simulator<'_> {
                 self.check_assertions(now)?;
                 true
             }
-            StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_event)?,
+            StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_sample)?,
             StopReason::Root { t, components } => self.root_stop(solver, run, t, &components)?,
         };
         self.result.phase_times.events += lap(&mut clock);
@@ -357,6 +359,9 @@ impl Simulator<'_> {
             }
             self.terminal_event(now)?;
             return Ok(false);
+        }
+        if self.restart_at_breakpoint(solver, now, &x)? {
+            return Ok(true);
         }
         // A sample instant.
         self.sample_event(now, Some(solver))?;
