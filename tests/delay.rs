@@ -108,6 +108,14 @@ fn a_varying_delay_reads_its_own_time() {
 }
 
 #[test]
+fn a_varying_delay_time_is_held_in_its_bounds() {
+    let r = run("Held", 1e-8, Method::Auto, 0.01);
+    let at = |t: f64| t - (2.0 * t.sin()).clamp(0.0, 1.0);
+    let err = worst(&r, "y", |t| at(t).max(0.0));
+    assert!(err < 1e-12, "{err:e}");
+}
+
+#[test]
 fn a_delayed_jump_comes_later_and_whole() {
     let r = run("Jump", 1e-8, Method::Bdf, 0.25);
     let y = column(&r, "y");

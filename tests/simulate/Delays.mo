@@ -28,6 +28,11 @@ package Delays "delay(e, delayTime[, delayMax]) against closed forms (tests/dela
     annotation(experiment(StopTime = 5));
   end Variable;
 
+  model Held "a delay time that leaves [0, delayMax] is held in it"
+    Real y = delay(time, 2*sin(time), 1);
+    annotation(experiment(StopTime = 8));
+  end Held;
+
   model Jump "the step of u at t = 1 reaches y at t = 1.5"
     Real u = if time > 1 then 1 else 0;
     Real y = delay(u, 0.5);

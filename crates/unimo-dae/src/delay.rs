@@ -11,11 +11,12 @@
 //! no algebraic loop runs through it (a transmission line's two ends).
 //!
 //! Without `delayMax` the delay time must be a parameter expression (it then is its
-//! own `delayMax`); `delayMax` must be one in any case; both must not be negative.
+//! own `delayMax`); `delayMax` must be one in any case; both must not be negative. A
+//! varying delay time is held in `[0, delayMax]`.
 
 use crate::dae::{Equation, Scalar, ScalarKind, ScalarType};
 use crate::error::{DaeError, DaeResult};
-use crate::expr::{ExprId, Node};
+use crate::expr::{ExprId, Fn2, Node};
 use crate::external::ExtFn;
 use crate::lower::Lowerer;
 use crate::tensor::Tensor;
@@ -80,7 +81,16 @@ impl Lowerer<'_> {
             }
         }
         let time = self.dae.arena.time();
-        let at = self.dae.arena.sub(time, delay_time);
+        // A varying delay time is held in [0, delayMax] (without events).
+        let held = if self.is_parameter_expr(delay_time) {
+            delay_time
+        } else {
+            let a = &mut self.dae.arena;
+            let zero = a.zero();
+            let below = a.fn2(Fn2::Min, delay_time, delay_max);
+            a.fn2(Fn2::Max, below, zero)
+        };
+        let at = self.dae.arena.sub(time, held);
         // A constant delay: the runtime's steps stop where it moves a discontinuity.
         let fixed = if self.is_parameter_expr(delay_time) {
             delay_time
