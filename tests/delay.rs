@@ -115,6 +115,18 @@ fn a_varying_delay_time_is_held_in_its_bounds() {
     assert!(err < 1e-12, "{err:e}");
 }
 
+/// The steps are capped at the delay (uncapped, Dormand–Prince's 78 steps read past
+/// the last accepted point and end 1e-2 off).
+#[test]
+fn a_delay_shorter_than_the_steps_caps_them() {
+    let exact = |t: f64| if t > 0.1 { 1.0 - (t - 0.1).cos() } else { 0.0 };
+    for method in [Method::Radau5, Method::Dopri5] {
+        let r = run("Short", 1e-6, method, 0.05);
+        let err = worst(&r, "x", exact);
+        assert!(err < 1e-5, "{method:?}: {err:e}");
+    }
+}
+
 #[test]
 fn a_delayed_jump_comes_later_and_whole() {
     let r = run("Jump", 1e-8, Method::Bdf, 0.25);

@@ -33,6 +33,13 @@ package Delays "delay(e, delayTime[, delayMax]) against closed forms (tests/dela
     annotation(experiment(StopTime = 8));
   end Held;
 
+  model Short "a delay shorter than the steps the states would take"
+    Real x(start = 0, fixed = true);
+  equation
+    der(x) = delay(sin(time), 0.1);
+    annotation(experiment(StopTime = 10));
+  end Short;
+
   model Jump "the step of u at t = 1 reaches y at t = 1.5"
     Real u = if time > 1 then 1 else 0;
     Real y = delay(u, 0.5);

@@ -324,11 +324,12 @@ impl Delays {
         self.lines.iter().map(|l| l.guess)
     }
 
-    /// The smallest `delayMax` the reads have passed (infinite before any read).
-    pub fn smallest_delay_max(&self) -> f64 {
+    /// The smallest constant delay (infinite without one): the largest step that
+    /// never reads beyond the last accepted point.
+    pub fn smallest_constant_delay(&self) -> f64 {
         self.lines
             .iter()
-            .filter_map(|l| l.delay_max)
+            .filter_map(|l| l.fixed)
             .fold(f64::INFINITY, f64::min)
     }
 

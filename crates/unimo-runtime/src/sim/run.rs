@@ -159,6 +159,11 @@ impl Simulator<'_> {
             );
         }
         options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
+        // A step no longer than a constant delay reads only accepted history (no
+        // extrapolation past the last accepted point, `delay.rs`).
+        options.max_step = options
+            .max_step
+            .min(self.ode.ev.delays.smallest_constant_delay());
         if self.ode.clock {
             // Nothing limits the steps of a constant state: the zero crossings (all of
             // time) are searched one output interval at a time, so none pair up and
