@@ -241,7 +241,7 @@ pub const BUILTINS: &[Builtin] = &[
         Range(2, 3),
         &[R, R, R],
         R,
-        "delay(e, d, dmax): e at time - d",
+        "delay(e, delayTime[, delayMax]): e at time - delayTime (spec 3.7.4.1)",
     ),
     elementwise(op(
         "der",

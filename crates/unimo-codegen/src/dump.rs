@@ -171,6 +171,10 @@ pub fn tape_dump(m: &CompiledModel, names: &[String]) -> String {
         let _ = writeln!(o, "  0 = {} while {}", n.reg(*g), n.reg(*active));
     }
     n.tape(&mut o, "aliases", &m.alias_tape);
+    if !m.delay_inputs.is_empty() {
+        n.tape(&mut o, "delay inputs", &m.delay_tape);
+        let _ = writeln!(o, "  recorded: {}", list(&m.delay_inputs));
+    }
     if let Some((t, entries)) = &m.jacobian {
         let _ = writeln!(o, "symbolic jacobian: {} entries", entries.len());
         n.tape(&mut o, "  its tape", t);

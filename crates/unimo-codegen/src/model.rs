@@ -154,6 +154,10 @@ pub struct CompiledModel {
     /// from the parameters, and where each object's arguments are.
     pub objects_tape: Tape,
     pub objects: Vec<ObjectSite>,
+    /// The `delay` sites (`unimo_dae::delay`): the tape computing, after a pass of the
+    /// plan, the value each site records, and where it is.
+    pub delay_tape: Tape,
+    pub delay_inputs: Vec<Reg>,
     /// The model reads `terminal()`: the run ends with a terminal event.
     pub uses_terminal: bool,
     /// Dynamically selected state sets (`unimo_dae::plan::StateSet`).

@@ -214,6 +214,7 @@ pub fn verify_compiled(m: &CompiledModel) -> Result<(), VerifyError> {
         ("assertions", &m.assert_tape),
         ("invariants", &m.invariant_tape),
         ("aliases", &m.alias_tape),
+        ("delay inputs", &m.delay_tape),
     ] {
         c.writes_pre = place == "initial equations";
         c.branch(place, t)?;

@@ -235,6 +235,9 @@ fn substitute_aliases(dae: &mut Dae, map: &HashMap<ScalarId, ExprId>) {
     if let Some(w) = dae.collision_world.as_mut() {
         w.args = w.args.map(|x| dae.arena.substitute(x, &lookup, &mut memo));
     }
+    for d in &mut dae.delays {
+        d.input = dae.arena.substitute(d.input, &lookup, &mut memo);
+    }
 }
 
 /// Records `elim = value` and rewrites the scalars that were mapped onto `elim`.

@@ -185,6 +185,8 @@ pub struct Dae {
     /// External objects (the MSL's tables), made after the parameters: the handle of
     /// object `k` is the constant `k` (`crate::external`).
     pub external_objects: Vec<crate::external::ExternalObjectSite>,
+    /// The `delay` calls: site `k` of `Ext(Delay, [k, ..])` (`delay.rs`).
+    pub delays: Vec<crate::delay::DelaySite>,
     /// Whether the model reads `terminal()` (the simulator then ends with a terminal
     /// event at the stop time).
     pub uses_terminal: bool,

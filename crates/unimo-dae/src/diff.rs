@@ -142,7 +142,9 @@ fn external_derivative(
         // it evaluates to NaN and fails visibly.
         _ if matches!(
             f,
-            crate::external::ExtFn::Table1DSlope | crate::external::ExtFn::TimeTableSlope
+            crate::external::ExtFn::Table1DSlope
+                | crate::external::ExtFn::TimeTableSlope
+                | crate::external::ExtFn::DelaySlope
         ) =>
         {
             let dinput = derivative(a, input, seed, memo);

@@ -66,6 +66,12 @@ pub fn dump(dae: &Dae, origin: &dyn Fn(Span) -> String) -> String {
             let _ = writeln!(o, "  0 = {} when {}", show(i.value), show(i.active));
         }
     }
+    if !dae.delays.is_empty() {
+        let _ = writeln!(o, "delays: {}", dae.delays.len());
+        for (k, d) in dae.delays.iter().enumerate() {
+            let _ = writeln!(o, "  {k}: records {}", show(d.input));
+        }
+    }
     let zc = zero_crossings(dae);
     if !zc.relations.is_empty() || !zc.samples.is_empty() {
         let _ = writeln!(

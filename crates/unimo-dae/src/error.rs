@@ -51,6 +51,8 @@ pub enum DaeCode {
     DifferentiatedInput,
     /// E3023: an `experiment` setting of unimo's with a value it does not know.
     ExperimentSetting,
+    /// E3024: `delay` with arguments the specification does not allow.
+    DelayArguments,
     /// W3001 (a warning): a call statement that is not executed, since the function
     /// reaches an external function unimo does not provide (writing a file, printing).
     CallNotExecuted,
@@ -90,6 +92,7 @@ impl DaeCode {
         DaeCode::EmptyTable,
         DaeCode::DifferentiatedInput,
         DaeCode::ExperimentSetting,
+        DaeCode::DelayArguments,
         DaeCode::CallNotExecuted,
         DaeCode::StructurallySingular,
         DaeCode::CannotDifferentiate,
@@ -127,6 +130,7 @@ impl DaeCode {
             DaeCode::EmptyTable => "E3021",
             DaeCode::DifferentiatedInput => "E3022",
             DaeCode::ExperimentSetting => "E3023",
+            DaeCode::DelayArguments => "E3024",
             DaeCode::CallNotExecuted => "W3001",
             DaeCode::StructurallySingular => "E3201",
             DaeCode::CannotDifferentiate => "E3202",
@@ -162,6 +166,17 @@ unimo_source::coded_errors! {
         #[error("`__unimo_method = {given}` names no integration method")]
         UnknownMethod { given: String, span: Span } = DaeCode::ExperimentSetting,
         |d| d.at(span, "here").with_help("one of \"auto\", \"bdf\", \"radau5\", \"dopri5\" (a string)"),
+        /// E3024: `delay(e, delayTime)` whose delay time is not a parameter expression.
+        #[error("the delay time of `delay(e, delayTime)` must be a parameter expression")]
+        DelayTimeNotParameter { span: Span } = DaeCode::DelayArguments,
+        |d| d
+            .at(span, "this varies during the simulation")
+            .with_help("give the largest delay as a third argument: `delay(e, delayTime, delayMax)` with a parameter `delayMax`"),
+        /// E3024: other arguments of `delay` the specification does not allow (`what`
+        /// says which).
+        #[error("`delay` {what}")]
+        DelayArguments { what: &'static str, span: Span } = DaeCode::DelayArguments,
+        |d| d.at(span, "here"),
         /// E3001: a `connect` equation that flattening should have replaced.
         #[error("a `connect` survived flattening")]
         ConnectAfterFlattening { span: Span } = DaeCode::Unsupported,

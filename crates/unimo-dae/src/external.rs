@@ -57,6 +57,11 @@ pub enum ExtFn {
     /// Output of a real FFT, `(site, k, n)`: 0 amplitude `k`, 1 phase `k`, 2 `info`,
     /// of the `n` values pushed to the site.
     RealFft(u8),
+    /// `delay`'s value, `(site, delayMax, at, d)`: the history the runtime records of
+    /// site `site` read at time `at`; `d` the constant delay time, or NaN (`delay.rs`).
+    Delay,
+    /// Its derivative with respect to `at`.
+    DelaySlope,
 }
 
 const XORSHIFT64: [&str; 3] = ["xorshift64star", "xorshift64star_s1", "xorshift64star_s2"];
@@ -94,6 +99,8 @@ impl ExtFn {
             ExtFn::RealFft(0) => "realFFTamplitude",
             ExtFn::RealFft(1) => "realFFTphase",
             ExtFn::RealFft(_) => "realFFTinfo",
+            ExtFn::Delay => "delay",
+            ExtFn::DelaySlope => "delaySlope",
         }
     }
 
@@ -161,6 +168,7 @@ impl ExtFn {
         match self {
             ExtFn::Table1D => Some(ExtFn::Table1DSlope),
             ExtFn::TimeTable => Some(ExtFn::TimeTableSlope),
+            ExtFn::Delay => Some(ExtFn::DelaySlope),
             _ => None,
         }
     }

@@ -10,6 +10,7 @@ pub mod alias;
 pub mod analysis;
 pub mod collision_args;
 pub mod dae;
+pub mod delay;
 pub mod diff;
 pub mod dump;
 pub mod equations;

@@ -171,6 +171,10 @@ fn needed_by_events_and_outputs(
         add(&mut needed, i.value);
         add(&mut needed, i.active);
     }
+    // The values `delay` records after each step.
+    for d in &dae.delays {
+        add(&mut needed, d.input);
+    }
     // Initialization reads what the initial equations and start values name, even when
     // nothing after the start does (e.g. a closed-form initial guess of an integrated
     // quantity).

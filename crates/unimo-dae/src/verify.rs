@@ -94,6 +94,9 @@ fn roots(dae: &Dae) -> Vec<(ExprId, String)> {
             out.push((e, "the collision world".into()));
         }
     }
+    for (k, d) in dae.delays.iter().enumerate() {
+        out.push((d.input, format!("delay {k}")));
+    }
     out
 }
 

@@ -1,5 +1,6 @@
 //! Running tapes: the event state all tapes of a model share (relations, samples,
-//! held roundings, and the external objects: tables, FFT scratch, the collision world)
+//! held roundings, and the external objects: tables, FFT scratch, the collision world,
+//! `delay` histories)
 //! and the interpreter of the instructions `unimo-codegen` compiles. A tape runs its
 //! native code when it has code compiled from its instructions, else the interpreter
 //! (the oracle of the native code).
@@ -37,6 +38,8 @@ pub struct EventState {
     pub objects: Vec<crate::tables::TableObject>,
     /// The real FFT sites' scratch areas and transforms.
     pub fft: crate::fft::FftScratch,
+    /// The histories of the `delay` sites.
+    pub delays: crate::delay::Delays,
 }
 
 /// Relative size below which the operands of a relation count as equal at an event
@@ -125,6 +128,11 @@ pub fn execute(op: Op, r: &mut [f64], ev: &mut EventState) {
             let (base, k, n) = (r[base as usize], r[k as usize], r[n as usize]);
             r[d as usize] = ev.fft.output(base, kind, k, n);
         }
+        Op::Ext(f @ (ExtFn::Delay | ExtFn::DelaySlope), d, [site, dmax, at, fixed]) => {
+            let (site, at) = (r[site as usize], r[at as usize]);
+            let bounds = [r[dmax as usize], r[fixed as usize]];
+            r[d as usize] = ev.delays.read(site, bounds, at, f == ExtFn::DelaySlope);
+        }
         Op::Ext(f, d, [o, a, b, _]) => {
             let object = r[o as usize];
             r[d as usize] = match ev.objects.get(object as usize) {
@@ -175,6 +183,7 @@ impl Instance for CompiledModel {
             collision: self.collision.as_ref().map(|_| Box::default()),
             objects: Vec::new(),
             fft: Default::default(),
+            delays: crate::delay::Delays::new(self.delay_inputs.len()),
         }
     }
 

@@ -2,6 +2,7 @@
 //! calls, the external objects (tables, FFT, the collision world), initialization,
 //! events and the simulation driver. It never compiles.
 pub mod collision;
+pub mod delay;
 pub mod eval;
 pub mod exec;
 pub mod fft;

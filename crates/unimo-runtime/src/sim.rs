@@ -15,6 +15,7 @@ use unimo_solve::dense::{abs_det, pick_columns};
 use unimo_solve::{Direction, EvalError, Method, Solver, System};
 
 mod crossings;
+mod delays;
 mod events;
 mod init;
 mod pattern;

@@ -334,6 +334,18 @@ fn compile_invariants(dae: &Dae, c: &mut Compiler<'_>) -> (Tape, Vec<(Reg, Reg)>
     (tape, invariants)
 }
 
+/// The values the `delay` sites record: their tape and registers.
+fn compile_delays(dae: &Dae, c: &mut Compiler<'_>) -> (Tape, Vec<Reg>) {
+    let mut tape = Tape::default();
+    let mut memo = HashMap::default();
+    let inputs = dae
+        .delays
+        .iter()
+        .map(|d| c.expr_no_event(d.input, &mut tape, &mut memo))
+        .collect();
+    (tape, inputs)
+}
+
 /// The aliases' tape.
 fn compile_aliases(dae: &Dae, c: &mut Compiler<'_>) -> Tape {
     let mut alias_tape = Tape::default();
@@ -442,6 +454,7 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
     let (assert_tape, assertions) = compile_assertions(dae, &mut c);
     let (invariant_tape, invariants) = compile_invariants(dae, &mut c);
     let alias_tape = compile_aliases(dae, &mut c);
+    let (delay_tape, delay_inputs) = compile_delays(dae, &mut c);
     let initial = compile_initial(dae, plan, &mut c);
     let (fixed_constraints_tape, fixed_constraints) = compile_fixed_constraints(dae, &mut c);
     // External objects have no symbolic derivatives: finite differences then.
@@ -503,6 +516,8 @@ pub fn compile(dae: &Dae, plan: &Plan) -> CompiledModel {
         collision,
         objects_tape,
         objects,
+        delay_tape,
+        delay_inputs,
         uses_terminal: dae.uses_terminal,
         state_sets,
         equations_read_initial: equations_hold(dae, Node::Initial),

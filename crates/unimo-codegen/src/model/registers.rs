@@ -21,6 +21,7 @@ impl CompiledModel {
             &self.initial_tape,
             &self.fixed_constraints_tape,
             &self.objects_tape,
+            &self.delay_tape,
         ];
         for step in &self.steps {
             match step {
@@ -86,6 +87,7 @@ impl CompiledModel {
         }
         out.extend(self.initial_assigned.iter().map(|a| a.0));
         out.extend(&self.initial_pre_assigned);
+        out.extend(&self.delay_inputs);
         for s in &self.objects {
             out.extend(&s.table);
             out.extend(&s.columns);

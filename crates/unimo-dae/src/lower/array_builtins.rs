@@ -94,7 +94,8 @@ impl Lowerer<'_> {
                 tensor::concatenate(&items, (k - 1).max(0) as usize, span)?
             }
             "String" => return Err(unsupported("`String` outside an assert message", span)),
-            "delay" | "spatialDistribution" | "cardinality" | "getInstanceName" => {
+            "delay" => self.delay_call(args, span)?,
+            "spatialDistribution" | "cardinality" | "getInstanceName" => {
                 return Err(unsupported(format!("`{name}`"), span))
             }
             _ => return self.new_array(name, args, span),

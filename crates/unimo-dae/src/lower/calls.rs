@@ -51,7 +51,7 @@ impl Lowerer<'_> {
         }
     }
 
-    pub(super) fn positional(
+    pub(crate) fn positional(
         &mut self,
         args: &CallArgs,
         k: usize,

@@ -370,6 +370,7 @@ impl Simulator<'_> {
         crossing: Option<usize>,
         mut solver: Option<&mut Solver>,
     ) -> Result<(), SimError> {
+        self.record_delays(t);
         if let Err(e) = self.event_iteration(t, false) {
             return Err(self.assertion_first(t, e));
         }
@@ -389,6 +390,9 @@ impl Simulator<'_> {
             self.chatter.0 = 0;
         }
         self.chatter.1 = t;
+        self.record_delays(t);
+        self.ode.ev.delays.split(t);
+        self.ode.ev.delays.mark(t);
         if self.chatter.0 >= CHATTER_COUNT {
             let m = self.m();
             let crossing = crossing

@@ -119,8 +119,9 @@ impl InitialUnknowns<'_> {
 
 impl Simulator<'_> {
     /// Consistent initial values: parameters, start values, initial equations solved
-    /// for the states they determine, then the initial event (`initial()` true).
-    pub(super) fn initialize(&mut self, t0: f64) -> Result<(), SimError> {
+    /// for the states they determine, then the initial event (`initial()` true). Once
+    /// per pass of `delays.rs`'s `initialize`.
+    pub(super) fn initialize_once(&mut self, t0: f64) -> Result<(), SimError> {
         let m = self.m();
         if let Some(c) = m.collision.as_ref().filter(|c| !c.problems.is_empty()) {
             return Err(SimError::Init {

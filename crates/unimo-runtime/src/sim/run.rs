@@ -159,6 +159,11 @@ impl Simulator<'_> {
             );
         }
         options.max_step = (o.stop - o.start).abs().max(f64::MIN_POSITIVE);
+        // A step no longer than a constant delay reads only accepted history (no
+        // extrapolation past the last accepted point, `delay.rs`).
+        options.max_step = options
+            .max_step
+            .min(self.ode.ev.delays.smallest_constant_delay());
         if self.ode.clock {
             // Nothing limits the steps of a constant state: the zero crossings (all of
             // time) are searched one output interval at a time, so none pair up and
@@ -176,11 +181,13 @@ impl Simulator<'_> {
         run: &mut Integration<'_>,
         progress: &mut dyn FnMut(f64),
     ) -> Result<bool, SimError> {
-        let t_event = self
+        let t_sample = self
             .sample_next
             .iter()
             .copied()
             .fold(f64::INFINITY, f64::min);
+        // The steps also end where a constant delay moves a discontinuity.
+        let t_event = t_sample.min(self.ode.ev.delays.next_breakpoint(solver.current_time()));
         // Three clock readings a step, and only with the fine timers (`--stats`): for a
         // small model they cost a tenth of the step.
         let mut clock = fine_timing().then(Instant::now);
@@ -211,7 +218,7 @@ impl Simulator<'_> {
                 self.check_assertions(now)?;
                 true
             }
-            StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_event)?,
+            StopReason::ReachedStop => self.reached_stop(solver, run.o, now, t_sample)?,
             StopReason::Root { t, components } => self.root_stop(solver, run, t, &components)?,
         };
         self.result.phase_times.events += lap(&mut clock);
@@ -251,6 +258,9 @@ impl Simulator<'_> {
         if !matches!(reason, StopReason::Root { .. }) && self.m().collision.is_some() {
             let x = solver.state().to_vec();
             self.commit_collision(now, &x)?;
+        }
+        if !matches!(reason, StopReason::Root { .. }) {
+            self.commit_delays(prev, now, solver.state(), Some(&*solver))?;
         }
         if run.steps_taken.is_multiple_of(256) {
             progress(now);
@@ -355,6 +365,9 @@ impl Simulator<'_> {
             self.terminal_event(now)?;
             return Ok(false);
         }
+        if self.restart_at_breakpoint(solver, now, &x)? {
+            return Ok(true);
+        }
         // A sample instant.
         self.sample_event(now, Some(solver))?;
         Ok(true)
@@ -417,6 +430,7 @@ impl Simulator<'_> {
                 self.result.error = Some(e);
                 break;
             }
+            self.record_delays(t);
             self.record(t);
             if let Some(e) = self.take_non_finite(Some(o.interval)) {
                 self.result.error = Some(e);

@@ -233,6 +233,11 @@ impl<'a> Stepper<'a> {
             self.sim.commit_collision(t, &x)?;
             self.dirty = true;
         }
+        if !self.model().delay_inputs.is_empty() {
+            let (t, x) = (self.time(), self.sim.states());
+            self.sim.commit_delays(t, t, &x, None)?;
+            self.dirty = true;
+        }
         Ok(())
     }
 
