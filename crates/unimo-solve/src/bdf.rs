@@ -41,7 +41,7 @@
 //!   the local error of each step to `rtol`, and over the run the global error came out
 //!   1.0–1.9 digits larger than Radau5's at the same `rtol` (per-problem medians over the
 //!   oscillator, ROBER, HIRES, VDPOL at rtol 1e-4 to 1e-10); the factor 100 brings the
-//!   median difference over those problems and POLLU to +0.1 digit (docs/backend.md,
+//!   median difference over those problems and POLLU to +0.2 digits (docs/backend.md,
 //!   section 7). It moves each run along the work-precision curve, not the curve.
 //! * Start and restart (after every event): `x'(t0)` of differential rows is `f`; for
 //!   algebraic rows it comes from differentiating the constraints,
