@@ -208,6 +208,7 @@ pub fn contacts_general(
                     });
                 }
                 keep_hull(out, first, a.bounding_radius.min(b.bounding_radius));
+                snap_to_cap_axis([(a, pa, posa), (b, pb, posb)], &mut out[first..]);
             }
         }
         (Some(e), None) if b.kind == ShapeKind::HalfSpace => {
@@ -250,6 +251,74 @@ pub fn contacts_general(
         }
     }
     Ok(out.len() - before)
+}
+
+/// The axis of a shape's flat round cap in world coordinates (cylinders and cones:
+/// body y), `None` for other shapes.
+fn cap_axis(s: &Shape, p: &Placement) -> Option<V3> {
+    match s.kind {
+        ShapeKind::Cylinder { .. } | ShapeKind::Cone { .. } => Some(p.rotate([0.0, 1.0, 0.0])),
+        _ => None,
+    }
+}
+
+/// How far A and B overlap along the unit direction `n` (from A to B), by their exact
+/// support maps: `max a·n - min b·n` (negative: separated along `n`).
+fn overlap_along(a: &Shape, pa: &Pose, b: &Shape, pb: &Pose, n: V3) -> Option<f64> {
+    let sa = a.parry.as_ref()?.as_support_map()?;
+    let sb = b.parry.as_ref()?.as_support_map()?;
+    let d = to_vector(n);
+    Some(sa.support_point(pa, d).dot(d) - sb.support_point(pb, -d).dot(d))
+}
+
+/// Puts the normal of one manifold (`points`) on a round cap's axis where that is the
+/// better normal. parry approximates the flat cap of a cylinder or cone by a square
+/// turned to the contact's azimuth; when two caps lie parallel, that azimuth is noise,
+/// and the manifold alternates between 4 and 8 points and can come out with a normal
+/// several degrees off the common axis (an edge of one square against an edge of the
+/// other): a sideways force whose sign flips with the last digit of a position. A cap's
+/// axis within 60° of the normal along which the shapes overlap less (exact support
+/// maps) is the normal instead: the points keep their places and their distances are
+/// measured along it.
+fn snap_to_cap_axis(shapes: [(&Shape, &Placement, Pose); 2], points: &mut [ContactPoint]) {
+    let Some(first) = points.first() else {
+        return;
+    };
+    let n = first.normal;
+    let [(a, _, posa), (b, _, posb)] = &shapes;
+    let overlap = |c: V3| overlap_along(a, posa, b, posb, c);
+    let Some(mut best) = overlap(n) else {
+        return;
+    };
+    let mut normal = None;
+    for (s, p, _) in &shapes {
+        let Some(u) = cap_axis(s, p) else {
+            continue;
+        };
+        let along = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+        if along.abs() < 0.5 {
+            continue;
+        }
+        let c = u.map(|x| x * along.signum());
+        if let Some(o) = overlap(c) {
+            if o < best {
+                best = o;
+                normal = Some(c);
+            }
+        }
+    }
+    let Some(c) = normal else {
+        return;
+    };
+    for q in points {
+        let d = [
+            q.point_b[0] - q.point_a[0],
+            q.point_b[1] - q.point_a[1],
+            q.point_b[2] - q.point_a[2],
+        ];
+        q.normal = c;
+        q.dist = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+    }
 }
 
 /// Reduces the points `out[first..]` of one manifold to the corners of their convex

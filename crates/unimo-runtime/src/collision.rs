@@ -383,8 +383,8 @@ impl CollisionState {
         g
     }
 
-    /// Penalty forces and torques at every penetrating point of the pair `(a, b)`,
-    /// added to `out` (six values per body).
+    /// Penalty forces and torques of the pair `(a, b)`, shared over its penetrating
+    /// points, added to `out` (six values per body).
     fn penalty_forces(
         &self,
         v: &View<'_>,
@@ -393,7 +393,6 @@ impl CollisionState {
         out: &mut [f64],
     ) -> Result<(), CollisionFailure> {
         let (ra, rb) = (self.placements[a].r, self.placements[b].r);
-        // Penalty forces at every penetrating point.
         let mass = |x: usize| {
             if self.dynamic[x] {
                 v.arg(x, |a| a.mass)
@@ -437,6 +436,28 @@ impl CollisionState {
             v_switch: v.mean(a, b, |a| a.v_switch).max(f64::MIN_POSITIVE),
             f_max: v.mean(a, b, |a| a.f_max),
         };
+        // The pair's law acts at its deepest point: its spring part is `K δmax^n`
+        // however many points the manifold has. Each penetrating point takes the share
+        // `δᵢ^n / Σ δⱼ^n` of it, so a point that joins at depth 0 adds nothing at once,
+        // and a flat face reported with 4 or 8 points at one depth (parry's cap of a
+        // cylinder, whose square turns with the normal) pushes the same.
+        let (deepest, sum) = self
+            .points
+            .iter()
+            .filter(|c| c.dist < 0.0)
+            .fold((0.0f64, 0.0f64), |(deepest, sum), c| {
+                (deepest.max(-c.dist), sum + (-c.dist).powf(nexp))
+            });
+        if sum <= 0.0 {
+            return Ok(());
+        }
+        let scale = deepest.powf(nexp) / sum;
+        // The restitution laws divide by the impact speed. The speed at first touch is
+        // wrong when other bodies push the contact harder later (a rack of balls:
+        // over-damped rebound); the pair's current relative energy, kinetic along the
+        // normal plus elastic, as a speed, equals the impact speed throughout an
+        // undamped binary impact and follows such pushes.
+        let elastic = 2.0 * k * deepest.powf(nexp + 1.0) / ((nexp + 1.0) * m_eff);
         for c in &self.points {
             if c.dist >= 0.0 {
                 continue;
@@ -444,15 +465,8 @@ impl CollisionState {
             let p = mid(c);
             let rel = sub(v.velocity_at(a, p, ra), v.velocity_at(b, p, rb));
             let vn = dot(rel, c.normal);
-            // The restitution laws divide by the impact speed. The speed at first
-            // touch is wrong when other bodies push the contact harder later (a rack
-            // of balls: over-damped rebound); the pair's current relative energy,
-            // kinetic along the normal plus elastic, as a speed, equals the impact
-            // speed throughout an undamped binary impact and follows such pushes.
-            let delta = -c.dist;
-            let elastic = 2.0 * k * delta.powf(nexp + 1.0) / ((nexp + 1.0) * m_eff);
             let v_ref = (vn * vn + elastic).sqrt().max(V_FLOOR);
-            let fnorm = laws::normal_force(k, nexp, damping, delta, vn, v_ref);
+            let fnorm = scale * laws::normal_force(k, nexp, damping, -c.dist, vn, v_ref);
             let mut fa = [
                 -fnorm * c.normal[0],
                 -fnorm * c.normal[1],
