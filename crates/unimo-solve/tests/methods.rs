@@ -27,8 +27,11 @@ fn dahlquist_stiff_decay_in_few_steps() {
         )
         .unwrap();
         assert!(state[0].abs() <= 1e-10, "{method:?}: {}", state[0]);
-        // Accuracy-limited transient (23 time constants to reach atol), then the step doubles.
-        assert!(stats.steps <= 400, "{method:?}: {stats:?}");
+        // Accuracy-limited transient (23 time constants to reach atol; BDF: 28 to its
+        // calibrated atol / 100, 444 steps measured, 232 with the tolerances as requested),
+        // then the step grows.
+        let bound = if method == Method::Bdf { 600 } else { 400 };
+        assert!(stats.steps <= bound, "{method:?}: {stats:?}");
         report += &format!("{method:?}\n{}", counters(&stats));
     }
     insta::assert_snapshot!(report);
@@ -67,7 +70,10 @@ fn van_der_pol_mu_1e6_finishes_in_bounded_steps() {
         // Two relaxation jumps (period 1.614 mu): back on the upper branch, y1 = 1.7055 (the
         // scaled problem with eps = 1/mu^2 at t = 2).
         assert!((state[0] - 1.7055).abs() < 1e-3, "{method:?}: {state:?}");
-        assert!(stats.steps <= 2000, "{method:?}: {stats:?}");
+        // BDF works to rtol / 100 (its tolerance calibration): 3,082 steps measured, 1,471
+        // with the tolerance as requested.
+        let bound = if method == Method::Bdf { 4000 } else { 2000 };
+        assert!(stats.steps <= bound, "{method:?}: {stats:?}");
         report += &format!("{method:?}\n{}", counters(&stats));
     }
     insta::assert_snapshot!(report);
