@@ -410,26 +410,7 @@ impl CollisionState {
         };
         let k = v.mean(a, b, |a| a.stiffness);
         let nexp = v.mean(a, b, |a| a.exponent);
-        let law = v.arg(a, |a| a.law);
-        let damping = match LawCode::from_value(law) {
-            Some(LawCode::Clipped) => Damping::Clipped {
-                d: v.mean(a, b, |a| a.damping),
-            },
-            Some(LawCode::HuntCrossley) => Damping::HuntCrossley {
-                e: v.mean(a, b, |a| a.restitution),
-            },
-            Some(LawCode::Flores) => Damping::Flores {
-                e: v.mean(a, b, |a| a.restitution),
-            },
-            None => {
-                return Err(CollisionFailure {
-                    body: v.m.bodies[a].name.clone(),
-                    reason: format!(
-                        "unknown damping law code {law} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
-                    ),
-                })
-            }
-        };
+        let damping = damping_law(v, a, b)?;
         let friction = Friction {
             mu_static: v.mean(a, b, |a| a.mu_static),
             mu_sliding: v.mean(a, b, |a| a.mu_sliding),
@@ -643,6 +624,30 @@ impl CollisionState {
 }
 
 /// Smallest reference speed of the restitution laws (a contact at rest).
+/// The pair's damping law (the first body's `law`, the mean of the pair's parameters).
+fn damping_law(v: &View<'_>, a: usize, b: usize) -> Result<Damping, CollisionFailure> {
+    let law = v.arg(a, |a| a.law);
+    Ok(match LawCode::from_value(law) {
+        Some(LawCode::Clipped) => Damping::Clipped {
+            d: v.mean(a, b, |a| a.damping),
+        },
+        Some(LawCode::HuntCrossley) => Damping::HuntCrossley {
+            e: v.mean(a, b, |a| a.restitution),
+        },
+        Some(LawCode::Flores) => Damping::Flores {
+            e: v.mean(a, b, |a| a.restitution),
+        },
+        None => {
+            return Err(CollisionFailure {
+                body: v.m.bodies[a].name.clone(),
+                reason: format!(
+                    "unknown damping law code {law} (1 clipped, 2 Hunt-Crossley, 3 Flores)"
+                ),
+            })
+        }
+    })
+}
+
 const V_FLOOR: f64 = 1e-6;
 
 fn mid(c: &ContactPoint) -> [f64; 3] {
