@@ -1214,3 +1214,25 @@ fn every_experiment_method_name_is_a_method() {
     }
     assert_eq!(unimo_solve::Method::from_name("dassl"), None);
 }
+
+#[test]
+fn an_explicit_method_on_a_stiff_model_says_so() {
+    let run = |method: &str| {
+        let out = common::unimo(&[
+            "simulate",
+            "tests/simulate/StiffTracking.mo",
+            "--method",
+            method,
+            "-o",
+            "/dev/null",
+        ]);
+        common::assert_success(&out);
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let explicit = run("dopri5");
+    assert!(explicit.contains("note: the problem looks stiff from t = "), "{explicit}");
+    for method in ["bdf", "radau5"] {
+        let implicit = run(method);
+        assert!(!implicit.contains("looks stiff"), "{method}: {implicit}");
+    }
+}

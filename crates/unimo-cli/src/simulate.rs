@@ -241,6 +241,13 @@ fn how_it_ended(dae: &Dae, map: &SourceMap, result: &SimResult, start: f64) -> i
             result.times.last().copied().unwrap_or(start)
         );
     }
+    if let Some(t) = result.stiff_since {
+        eprintln!(
+            "note: the problem looks stiff from t = {t}: the explicit method's step size \
+             is limited there by its stability, not by the tolerance (Hairer's test); an \
+             implicit method (`--method radau5` or `bdf`) may take fewer steps"
+        );
+    }
     match &result.error {
         Some(e) => {
             report_failure(dae, map, e, result, start);

@@ -252,6 +252,9 @@ pub struct SimResult {
     pub phase_times: RunTimes,
     pub error: Option<SimError>,
     pub terminated: Option<String>,
+    /// When the explicit method found the problem stiff (its step size limited by
+    /// stability, not accuracy): an implicit method would take fewer steps.
+    pub stiff_since: Option<f64>,
     /// Final state values (for references).
     pub final_states: Vec<f64>,
     /// Every scalar's value (indexed by `ScalarId`) right after initialization:

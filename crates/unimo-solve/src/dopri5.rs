@@ -91,6 +91,42 @@ impl DenseOutput for Dopri5DenseOutput {
     }
 }
 
+/// Hairer's stiffness test of DOPRI5 (Hairer, Wanner II, IV.2): after an accepted
+/// step, `h |λ| ≈ h ||f(x₁) - f(x₆)|| / ||x₁ - x₆||` from the last two stages, which
+/// both sit at the step's end; beyond 3.25 (the edge of the method's stability region
+/// on the negative axis) on 15 accepted steps in a row, the step size is limited by
+/// stability, not accuracy. Six steps below it start the count again.
+#[derive(Debug, Clone, Default)]
+struct StiffnessTest {
+    above: u32,
+    below: u32,
+    since: Option<f64>,
+}
+
+impl StiffnessTest {
+    /// `f` of the new state and of the sixth stage, and the two states.
+    fn after_step(&mut self, t: f64, h: f64, f: (&[f64], &[f64]), x: (&[f64], &[f64])) {
+        let squared =
+            |a: &[f64], b: &[f64]| -> f64 { a.iter().zip(b).map(|(p, q)| (p - q) * (p - q)).sum() };
+        let (num, den) = (squared(f.0, f.1), squared(x.0, x.1));
+        if den <= 0.0 {
+            return;
+        }
+        if h * (num / den).sqrt() > 3.25 {
+            self.below = 0;
+            self.above += 1;
+            if self.above == 15 && self.since.is_none() {
+                self.since = Some(t);
+            }
+        } else {
+            self.below += 1;
+            if self.below == 6 {
+                self.above = 0;
+            }
+        }
+    }
+}
+
 /// The Dormand–Prince 5(4) integrator.
 #[derive(Debug, Clone)]
 pub struct Dopri5 {
@@ -102,6 +138,7 @@ pub struct Dopri5 {
     step_size: Option<f64>,
     previous_error: f64,
     last_rejected: bool,
+    stiffness: StiffnessTest,
     stages: [Vec<f64>; 7],
     stage_state: Vec<f64>,
     x_new: Vec<f64>,
@@ -136,6 +173,7 @@ impl Dopri5 {
             step_size: None,
             previous_error: 1e-4,
             last_rejected: false,
+            stiffness: StiffnessTest::default(),
             stages: std::array::from_fn(|_| zeros()),
             stage_state: zeros(),
             x_new: zeros(),
@@ -282,6 +320,10 @@ impl Dopri5 {
 impl Integrator for Dopri5 {
     common_accessors!(Method::Dopri5, |s| &s.x);
 
+    fn stiff_since(&self) -> Option<f64> {
+        self.stiffness.since
+    }
+
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.setup.check_len(x)?;
         self.restart(system, t, x)
@@ -348,6 +390,12 @@ impl Integrator for Dopri5 {
                 }
                 self.previous_error = error.max(1e-4);
                 let t_end = if hits_limit { t_limit } else { self.t + h_try };
+                self.stiffness.after_step(
+                    t_end,
+                    h_try,
+                    (&self.stages[6], &self.stages[5]),
+                    (&self.x_new, &self.stage_state),
+                );
                 self.store_dense_output(h_try, t_end);
                 self.t = t_end;
                 self.x.copy_from_slice(&self.x_new);

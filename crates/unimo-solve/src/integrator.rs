@@ -59,6 +59,13 @@ pub trait Integrator {
         0.0
     }
 
+    /// The time from which the problem looked stiff to an explicit method (Hairer's
+    /// test in DOPRI5: `h |λ| > 3.25` estimated on 15 accepted steps in a row), `None`
+    /// for implicit methods and while it did not.
+    fn stiff_since(&self) -> Option<f64> {
+        None
+    }
+
     /// Work counters.
     fn stats(&self) -> &Stats;
 

@@ -441,6 +441,11 @@ impl Solver {
     }
 
     /// The projection's counters (`None`: the system has no invariants).
+    /// When an explicit method found the problem stiff ([`Integrator::stiff_since`]).
+    pub fn stiff_since(&self) -> Option<f64> {
+        self.integrator.stiff_since()
+    }
+
     pub fn projection_stats(&self) -> Option<crate::project::ProjectionStats> {
         self.projection.as_ref().map(|p| p.projector.stats.clone())
     }

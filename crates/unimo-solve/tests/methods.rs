@@ -497,3 +497,24 @@ fn radau5_reuses_factorizations_on_a_large_system() {
     );
     assert!(2 * stats.jacobian_evals < stats.steps, "{stats:?}");
 }
+
+#[test]
+fn dopri5_says_when_a_problem_is_stiff() {
+    // y' = -1e4 y: after the transient (about 2e-3) Dormand–Prince's step is held at its
+    // stability limit, h |λ| ≈ 3.3, whatever the tolerance asks.
+    let mut system = Dahlquist { lambda: -1e4 };
+    let options = || Options::with_tolerances(1e-6, 1e-12);
+    let mut solver = Solver::new(Method::Dopri5, &mut system, 0.0, &[1.0], options()).unwrap();
+    solver.step_until(&mut system, 0.1).unwrap();
+    let since = solver.stiff_since().expect("the stiffness test fires");
+    assert!(since > 0.0 && since < 0.01, "stiff from t = {since}");
+    // A non-stiff oscillator over many periods: never.
+    let mut solver =
+        Solver::new(Method::Dopri5, &mut Harmonic, 0.0, &[1.0, 0.0], options()).unwrap();
+    solver.step_until(&mut Harmonic, 50.0).unwrap();
+    assert_eq!(solver.stiff_since(), None);
+    // Implicit methods do not run the test.
+    let mut solver = Solver::new(Method::Radau5, &mut system, 0.0, &[1.0], options()).unwrap();
+    solver.step_until(&mut system, 0.1).unwrap();
+    assert_eq!(solver.stiff_since(), None);
+}

@@ -414,6 +414,7 @@ impl Simulator<'_> {
             self.result.error.get_or_insert(e);
         }
         self.result.stats.solver = solver.stats();
+        self.result.stiff_since = solver.stiff_since();
         self.result.stats.projection = solver.projection_stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
         self.result.stats.collision = self.ode.ev.collision.as_ref().map(|c| c.stats.clone());
