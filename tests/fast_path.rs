@@ -69,82 +69,27 @@ fn fast_path_agrees_or_declines_on_every_error_file() {
 #[test]
 fn fast_path_agrees_on_mutated_files() {
     use proptest::prelude::*;
-    use proptest::test_runner::{Config, TestRunner};
-    let texts: Vec<String> = corpus(&["tests/syntax/ok", "stdlib"])
-        .iter()
-        .map(|f| std::fs::read_to_string(f).unwrap())
-        .collect();
-    const TOKENS: &[&str] = &[
-        ";",
-        "(",
-        ")",
-        "[",
-        "]",
-        "{",
-        "}",
-        "=",
-        ":=",
-        "end",
-        "model",
-        "when",
-        "if",
-        "then",
-        ".",
-        ",",
-        "loop",
-        "for",
-        "-",
-        "+",
-        "*",
-        "^",
-        ".*",
-        ":",
-        "not",
-        "and",
-        "x",
-        "1",
-        "2.5",
-        "\"s\"",
-        "der",
-        "initial",
-        "annotation",
-        "each",
-        "final",
-        "redeclare",
-        "replaceable",
-        "elseif",
-        "else",
-        "equation",
-        "algorithm",
-        "protected",
-        " ",
-        "\n",
-    ];
-    let mut runner = TestRunner::new(Config {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let texts = corpus_files::texts(&root, &["tests/syntax/ok", "stdlib"]);
+    // Whitespace-separated, then a space and a newline as tokens of their own.
+    const TOKENS: &str = "; ( ) [ ] { } = := end model when if then . , loop for - + * ^ .* : \
+        not and x 1 2.5 \"s\" der initial annotation each final redeclare replaceable elseif \
+        else equation algorithm protected";
+    let tokens: Vec<&str> = TOKENS.split_whitespace().chain([" ", "\n"]).collect();
+    let config = proptest::test_runner::Config {
         cases: 400,
-        ..Config::default()
-    });
-    let strategy = (
-        0..texts.len(),
-        proptest::collection::vec((any::<usize>(), 0..TOKENS.len(), any::<bool>()), 1..4),
-    );
-    runner
-        .run(&strategy, |(which, edits)| {
-            let edits: Vec<_> = edits
-                .into_iter()
-                .map(|(at, tok, delete)| (at, TOKENS[tok], delete))
-                .collect();
-            let text = corpus_files::mutate(&texts[which], &edits, 3);
-            if let Some(fast) = fast_only(FileId(0), &text) {
-                let pest = pest_only(FileId(0), &text);
-                if let Some(d) = first_difference(&fast.ast, &pest.ast) {
-                    prop_assert!(false, "trees differ on text:\n{}\n{}", text, d);
-                }
-                prop_assert_eq!(&fast.diagnostics, &pest.diagnostics, "text:\n{}", text);
+        ..Default::default()
+    };
+    corpus_files::check_mutations(&texts, &tokens, 3, config, |text| {
+        if let Some(fast) = fast_only(FileId(0), text) {
+            let pest = pest_only(FileId(0), text);
+            if let Some(d) = first_difference(&fast.ast, &pest.ast) {
+                prop_assert!(false, "trees differ on text:\n{}\n{}", text, d);
             }
-            Ok(())
-        })
-        .unwrap();
+            prop_assert_eq!(&fast.diagnostics, &pest.diagnostics, "text:\n{}", text);
+        }
+        Ok(())
+    });
 }
 
 /// The Modelica Standard Library beside the project (`../shared/msl`, test data, not

@@ -60,6 +60,15 @@ fn run(
     r
 }
 
+/// Asserts `|got - want| < tol`; `what` names the value when it fails.
+#[track_caller]
+fn assert_near(got: f64, want: f64, tol: f64, what: impl std::fmt::Display) {
+    assert!(
+        (got - want).abs() < tol,
+        "{what} = {got}, expected {want} (within {tol})"
+    );
+}
+
 /// The index of the output `name` in `r`'s rows.
 fn column_of(r: &SimResult, name: &str) -> usize {
     (r.names.iter())
@@ -346,10 +355,11 @@ fn pruning_keeps_fixed_starts_of_dummy_states() {
         |t: f64| 1.5 - 0.5 * (-d * t / 2.0).exp() * ((w * t).cos() + d / (2.0 * w) * (w * t).sin());
     for (t, row) in r.times.iter().zip(&r.rows) {
         let got = row[k];
-        assert!(
-            (got - exact(*t)).abs() < 1e-6,
-            "s_rel({t}) = {got}, exact {}, pruned {pruned}",
-            exact(*t)
+        assert_near(
+            got,
+            exact(*t),
+            1e-6,
+            format_args!("s_rel({t}), pruned {pruned}"),
         );
     }
 }
@@ -397,11 +407,7 @@ fn newton_damps_steps_across_saturations() {
     let gain = 15000.0 / (1.0 + 15000.0 * 0.5);
     for row in &r.rows {
         let want = gain * row[kin];
-        assert!(
-            (row[kout] - want).abs() < 1e-9,
-            "vout {} against {want}",
-            row[kout]
-        );
+        assert_near(row[kout], want, 1e-9, "vout");
     }
 }
 
@@ -412,10 +418,7 @@ fn redundant_fixed_starts_are_checked_not_refused() {
     let m = load("tests/simulate/RedundantFixedStarts.mo");
     let r = run(&m, Method::Bdf, 1e-9, 1e-11, 1.0, 2);
     let x1 = value(&r, "x1");
-    assert!(
-        (x1 - (-0.5 + 0.5 * 1f64.cos())).abs() < 1e-6,
-        "x1(1) = {x1}"
-    );
+    assert_near(x1, -0.5 + 0.5 * 1f64.cos(), 1e-6, "x1(1)");
     let text =
         std::fs::read_to_string(common::root().join("tests/simulate/RedundantFixedStarts.mo"))
             .unwrap()
@@ -482,10 +485,7 @@ fn component_array_references_strings_and_dynamic_indices() {
     ];
     for (name, want) in expect {
         let got = value(&r, name);
-        assert!(
-            (got - want).abs() < 1e-9 * want.abs().max(1.0),
-            "{name} = {got}"
-        );
+        assert_near(got, want, 1e-9 * want.abs().max(1.0), name);
     }
 }
 
@@ -790,11 +790,7 @@ fn evaluated_parameters_fold_into_the_equations() {
     assert!(dae.contains("R2"), "{dae}");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
     let exact = 2.0 / 3.0 * (-1.0f64).exp();
-    assert!(
-        (value(&r, "v2") - exact).abs() < 1e-8,
-        "{}",
-        value(&r, "v2")
-    );
+    assert_near(value(&r, "v2"), exact, 1e-8, "v2");
 }
 
 /// A signal an expandable connector declares but nothing uses is not part of the model
@@ -809,11 +805,7 @@ fn unused_signals_of_an_expandable_connector_are_left_out() {
     // absent on all of them (MultiBody's RobotR3 axis bus, 55 equations short before).
     let m = load_named("tests/simulate/ExpandableBus.mo", "ExpandableBus.Chain");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
-    assert!(
-        (value(&r, "b.w") - 4.0).abs() < 1e-9,
-        "{}",
-        value(&r, "b.w")
-    );
+    assert_near(value(&r, "b.w"), 4.0, 1e-9, "b.w");
     assert!(
         !r.names.iter().any(|n| n.ends_with(".unused")),
         "{:?}",
@@ -830,11 +822,7 @@ fn parameters_bound_to_later_ones_and_parameter_slices() {
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
     let t = 1.0f64;
     let exact = 0.5 - (-t).exp() + (-2.0 * t).exp() / 2.0;
-    assert!(
-        (value(&r, "x[2]") - exact).abs() < 1e-8,
-        "{}",
-        value(&r, "x[2]")
-    );
+    assert_near(value(&r, "x[2]"), exact, 1e-8, "x[2]");
 }
 
 /// The one parameter evaluator (`unimo_dae::params`): a parameter with `fixed = false`
@@ -851,16 +839,8 @@ fn a_parameter_computed_at_initialization_is_not_its_start_value() {
     for (t, row) in r.times.iter().zip(&r.rows) {
         let x = ((l1 * t).exp() + (l2 * t).exp()) / 2.0;
         let y = ((l2 * t).exp() - (l1 * t).exp()) / 2f64.sqrt();
-        assert!(
-            (row[kx] - x).abs() < 1e-7 * x.abs().max(1.0),
-            "x({t}) = {}, exact {x}",
-            row[kx]
-        );
-        assert!(
-            (row[ky] - y).abs() < 1e-7 * y.abs().max(1.0),
-            "y({t}) = {}, exact {y}",
-            row[ky]
-        );
+        assert_near(row[kx], x, 1e-7 * x.abs().max(1.0), format_args!("x({t})"));
+        assert_near(row[ky], y, 1e-7 * y.abs().max(1.0), format_args!("y({t})"));
     }
     assert_eq!(r.times.len(), 5);
 }
@@ -899,22 +879,14 @@ fn functions_called_through_components_use_the_instance() {
     let kx = col(&r, "b.x");
     for (t, row) in r.times.iter().zip(&r.rows) {
         let x = 2.0 * (-t).exp() - 1.0;
-        assert!(
-            (row[kx] - x).abs() < 1e-7,
-            "x({t}) = {}, exact {x}",
-            row[kx]
-        );
+        assert_near(row[kx], x, 1e-7, format_args!("x({t})"));
     }
     let m = load_named(file, "FunctionThroughComponent.Redeclared");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
     let (kx, kz, kw) = (col(&r, "b.x"), col(&r, "z"), col(&r, "w"));
     for (t, row) in r.times.iter().zip(&r.rows) {
         let x = 1.0 / (1.0 + 3.0 * t);
-        assert!(
-            (row[kx] - x).abs() < 1e-7,
-            "x({t}) = {}, exact {x}",
-            row[kx]
-        );
+        assert_near(row[kx], x, 1e-7, format_args!("x({t})"));
         assert_eq!((row[kz], row[kw]), (19.0, 9.0));
     }
 }
@@ -931,16 +903,8 @@ fn candidates_of_one_priority_are_selected_at_run_time() {
     let (k1, k4) = (col("Q[1]"), col("Q[4]"));
     for (t, row) in r.times.iter().zip(&r.rows) {
         let (q1, q4) = ((t / 2.0).sin(), (t / 2.0).cos());
-        assert!(
-            (row[k1] - q1).abs() < 1e-6,
-            "Q[1]({t}) = {}, exact {q1}",
-            row[k1]
-        );
-        assert!(
-            (row[k4] - q4).abs() < 1e-6,
-            "Q[4]({t}) = {}, exact {q4}",
-            row[k4]
-        );
+        assert_near(row[k1], q1, 1e-6, format_args!("Q[1]({t})"));
+        assert_near(row[k4], q4, 1e-6, format_args!("Q[4]({t})"));
     }
 }
 
@@ -1001,10 +965,7 @@ fn a_comparator_in_positive_feedback_flips_at_the_fold() {
     assert_eq!(switches.len(), 4, "{switches:?}");
     for (k, t) in switches.iter().enumerate() {
         let exact = first + k as f64 * half;
-        assert!(
-            (t - exact).abs() < 1e-6,
-            "switch {k} at t = {t}, closed form {exact}"
-        );
+        assert_near(*t, exact, 1e-6, format_args!("switch {k}'s time"));
     }
 }
 

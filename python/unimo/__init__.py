@@ -241,11 +241,9 @@ class Model:
             "interval": interval,
             "points": points,
         }
+        sweep = _sweep.Sweep(self._spec, self.params, list(outputs or []), options, summary)
         samples = _sweep.samples(grid_or_samples)
-        return _sweep.run(
-            self._spec, self.params, samples, list(outputs or []), options,
-            jobs=jobs, client=client, summary=summary, chunks=chunks,
-        )
+        return _sweep.run(sweep, samples, jobs=jobs, client=client, chunks=chunks)
 
     def __repr__(self) -> str:
         files = ", ".join(f for f, _ in self._spec[0])

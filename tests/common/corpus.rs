@@ -4,6 +4,8 @@
 //! file by path).
 #![allow(dead_code)]
 
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use std::path::{Path, PathBuf};
 
 /// Every `.mo` file below `dir`, sorted, appended to `out`.
@@ -29,6 +31,39 @@ pub fn files(root: &Path, dirs: &[&str]) -> Vec<PathBuf> {
         files_below(&root.join(d), &mut out);
     }
     out
+}
+
+/// The texts of the `.mo` files below the folders `dirs` of `root`.
+pub fn texts(root: &Path, dirs: &[&str]) -> Vec<String> {
+    files(root, dirs)
+        .iter()
+        .map(|f| std::fs::read_to_string(f).unwrap())
+        .collect()
+}
+
+/// Runs `check` on the random mutations of `texts` that `config` asks for: a text and
+/// one to three edits, each at a random place, inserting one of `tokens` or deleting
+/// `delete_len` bytes ([`mutate`]). A failure panics with its smallest edits.
+pub fn check_mutations(
+    texts: &[String],
+    tokens: &[&str],
+    delete_len: usize,
+    config: Config,
+    check: impl Fn(&str) -> Result<(), TestCaseError>,
+) {
+    let strategy = (
+        0..texts.len(),
+        proptest::collection::vec((any::<usize>(), 0..tokens.len(), any::<bool>()), 1..4),
+    );
+    TestRunner::new(config)
+        .run(&strategy, |(which, edits)| {
+            let edits: Vec<_> = edits
+                .into_iter()
+                .map(|(at, token, delete)| (at, tokens[token], delete))
+                .collect();
+            check(&mutate(&texts[which], &edits, delete_len))
+        })
+        .unwrap();
 }
 
 /// `text` after `edits`, in order: each `(at, insert, delete)` moves `at` (modulo the

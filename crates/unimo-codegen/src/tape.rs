@@ -437,15 +437,7 @@ impl<'a> Compiler<'a> {
                 0,
                 self.sample_index.get(&x).copied().unwrap_or(0),
             )),
-            Node::Var(_)
-            | Node::Pre(_)
-            | Node::Time
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::External(..) => {
-                unreachable!("leaves are handled above")
-            }
+            Node::Var(_) | unimo_dae::run_time_leaf!() => unreachable!("leaves are handled above"),
         }
     }
 

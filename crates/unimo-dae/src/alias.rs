@@ -276,15 +276,9 @@ fn has_time_or_events(dae: &Dae, e: ExprId) -> bool {
             continue;
         }
         match dae.arena.node(x) {
-            Node::Time
-            | Node::Pre(_)
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::Rel(..)
-            | Node::Sample(..)
-            | Node::External(..)
-            | Node::If(..) => return true,
+            crate::run_time_leaf!() | Node::Rel(..) | Node::Sample(..) | Node::If(..) => {
+                return true
+            }
             _ => stack.extend(dae.arena.children(x)),
         }
     }

@@ -64,6 +64,23 @@ impl RelOp {
     }
 }
 
+/// The pattern of the leaves other than constants and variables: the nodes without
+/// operands whose value only the run knows (`pre` values, `time`, `initial()`,
+/// `terminal()`, the homotopy flag, external outputs). A new leaf of that kind is added
+/// here, so that the passes that treat them alike (operands, substitution, linearity,
+/// parameter and alias checks, the tape's leaves) see it.
+#[macro_export]
+macro_rules! run_time_leaf {
+    () => {
+        $crate::expr::Node::Pre(_)
+            | $crate::expr::Node::Time
+            | $crate::expr::Node::Initial
+            | $crate::expr::Node::Terminal
+            | $crate::expr::Node::HomotopyStart
+            | $crate::expr::Node::External(..)
+    };
+}
+
 /// One expression node. Booleans are 1.0/0.0; Integers and enumeration ordinals are
 /// exact in f64.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
@@ -409,14 +426,7 @@ impl ExprArena {
             return ops.map(Some).into_iter().flatten();
         }
         let (a, b, c): (Option<ExprId>, Option<ExprId>, Option<ExprId>) = match self.node(id) {
-            Node::Const(_)
-            | Node::Var(_)
-            | Node::Pre(_)
-            | Node::Time
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::External(..) => (None, None, None),
+            Node::Const(_) | Node::Var(_) | crate::run_time_leaf!() => (None, None, None),
             Node::Neg(x) | Node::Fn1(_, x) | Node::Not(x) | Node::NoEvent(x) => {
                 (Some(x), None, None)
             }
@@ -476,13 +486,7 @@ impl ExprArena {
         }
         let r = match self.node(id) {
             Node::Var(s) => map(s).unwrap_or(id),
-            Node::Const(_)
-            | Node::Pre(_)
-            | Node::Time
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::External(..) => id,
+            Node::Const(_) | crate::run_time_leaf!() => id,
             node => {
                 let kids: Vec<ExprId> = self.children(id).collect();
                 let new: Vec<ExprId> = kids
@@ -503,14 +507,7 @@ impl ExprArena {
     /// A node of the same kind as `node` over new operands (simplified again).
     pub fn rebuild(&mut self, node: Node, k: &[ExprId]) -> ExprId {
         match node {
-            Node::Const(_)
-            | Node::Var(_)
-            | Node::Pre(_)
-            | Node::Time
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::External(..) => self.intern(node),
+            Node::Const(_) | Node::Var(_) | crate::run_time_leaf!() => self.intern(node),
             Node::Add(..) => self.add(k[0], k[1]),
             Node::Mul(..) => self.mul(k[0], k[1]),
             Node::Div(..) => self.div(k[0], k[1]),

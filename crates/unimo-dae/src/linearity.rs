@@ -66,14 +66,7 @@ pub(crate) fn degree(
     let node = dae.arena.node(e);
     let d = match node {
         Node::Var(v) => of_var.get(&v).copied().unwrap_or(Constant),
-        Node::Const(_)
-        | Node::Pre(_)
-        | Node::Time
-        | Node::Initial
-        | Node::Terminal
-        | Node::HomotopyStart
-        | Node::Sample(..)
-        | Node::External(..) => Constant,
+        Node::Const(_) | Node::Sample(..) | crate::run_time_leaf!() => Constant,
         Node::Add(a, b) => of(a, no_event).max(of(b, no_event)),
         Node::Neg(a) => of(a, no_event),
         Node::Mul(a, b) => match (of(a, no_event), of(b, no_event)) {

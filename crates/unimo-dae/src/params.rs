@@ -48,13 +48,7 @@ pub fn parameters_only(dae: &Dae, e: ExprId) -> bool {
                     return false;
                 }
             }
-            Node::Time
-            | Node::Pre(_)
-            | Node::Initial
-            | Node::Terminal
-            | Node::HomotopyStart
-            | Node::Sample(..)
-            | Node::External(..) => return false,
+            crate::run_time_leaf!() | Node::Sample(..) => return false,
             // A table's value or an FFT's output exists only at run time (evaluated
             // here it would be NaN, and a comparison of NaN a definite false).
             Node::Ext(f, _) if !f.is_pure() => return false,

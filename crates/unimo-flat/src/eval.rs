@@ -18,6 +18,13 @@ pub enum Value {
     Record(String, Vec<(String, Value)>),
 }
 
+/// The evaluated arguments of a call of a user function or record constructor.
+#[derive(Clone, Debug)]
+pub struct Arguments {
+    pub positional: Vec<Value>,
+    pub named: Vec<(String, Value)>,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum EvalError {
     /// The expression depends on something that is not a known constant or parameter.
@@ -39,13 +46,7 @@ pub trait Env {
     }
 
     /// Calls the user function `name` (full name) on evaluated arguments.
-    fn call(
-        &mut self,
-        name: &str,
-        _positional: Vec<Value>,
-        _named: Vec<(String, Value)>,
-        span: Span,
-    ) -> Result<Value, EvalError> {
+    fn call(&mut self, name: &str, _args: Arguments, span: Span) -> Result<Value, EvalError> {
         Err(EvalError::NotConstant {
             span,
             what: format!("a call of `{name}`"),
@@ -791,7 +792,11 @@ fn call(
                 .iter()
                 .map(|a| Ok((a.name.text.to_string(), eval(&a.value, env, iterators)?)))
                 .collect::<Result<Vec<_>, EvalError>>()?;
-            env.call(name.trim_start_matches('.'), vals, named, e.span)
+            let args = Arguments {
+                positional: vals,
+                named,
+            };
+            env.call(name.trim_start_matches('.'), args, e.span)
         }
         _ => Err(EvalError::NotConstant {
             span: e.span,

@@ -1,7 +1,7 @@
 //! Compile-time calls of user functions: binds the arguments, runs the algorithm
 //! section statement by statement, returns the first output (spec 12.4).
 
-use crate::eval::{self, Env, EvalError, Value};
+use crate::eval::{self, Arguments, Env, EvalError, Value};
 use crate::instantiate::Instantiator;
 use crate::lookup::Found;
 use crate::modif::Scope;
@@ -31,14 +31,8 @@ impl Env for Frame<'_, '_, '_> {
         }
     }
 
-    fn call(
-        &mut self,
-        name: &str,
-        positional: Vec<Value>,
-        named: Vec<(String, Value)>,
-        span: Span,
-    ) -> Result<Value, EvalError> {
-        self.inst.call(name, positional, named, span)
+    fn call(&mut self, name: &str, args: Arguments, span: Span) -> Result<Value, EvalError> {
+        self.inst.call(name, args, span)
     }
 }
 
@@ -56,8 +50,7 @@ impl Instantiator<'_, '_> {
     pub(crate) fn call_function(
         &mut self,
         name: &str,
-        positional: Vec<Value>,
-        named: Vec<(String, Value)>,
+        args: Arguments,
         span: Span,
     ) -> Result<Value, EvalError> {
         if self.call_depth >= MAX_CALL_DEPTH {
@@ -71,7 +64,7 @@ impl Instantiator<'_, '_> {
             return Err(not_constant(span, format!("a call of `{name}`")));
         };
         if self.is_record(f) {
-            return self.construct_record(f, positional, named, span);
+            return self.construct_record(f, args, span);
         }
         let def = self.tree.get(f).def.clone();
         let ClassBody::Long { composition, .. } = &def.body else {
@@ -107,7 +100,7 @@ impl Instantiator<'_, '_> {
                 }
             }
         }
-        for (k, v) in positional.into_iter().enumerate() {
+        for (k, v) in args.positional.into_iter().enumerate() {
             let Some(n) = inputs.get(k) else {
                 return Err(EvalError::Unsupported {
                     span,
@@ -116,7 +109,7 @@ impl Instantiator<'_, '_> {
             };
             locals.insert(n.clone(), v);
         }
-        for (n, v) in named {
+        for (n, v) in args.named {
             locals.insert(n, v);
         }
         self.call_depth += 1;
@@ -138,24 +131,23 @@ impl Instantiator<'_, '_> {
     fn construct_record(
         &mut self,
         class: crate::tree::ClassId,
-        positional: Vec<Value>,
-        named: Vec<(String, Value)>,
+        args: Arguments,
         span: Span,
     ) -> Result<Value, EvalError> {
         let fields = self.record_fields(class);
         let record = self.tree.full_name(class);
         let inputs: Vec<&crate::records::Field> = fields.iter().filter(|f| f.input).collect();
-        if positional.len() > inputs.len() {
+        if args.positional.len() > inputs.len() {
             return Err(EvalError::Unsupported {
                 span,
                 what: format!("too many arguments for record `{record}`"),
             });
         }
         let mut locals: HashMap<String, Value> = HashMap::default();
-        for (f, v) in inputs.iter().zip(positional) {
+        for (f, v) in inputs.iter().zip(args.positional) {
             locals.insert(f.name.to_string(), v);
         }
-        for (n, v) in named {
+        for (n, v) in args.named {
             if !inputs.iter().any(|f| f.name == n.as_str()) {
                 return Err(EvalError::Unsupported {
                     span,

@@ -2,8 +2,7 @@
 //! flatten suite, go through lookup, the name check, instantiation, connections and the
 //! balance count; only diagnostics may come out.
 
-use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed, TestRunner};
+use proptest::test_runner::{Config, RngSeed};
 use std::path::PathBuf;
 use unimo_flat::{ClassTree, MemoryProvider};
 
@@ -12,7 +11,7 @@ mod corpus_files;
 
 fn corpus() -> Vec<String> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let files = corpus_files::files(
+    corpus_files::texts(
         &root,
         &[
             "tests/syntax/ok",
@@ -21,11 +20,7 @@ fn corpus() -> Vec<String> {
             "tests/names",
             "models",
         ],
-    );
-    files
-        .iter()
-        .map(|f| std::fs::read_to_string(f).unwrap())
-        .collect()
+    )
 }
 
 /// Flattens every class of `text` (errors allowed, panics not).
@@ -54,44 +49,11 @@ fn every_corpus_class_flattens_without_panic() {
 #[test]
 fn mutated_models_flatten_without_panic() {
     let texts = corpus();
-    const TOKENS: &[&str] = &[
-        ";",
-        "(",
-        ")",
-        "[",
-        "]",
-        "{",
-        "}",
-        "=",
-        "end",
-        "model",
-        "x",
-        "1",
-        "0",
-        "-1",
-        "n",
-        ".",
-        ",",
-        "extends",
-        "connect",
-        "for",
-        "loop",
-        "if",
-        "then",
-        "else",
-        "parameter",
-        "inner",
-        "outer",
-        "redeclare",
-        "each",
-        "Real",
-        "Integer",
-        "start",
-        "fixed",
-        ":",
-        "der",
-        "1:3",
-    ];
+    const TOKENS: &str = "; ( ) [ ] { } = end model x 1 0 -1 n . , extends connect for loop if \
+        then else parameter inner outer redeclare each Real Integer start fixed : der 1:3";
+    // Each token inserted after a space.
+    let tokens: Vec<String> = TOKENS.split_whitespace().map(|t| format!(" {t}")).collect();
+    let tokens: Vec<&str> = tokens.iter().map(String::as_str).collect();
     // 300 cases from a fixed seed by default, so that a run is repeatable;
     // `UNIMO_STRESS_CASES=N` for a longer run and `UNIMO_STRESS_SEED=N|random` for
     // other cases (a failure prints its minimal edits).
@@ -104,28 +66,14 @@ fn mutated_models_flatten_without_panic() {
         Some(n) => RngSeed::Fixed(n.parse().expect("UNIMO_STRESS_SEED: a number or `random`")),
         None => RngSeed::Fixed(20_261_126),
     };
-    let mut runner = TestRunner::new(Config {
+    let config = Config {
         cases,
         rng_seed,
         failure_persistence: None,
         ..Config::default()
+    };
+    corpus_files::check_mutations(&texts, &tokens, 2, config, |text| {
+        flatten_all(text);
+        Ok(())
     });
-    let strategy = (
-        0..texts.len(),
-        proptest::collection::vec((any::<usize>(), 0..TOKENS.len(), any::<bool>()), 1..4),
-    );
-    runner
-        .run(&strategy, |(which, edits)| {
-            // Each token inserted after a space.
-            let tokens: Vec<String> = edits.iter().map(|e| format!(" {}", TOKENS[e.1])).collect();
-            let edits: Vec<_> = edits
-                .iter()
-                .zip(&tokens)
-                .map(|(&(at, _, delete), tok)| (at, tok.as_str(), delete))
-                .collect();
-            let text = corpus_files::mutate(&texts[which], &edits, 2);
-            flatten_all(&text);
-            Ok(())
-        })
-        .unwrap();
 }

@@ -39,21 +39,27 @@ pub fn fly_slide_roll() -> Example {
     }
 }
 
+/// The scene of examples 2 and 3 (spec A.9: a, b, c = 1.2, 1, 1.3; g = 9.81; k = 0.5;
+/// delta = 1e-4; ClearanceTolerance = 1e-8), which differ in `friction`.
+fn scene_of_examples_2_and_3(friction: f64) -> Scene {
+    Scene {
+        body: Ellipsoid {
+            semi_axes: [1.2, 1.0, 1.3],
+            mass: 1.0,
+        },
+        gravity: 9.81,
+        restitution: 0.5,
+        friction,
+        delta: 1e-4,
+        clearance_tolerance: 1e-8,
+    }
+}
+
 /// Example 2, SlideRollSwitch (starts resting on the plane).
 pub fn slide_roll_switch() -> Example {
     Example {
         name: "SlideRollSwitch",
-        scene: Scene {
-            body: Ellipsoid {
-                semi_axes: [1.2, 1.0, 1.3],
-                mass: 1.0,
-            },
-            gravity: 9.81,
-            restitution: 0.5,
-            friction: 0.1,
-            delta: 1e-4,
-            clearance_tolerance: 1e-8,
-        },
+        scene: scene_of_examples_2_and_3(0.1),
         initial_state: state([0.0, 1.0, 0.0], [0.05, 0.0, 0.0], [0.0, -2.0, 2.0]),
         t_stop: 20.0,
     }
@@ -63,17 +69,7 @@ pub fn slide_roll_switch() -> Example {
 pub fn markeev() -> Example {
     Example {
         name: "MarkeevEllipsoid",
-        scene: Scene {
-            body: Ellipsoid {
-                semi_axes: [1.2, 1.0, 1.3],
-                mass: 1.0,
-            },
-            gravity: 9.81,
-            restitution: 0.5,
-            friction: 0.01,
-            delta: 1e-4,
-            clearance_tolerance: 1e-8,
-        },
+        scene: scene_of_examples_2_and_3(0.01),
         initial_state: state([0.0, 1.0, 0.0], [0.05, 0.0, 0.0], [0.0, -10.0, 2.0]),
         t_stop: 160.0,
     }

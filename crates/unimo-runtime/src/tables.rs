@@ -325,31 +325,45 @@ impl Table {
 mod tests {
     use super::*;
 
-    fn table(kind: ObjectKind, data: &[f64], rows: usize, smooth: f64, extra: f64) -> TableObject {
-        TableObject::new(&TableArgs {
-            kind,
+    /// A 1-D table of two columns (abscissa, values) reading column 2, linear segments,
+    /// holding its last point: what a test changes is written over it.
+    fn args(data: &[f64]) -> TableArgs<'_> {
+        TableArgs {
+            kind: ObjectKind::Table1D,
             data,
-            rows,
-            cols: data.len() / rows,
+            rows: data.len() / 2,
+            cols: 2,
             columns: &[2.0],
-            smoothness: smooth,
-            extrapolation: extra,
+            smoothness: 1.0,
+            extrapolation: 1.0,
             start_time: 0.0,
             shift_time: 0.0,
             time_events: 1.0,
+        }
+    }
+
+    /// A table of `kind` with the MSL's `smoothness` and `extrapolation` codes.
+    fn table(kind: ObjectKind, data: &[f64], smoothness: f64, extrapolation: f64) -> TableObject {
+        TableObject::new(&TableArgs {
+            kind,
+            smoothness,
+            extrapolation,
+            ..args(data)
         })
         .unwrap()
     }
 
+    fn table_1d(data: &[f64], smooth: f64, extra: f64) -> TableObject {
+        table(ObjectKind::Table1D, data, smooth, extra)
+    }
+
+    fn time_table(data: &[f64], smooth: f64, extra: f64) -> TableObject {
+        table(ObjectKind::TimeTable, data, smooth, extra)
+    }
+
     #[test]
     fn linear_segments_interpolate_and_extrapolate() {
-        let t = table(
-            ObjectKind::Table1D,
-            &[0.0, 0.0, 1.0, 2.0, 3.0, 2.0],
-            3,
-            1.0,
-            2.0,
-        );
+        let t = table_1d(&[0.0, 0.0, 1.0, 2.0, 3.0, 2.0], 1.0, 2.0);
         assert_eq!(t.eval(ExtFn::Table1D, 1.0, 0.5), 1.0);
         assert_eq!(t.eval(ExtFn::Table1D, 1.0, 2.0), 2.0);
         assert_eq!(t.eval(ExtFn::Table1DSlope, 1.0, 0.5), 2.0);
@@ -358,58 +372,43 @@ mod tests {
         assert_eq!(t.eval(ExtFn::Table1D, 1.0, -1.0), -2.0);
         assert_eq!(t.eval(ExtFn::Table1DMin, 0.0, 0.0), 0.0);
         assert_eq!(t.eval(ExtFn::Table1DMax, 0.0, 0.0), 3.0);
-        let hold = table(ObjectKind::Table1D, &[0.0, 0.0, 1.0, 2.0], 2, 1.0, 1.0);
+        let hold = table_1d(&[0.0, 0.0, 1.0, 2.0], 1.0, 1.0);
         assert_eq!(hold.eval(ExtFn::Table1D, 1.0, 5.0), 2.0);
         assert_eq!(hold.eval(ExtFn::Table1DSlope, 1.0, 5.0), 0.0);
-        let periodic = table(ObjectKind::Table1D, &[0.0, 0.0, 1.0, 2.0], 2, 1.0, 3.0);
+        let periodic = table_1d(&[0.0, 0.0, 1.0, 2.0], 1.0, 3.0);
         assert!((periodic.eval(ExtFn::Table1D, 1.0, 2.25) - 0.5).abs() < 1e-15);
-        let none = table(ObjectKind::Table1D, &[0.0, 0.0, 1.0, 2.0], 2, 1.0, 4.0);
+        let none = table_1d(&[0.0, 0.0, 1.0, 2.0], 1.0, 4.0);
         assert!(none.eval(ExtFn::Table1D, 1.0, 1.5).is_nan());
     }
 
     #[test]
     fn time_tables_jump_at_repeated_points_and_report_their_events() {
         // 0 until t = 1, then a jump to 1, constant to t = 2.
-        let t = table(
-            ObjectKind::TimeTable,
-            &[0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 1.0],
-            4,
-            1.0,
-            1.0,
-        );
+        let t = time_table(&[0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 2.0, 1.0], 1.0, 1.0);
         assert_eq!(t.eval(ExtFn::TimeTable, 1.0, 0.999), 0.0);
         assert_eq!(t.eval(ExtFn::TimeTable, 1.0, 1.0), 1.0);
         assert_eq!(t.eval(ExtFn::TimeTableNextEvent, 0.5, 0.0), 1.0);
         assert_eq!(t.eval(ExtFn::TimeTableNextEvent, 1.0, 0.0), 2.0);
         assert_eq!(t.eval(ExtFn::TimeTableNextEvent, 2.0, 0.0), NO_EVENT);
-        let steps = table(
-            ObjectKind::TimeTable,
-            &[0.0, 1.0, 1.0, 2.0, 2.0, 3.0],
-            3,
-            3.0,
-            1.0,
-        );
+        let steps = time_table(&[0.0, 1.0, 1.0, 2.0, 2.0, 3.0], 3.0, 1.0);
         assert_eq!(steps.eval(ExtFn::TimeTable, 1.0, 1.5), 2.0);
         assert_eq!(steps.eval(ExtFn::TimeTableSlope, 1.0, 1.5), 0.0);
     }
 
     #[test]
     fn bad_tables_are_errors() {
-        let args = |data: &'static [f64], columns: &'static [f64], smooth: f64| TableArgs {
-            kind: ObjectKind::Table1D,
-            data,
-            rows: data.len() / 2,
-            cols: 2,
-            columns,
-            smoothness: smooth,
-            extrapolation: 1.0,
-            start_time: 0.0,
-            shift_time: 0.0,
-            time_events: 1.0,
+        // An abscissa that decreases; a column that is not there; Akima splines.
+        let decreasing = args(&[1.0, 0.0, 0.0, 1.0]);
+        assert!(TableObject::new(&decreasing).is_err());
+        let column_3 = TableArgs {
+            columns: &[3.0],
+            ..args(&[0.0, 0.0, 1.0, 1.0])
         };
-        assert!(TableObject::new(&args(&[1.0, 0.0, 0.0, 1.0], &[2.0], 1.0)).is_err());
-        assert!(TableObject::new(&args(&[0.0, 0.0, 1.0, 1.0], &[3.0], 1.0)).is_err());
-        let akima = TableObject::new(&args(&[0.0, 0.0, 1.0, 1.0], &[2.0], 2.0));
+        assert!(TableObject::new(&column_3).is_err());
+        let akima = TableObject::new(&TableArgs {
+            smoothness: 2.0,
+            ..args(&[0.0, 0.0, 1.0, 1.0])
+        });
         assert!(akima.unwrap_err().contains("ContinuousDerivative"));
     }
 }

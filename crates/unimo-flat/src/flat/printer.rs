@@ -8,8 +8,8 @@ use smol_str::SmolStr;
 use std::fmt::Write;
 use unimo_source::Span;
 use unimo_syntax::ast::{
-    Causality, ComponentRef, Equation, EquationKind, Expr, ExprKind, Ident, Name, RefPart,
-    Statement, StatementKind,
+    Causality, ComponentRef, Equation, EquationKind, Expr, ExprKind, ForIndex, Ident, Name,
+    RefPart, Statement, StatementKind,
 };
 use unimo_syntax::print;
 
@@ -290,23 +290,16 @@ impl<'a> Printer<'a> {
                 }
             }
             ExprKind::Ref(r) if r.parts.len() >= 2 && self.is_literal(r) => {
-                let n = r.parts.len();
-                let ty = r.parts[..n - 1]
-                    .iter()
-                    .map(|p| p.name.text.as_str())
-                    .collect::<Vec<_>>()
-                    .join(".");
-                if self.enumerations.contains(ty.as_str()) {
-                    let literal = r.parts[n - 1].clone();
-                    r.global = true;
-                    r.parts = vec![
-                        RefPart {
-                            name: class_ident(&ty, r.span),
-                            subscripts: Vec::new(),
-                        },
-                        literal,
-                    ];
-                }
+                let ty = type_part(r);
+                let literal = r.parts[r.parts.len() - 1].clone();
+                r.global = true;
+                r.parts = vec![
+                    RefPart {
+                        name: class_ident(&ty, r.span),
+                        subscripts: Vec::new(),
+                    },
+                    literal,
+                ];
             }
             ExprKind::Ref(r) if model && !r.global && !self.instances.is_empty() => {
                 let mut key = crate::eval::var_key(r);
@@ -335,13 +328,7 @@ impl<'a> Printer<'a> {
         if self.enumerations.is_empty() {
             return false;
         }
-        let n = r.parts.len();
-        let ty = r.parts[..n - 1]
-            .iter()
-            .map(|p| p.name.text.as_str())
-            .collect::<Vec<_>>()
-            .join(".");
-        self.enumerations.contains(ty.as_str())
+        self.enumerations.contains(type_part(r).as_str())
             && (r.global || !self.variables.contains(crate::eval::var_key(r).as_str()))
     }
 
@@ -586,10 +573,7 @@ impl<'a> Printer<'a> {
                 branches,
                 otherwise,
             } => self.branches(out, depth, IF, branches, otherwise, true, &item),
-            EquationKind::For { indices, body } => {
-                let head = format!("for {} loop", print::for_indices(indices));
-                block(out, depth, &head, body, "end for", &item);
-            }
+            EquationKind::For { indices, body } => for_loop(out, depth, indices, body, &item),
             EquationKind::When { branches } => {
                 self.branches(out, depth, WHEN, branches, &[], true, &item)
             }
@@ -636,10 +620,7 @@ impl<'a> Printer<'a> {
                 branches,
                 otherwise,
             } => self.branches(out, depth, IF, branches, otherwise, model, &item),
-            StatementKind::For { indices, body } => {
-                let head = format!("for {} loop", print::for_indices(indices));
-                block(out, depth, &head, body, "end for", &item);
-            }
+            StatementKind::For { indices, body } => for_loop(out, depth, indices, body, &item),
             StatementKind::While { condition, body } => {
                 let head = format!("while {} loop", expr(condition));
                 block(out, depth, &head, body, "end while", &item);
@@ -673,6 +654,29 @@ fn block<T>(
     }
     indent(out, depth);
     let _ = writeln!(out, "{end};");
+}
+
+/// The dotted name of every part of `r` but the last: the type of `E.a` when `r`
+/// names an enumeration literal.
+fn type_part(r: &ComponentRef) -> String {
+    let n = r.parts.len();
+    r.parts[..n - 1]
+        .iter()
+        .map(|p| p.name.text.as_str())
+        .collect::<Vec<_>>()
+        .join(".")
+}
+
+/// A `for` loop over `indices` (already indented).
+fn for_loop<T>(
+    out: &mut String,
+    depth: usize,
+    indices: &[ForIndex],
+    body: &[T],
+    item: &dyn Fn(&mut String, &T, usize),
+) {
+    let head = format!("for {} loop", print::for_indices(indices));
+    block(out, depth, &head, body, "end for", item);
 }
 
 fn indent(out: &mut String, depth: usize) {

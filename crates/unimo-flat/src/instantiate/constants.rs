@@ -2,7 +2,7 @@
 //! variables the constant evaluator reads (`Env`).
 
 use super::{Instantiator, MAX_DEPTH};
-use crate::eval::{self, Env, EvalError, Value};
+use crate::eval::{self, Arguments, Env, EvalError, Value};
 use crate::flat::Variability;
 use crate::lookup::Found;
 use crate::modif::Scope;
@@ -123,14 +123,8 @@ impl Env for Instantiator<'_, '_> {
         Some(self.model.vars[id.0 as usize].dims.clone())
     }
 
-    fn call(
-        &mut self,
-        name: &str,
-        positional: Vec<Value>,
-        named: Vec<(String, Value)>,
-        span: Span,
-    ) -> Result<Value, EvalError> {
-        self.call_function(name, positional, named, span)
+    fn call(&mut self, name: &str, args: Arguments, span: Span) -> Result<Value, EvalError> {
+        self.call_function(name, args, span)
     }
 
     fn var(&mut self, key: &str, span: Span) -> Result<Value, EvalError> {

@@ -10,6 +10,32 @@ use unimo_solve::{
     EvalError, JacobianMatrix, Method, Options, SolveError, Solver, Stats, StopReason, System,
 };
 
+/// `impl System` for a test problem: its `rows` (true for a differential one, as many as
+/// unknowns), its right-hand side as a block writing `f` from `y` (and `self`), then
+/// the problem's other methods (Jacobian, roots) as in the impl.
+macro_rules! system {
+    (
+        $ty:ty,
+        rows: $rows:expr,
+        rhs: |$s:ident, $y:ident, $f:ident| $rhs:block
+        $($method:tt)*
+    ) => {
+        impl System for $ty {
+            fn len(&self) -> usize {
+                $rows.len()
+            }
+            fn differential(&self) -> &[bool] {
+                &$rows
+            }
+            fn rhs(&mut $s, _t: f64, $y: &[f64], $f: &mut [f64]) -> Result<(), EvalError> {
+                $rhs
+                Ok(())
+            }
+            $($method)*
+        }
+    };
+}
+
 /// A reference problem: system, initial point, end time, reference solution at the end.
 pub struct Reference {
     pub name: &'static str,
@@ -124,18 +150,13 @@ impl Rober {
     }
 }
 
-impl System for Rober {
-    fn len(&self) -> usize {
-        3
-    }
-    fn differential(&self) -> &[bool] {
-        &[true, true, false]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    Rober,
+    rows: [true, true, false],
+    rhs: |self, y, out| {
         out[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
         out[1] = 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1];
         out[2] = y[0] + y[1] + y[2] - 1.0;
-        Ok(())
     }
     fn jacobian(
         &mut self,
@@ -173,16 +194,11 @@ impl Hires {
     }
 }
 
-impl System for Hires {
-    fn len(&self) -> usize {
-        8
-    }
-    fn differential(&self) -> &[bool] {
-        &[true; 8]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    Hires,
+    rows: [true; 8],
+    rhs: |self, y, f| {
         test_set::hires_rhs(y, f);
-        Ok(())
     }
     fn jacobian(
         &mut self,
@@ -190,32 +206,17 @@ impl System for Hires {
         y: &[f64],
         jac: &mut JacobianMatrix,
     ) -> Result<bool, EvalError> {
+        // One row of the Jacobian a line.
+        #[rustfmt::skip]
         let entries = [
-            (0, 0, -1.71),
-            (0, 1, 0.43),
-            (0, 2, 8.32),
-            (1, 0, 1.71),
-            (1, 1, -8.75),
-            (2, 2, -10.03),
-            (2, 3, 0.43),
-            (2, 4, 0.035),
-            (3, 1, 8.32),
-            (3, 2, 1.71),
-            (3, 3, -1.12),
-            (4, 4, -1.745),
-            (4, 5, 0.43),
-            (4, 6, 0.43),
-            (5, 3, 0.69),
-            (5, 4, 1.71),
-            (5, 5, -0.43 - 280.0 * y[7]),
-            (5, 6, 0.69),
-            (5, 7, -280.0 * y[5]),
-            (6, 5, 280.0 * y[7]),
-            (6, 6, -1.81),
-            (6, 7, 280.0 * y[5]),
-            (7, 5, -280.0 * y[7]),
-            (7, 6, 1.81),
-            (7, 7, -280.0 * y[5]),
+            (0, 0, -1.71), (0, 1, 0.43), (0, 2, 8.32),
+            (1, 0, 1.71), (1, 1, -8.75),
+            (2, 2, -10.03), (2, 3, 0.43), (2, 4, 0.035),
+            (3, 1, 8.32), (3, 2, 1.71), (3, 3, -1.12),
+            (4, 4, -1.745), (4, 5, 0.43), (4, 6, 0.43),
+            (5, 3, 0.69), (5, 4, 1.71), (5, 5, -0.43 - 280.0 * y[7]), (5, 6, 0.69), (5, 7, -280.0 * y[5]),
+            (6, 5, 280.0 * y[7]), (6, 6, -1.81), (6, 7, 280.0 * y[5]),
+            (7, 5, -280.0 * y[7]), (7, 6, 1.81), (7, 7, -280.0 * y[5]),
         ];
         for (i, j, v) in entries {
             jac.set(i, j, v);
@@ -240,17 +241,12 @@ impl VanDerPol {
     }
 }
 
-impl System for VanDerPol {
-    fn len(&self) -> usize {
-        2
-    }
-    fn differential(&self) -> &[bool] {
-        &[true, true]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    VanDerPol,
+    rows: [true, true],
+    rhs: |self, y, f| {
         f[0] = y[1];
         f[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / self.epsilon;
-        Ok(())
     }
     fn jacobian(
         &mut self,
@@ -270,17 +266,12 @@ pub struct VanDerPolUnscaled {
     pub mu: f64,
 }
 
-impl System for VanDerPolUnscaled {
-    fn len(&self) -> usize {
-        2
-    }
-    fn differential(&self) -> &[bool] {
-        &[true, true]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    VanDerPolUnscaled,
+    rows: [true, true],
+    rhs: |self, y, f| {
         f[0] = y[1];
         f[1] = self.mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
-        Ok(())
     }
 }
 
@@ -289,16 +280,11 @@ pub struct Dahlquist {
     pub lambda: f64,
 }
 
-impl System for Dahlquist {
-    fn len(&self) -> usize {
-        1
-    }
-    fn differential(&self) -> &[bool] {
-        &[true]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    Dahlquist,
+    rows: [true],
+    rhs: |self, y, f| {
         f[0] = self.lambda * y[0];
-        Ok(())
     }
 }
 
@@ -317,38 +303,28 @@ impl Kepler {
     }
 }
 
-impl System for Kepler {
-    fn len(&self) -> usize {
-        4
-    }
-    fn differential(&self) -> &[bool] {
-        &[true; 4]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    Kepler,
+    rows: [true; 4],
+    rhs: |self, y, f| {
         let r2 = y[0] * y[0] + y[1] * y[1];
         let r3 = r2 * r2.sqrt();
         f[0] = y[2];
         f[1] = y[3];
         f[2] = -y[0] / r3;
         f[3] = -y[1] / r3;
-        Ok(())
     }
 }
 
 /// Harmonic oscillator `x'' = -x`: `x = cos t`, `v = -sin t` from `(1, 0)`.
 pub struct Harmonic;
 
-impl System for Harmonic {
-    fn len(&self) -> usize {
-        2
-    }
-    fn differential(&self) -> &[bool] {
-        &[true, true]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    Harmonic,
+    rows: [true, true],
+    rhs: |self, y, f| {
         f[0] = y[1];
         f[1] = -y[0];
-        Ok(())
     }
 }
 
@@ -357,17 +333,12 @@ pub struct BouncingBall {
     pub gravity: f64,
 }
 
-impl System for BouncingBall {
-    fn len(&self) -> usize {
-        2
-    }
-    fn differential(&self) -> &[bool] {
-        &[true, true]
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+system! {
+    BouncingBall,
+    rows: [true, true],
+    rhs: |self, y, f| {
         f[0] = y[1];
         f[1] = -self.gravity;
-        Ok(())
     }
     fn n_roots(&self) -> usize {
         1
