@@ -226,12 +226,7 @@ impl<T: LuScalar> StaticLu<T> {
             }
         }
         let schur = &mut self.schur[front.schur..front.schur + r * r];
-        for j in 0..r {
-            let target = &mut schur[j * r..(j + 1) * r];
-            for p in 0..k {
-                axpy(target, &lower[k + p * m..(p + 1) * m], upper[p + j * k]);
-            }
-        }
+        schur_update(schur, &lower[k..], m, upper, k, r);
         Ok(())
     }
 
@@ -316,6 +311,51 @@ impl<T: LuScalar> StaticLu<T> {
         }
         for (new, &old) in self.old_of_new.iter().enumerate() {
             rhs[old] = self.work[new];
+        }
+    }
+}
+
+/// `S -= L21 U12` for an `r × r` block `S`, `L21` the `r × k` block at `lower` (column
+/// stride `m`) and `U12` the `k × r` block `upper`: four columns of `S` at a time, so that
+/// each load of `L21` serves four of them.
+fn schur_update<T: LuScalar>(
+    schur: &mut [T],
+    lower: &[T],
+    m: usize,
+    upper: &[T],
+    k: usize,
+    r: usize,
+) {
+    if r == 0 {
+        return;
+    }
+    let mut blocks = schur.chunks_exact_mut(4 * r);
+    for (block, j) in (&mut blocks).zip((0..).step_by(4)) {
+        let (s0, rest) = block.split_at_mut(r);
+        let (s1, rest) = rest.split_at_mut(r);
+        let (s2, s3) = rest.split_at_mut(r);
+        for p in 0..k {
+            let l = &lower[p * m..p * m + r];
+            let u = [
+                upper[p + j * k],
+                upper[p + (j + 1) * k],
+                upper[p + (j + 2) * k],
+                upper[p + (j + 3) * k],
+            ];
+            for i in 0..r {
+                let li = l[i];
+                s0[i] -= li * u[0];
+                s1[i] -= li * u[1];
+                s2[i] -= li * u[2];
+                s3[i] -= li * u[3];
+            }
+        }
+    }
+    let done = r - blocks.into_remainder().len() / r;
+    for j in done..r {
+        let target = &mut schur[j * r..(j + 1) * r];
+        for p in 0..k {
+            axpy(target, &lower[p * m..p * m + r], upper[p + j * k]);
         }
     }
 }
