@@ -15,7 +15,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
 use crate::small_lu::SmallLu;
-use crate::sparse_lu::StaticLu;
+use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
 use crate::system::{JacobianMatrix, SparsityPattern};
 use std::cell::Cell;
 use std::time::Instant;
@@ -127,6 +127,9 @@ struct SparseBackend<T: LuScalar> {
     /// Whether `diagonal` was analysed yet, and whether it holds the last factorization.
     diagonal_analyzed: bool,
     diagonal_factored: bool,
+    /// The least work per stored entry for which `diagonal` is used
+    /// (`sparse_lu::MIN_WORK_PER_ENTRY`; 0 in tests of small matrices).
+    diagonal_min_work: f64,
     pattern: SparsityPattern,
     diagonal_positions: Vec<usize>,
     /// Position in `pattern` of each stored entry of the Jacobian's own pattern.
@@ -187,6 +190,7 @@ impl<T: LuScalar> ShiftedLu<T> {
                 diagonal: None,
                 diagonal_analyzed: false,
                 diagonal_factored: false,
+                diagonal_min_work: MIN_WORK_PER_ENTRY,
                 pattern,
                 diagonal_positions,
                 jacobian_positions: None,
@@ -196,6 +200,14 @@ impl<T: LuScalar> ShiftedLu<T> {
                 factored: false,
                 buffer: None,
             })),
+        }
+    }
+
+    /// The multifrontal LU tried whatever its work per entry (tests of small matrices).
+    #[cfg(test)]
+    pub(crate) fn always_try_diagonal(&mut self) {
+        if let Backend::Sparse(sparse) = &mut self.backend {
+            sparse.diagonal_min_work = 0.0;
         }
     }
 
@@ -310,7 +322,7 @@ impl<T: LuScalar> SparseBackend<T> {
         self.diagonal_factored = false;
         if !self.diagonal_analyzed {
             self.diagonal_analyzed = true;
-            self.diagonal = StaticLu::analyze(&self.pattern).map(Box::new);
+            self.diagonal = StaticLu::analyze(&self.pattern, self.diagonal_min_work).map(Box::new);
         }
         if let Some(diagonal) = &mut self.diagonal {
             if diagonal.factor(&self.values).is_ok() {
@@ -483,6 +495,7 @@ mod tests {
         }
         let differential = [true, true, true, false];
         let mut lu = ShiftedLu::<f64>::sparse(&pattern);
+        lu.always_try_diagonal();
         lu.factor(&jacobian, &differential, 5.0).unwrap();
         let Backend::Sparse(sparse) = &lu.backend else {
             panic!("not sparse");
