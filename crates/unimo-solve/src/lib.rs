@@ -89,6 +89,7 @@ mod radau5;
 mod roots;
 mod small_lu;
 mod solver;
+mod sparse_lu;
 mod stats;
 mod step_control;
 mod system;

@@ -3,8 +3,9 @@
 //! block): below [`SMALL_DENSE_LIMIT`] unknowns our own row-major partial-pivoting LU
 //! (`small_lu.rs`: faer's blocked kernels cost more in set-up than they save on an 18 x 18
 //! matrix); above it faer's dense partial-pivoting LU factored in place in preallocated
-//! storage, or faer's sparse LU (symbolic analysis once, numeric factorization on every
-//! refactor) on the Jacobian's pattern plus the diagonal.
+//! storage, or a sparse LU (symbolic analysis once, numeric factorization on every
+//! refactor) on the Jacobian's pattern plus the diagonal: our multifrontal LU with diagonal
+//! pivots (`sparse_lu.rs`) while it accepts its pivots, faer's with partial pivoting after.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor as dense_factor, solve as dense_solve};
@@ -14,6 +15,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
 use crate::small_lu::SmallLu;
+use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
 use crate::system::{JacobianMatrix, SparsityPattern};
 use std::cell::Cell;
 use std::time::Instant;
@@ -66,6 +68,7 @@ pub(crate) trait LuScalar:
     + std::ops::Div<Output = Self>
     + std::ops::AddAssign
     + std::ops::SubAssign
+    + std::ops::MulAssign
 {
     /// Nonzero and finite.
     fn is_usable_pivot(self) -> bool;
@@ -117,6 +120,16 @@ enum Backend<T: LuScalar> {
 }
 
 struct SparseBackend<T: LuScalar> {
+    /// The multifrontal LU with diagonal pivots (`sparse_lu.rs`), tried first; `None` when
+    /// its analysis failed or it refused a pivot once (then faer's LU with partial pivoting
+    /// factors every matrix).
+    diagonal: Option<Box<StaticLu<T>>>,
+    /// Whether `diagonal` was analysed yet, and whether it holds the last factorization.
+    diagonal_analyzed: bool,
+    diagonal_factored: bool,
+    /// The least work per stored entry for which `diagonal` is used
+    /// (`sparse_lu::MIN_WORK_PER_ENTRY`; 0 in tests of small matrices).
+    diagonal_min_work: f64,
     pattern: SparsityPattern,
     diagonal_positions: Vec<usize>,
     /// Position in `pattern` of each stored entry of the Jacobian's own pattern.
@@ -174,6 +187,10 @@ impl<T: LuScalar> ShiftedLu<T> {
         ShiftedLu {
             size,
             backend: Backend::Sparse(Box::new(SparseBackend {
+                diagonal: None,
+                diagonal_analyzed: false,
+                diagonal_factored: false,
+                diagonal_min_work: MIN_WORK_PER_ENTRY,
                 pattern,
                 diagonal_positions,
                 jacobian_positions: None,
@@ -183,6 +200,14 @@ impl<T: LuScalar> ShiftedLu<T> {
                 factored: false,
                 buffer: None,
             })),
+        }
+    }
+
+    /// The multifrontal LU tried whatever its work per entry (tests of small matrices).
+    #[cfg(test)]
+    pub(crate) fn always_try_diagonal(&mut self) {
+        if let Backend::Sparse(sparse) = &mut self.backend {
+            sparse.diagonal_min_work = 0.0;
         }
     }
 
@@ -248,9 +273,14 @@ impl<T: LuScalar> ShiftedLu<T> {
 
     fn solve_untimed(&mut self, rhs: &mut [T]) {
         let size = self.size;
-        if let Backend::Small(small) = &mut self.backend {
-            small.solve(rhs);
-            return;
+        match &mut self.backend {
+            Backend::Small(small) => return small.solve(rhs),
+            Backend::Sparse(sparse) if sparse.diagonal_factored => {
+                if let Some(diagonal) = &mut sparse.diagonal {
+                    return diagonal.solve(rhs);
+                }
+            }
+            _ => {}
         }
         let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, size, 1);
         match &mut self.backend {
@@ -289,6 +319,23 @@ impl<T: LuScalar> SparseBackend<T> {
         for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
             self.values[self.diagonal_positions[i]] += shift;
         }
+        self.diagonal_factored = false;
+        if !self.diagonal_analyzed {
+            self.diagonal_analyzed = true;
+            self.diagonal = StaticLu::analyze(&self.pattern, self.diagonal_min_work).map(Box::new);
+        }
+        if let Some(diagonal) = &mut self.diagonal {
+            if diagonal.factor(&self.values).is_ok() {
+                self.diagonal_factored = true;
+                return Ok(());
+            }
+            self.diagonal = None;
+        }
+        self.factor_pivoting()
+    }
+
+    /// faer's sparse LU with partial pivoting of the assembled `values`.
+    fn factor_pivoting(&mut self) -> Result<(), SingularMatrix> {
         let size = self.pattern.size();
         let symbolic_matrix = SymbolicSparseColMatRef::new_checked(
             size,
@@ -420,6 +467,47 @@ mod tests {
     #[test]
     fn sparse_solves_shifted_system() {
         check_residual(true);
+    }
+
+    /// A zero diagonal that the elimination order meets first (the algebraic row 3, of the
+    /// least degree: coupled to row 0 only): the diagonal LU refuses it and faer's pivoting LU solves.
+    #[test]
+    fn a_refused_diagonal_pivot_falls_back_to_partial_pivoting() {
+        let entries = [
+            (0, 0, 1.0),
+            (1, 1, 2.0),
+            (2, 2, 3.0),
+            (1, 2, 1.0),
+            (2, 1, 1.0),
+            (0, 1, 0.5),
+            (1, 0, 0.5),
+            (0, 2, 0.5),
+            (2, 0, 0.5),
+        ];
+        let entries = entries
+            .into_iter()
+            .chain([(3, 0, 1.0), (0, 3, 1.0), (3, 3, 0.0)]);
+        let entries: Vec<_> = entries.collect();
+        let pattern = SparsityPattern::from_entries(4, entries.iter().map(|e| (e.0, e.1))).unwrap();
+        let mut jacobian = JacobianMatrix::sparse(pattern.clone());
+        for &(i, j, v) in &entries {
+            jacobian.set(i, j, v);
+        }
+        let differential = [true, true, true, false];
+        let mut lu = ShiftedLu::<f64>::sparse(&pattern);
+        lu.always_try_diagonal();
+        lu.factor(&jacobian, &differential, 5.0).unwrap();
+        let Backend::Sparse(sparse) = &lu.backend else {
+            panic!("not sparse");
+        };
+        assert!(sparse.diagonal.is_none() && !sparse.diagonal_factored);
+        let mut x = [1.0, 2.0, 3.0, 4.0];
+        lu.solve(&mut x);
+        for (i, expected) in [1.0, 2.0, 3.0, 4.0].iter().enumerate() {
+            let m = |i: usize, j: usize| if i == j && differential[i] { 5.0 } else { 0.0 };
+            let value: f64 = (0..4).map(|j| (m(i, j) - jacobian.get(i, j)) * x[j]).sum();
+            assert!((value - expected).abs() < 1e-14, "row {i}: {value}");
+        }
     }
 
     #[test]

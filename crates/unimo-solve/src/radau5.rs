@@ -6,14 +6,17 @@
 //!   (dense LU, ours below 32 unknowns and faer's above, or faer's sparse LU). Newton
 //!   starts from the previous step's collocation polynomial.
 //!   The contraction `θ` is monitored; a predicted failure (`θ ≥ 0.99`, or
-//!   `θ^(k_max - k) / (1 - θ) ||Δ|| > κ`) shrinks the step at once.
+//!   `θ^(k_max - k) / (1 - θ) ||Δ|| > κ`) shrinks the step at once. The iteration stops when
+//!   `θ / (1 - θ) ||Δ|| ≤ κ`; at its first iteration `θ` is the last step's (Hairer's
+//!   `FACCON ** 0.8`) only while the factorization is the same, and 1 after a new one.
 //! * Tolerances are transformed as in RADAU5 (`rtol' = 0.1 rtol^(2/3)`,
 //!   `atol' = rtol' atol / rtol`) because the embedded estimate is of order 3 while the method
 //!   has order 5: the achieved accuracy then tracks the requested one.
 //! * Error estimate: `err = (γ/h M - J)^-1 (f(t, x) + M (e1 z1 + e2 z2 + e3 z3)/h)`, the filter
 //!   `(γ/h M - J)^-1` damps the stiff components; at the first step and after a rejection it is
 //!   applied a second time (`f` re-evaluated at `x + err`). Norm: RMS of `err_i / sc_i`,
-//!   `sc_i = atol'_i + rtol'_i |x_i|` (algebraic components included, unscaled: index 1).
+//!   `sc_i = atol'_i + rtol'_i |x_i|` with `x` at the step's start, as RADAU5's `SCAL`
+//!   (algebraic components included, unscaled: index 1).
 //! * Step control: `h_new = h / clamp(err^(1/4) / fac, 1/8, 5)` with
 //!   `fac = min(0.9, 0.9 (1 + 2 k_max) / (k + 2 k_max))`, combined with Gustafsson's
 //!   predictive controller. The Jacobian is reused while `θ ≤ 0.001`; the LU is reused when in
@@ -187,7 +190,12 @@ pub struct Radau5 {
     scale: Vec<f64>,
     error_vector: Vec<f64>,
     theta: f64,
+    /// `θ / (1 - θ)` of the last Newton iteration that measured `θ`: with it, an iteration
+    /// whose first correction is small enough counts as converged.
     contraction_factor: f64,
+    /// The iteration matrices were factored anew since the last Newton iteration: the
+    /// contraction measured with the old ones does not carry over.
+    refactored: bool,
     reuse: ReusePolicy,
     newton_tolerance: f64,
     first_step: bool,
@@ -282,6 +290,7 @@ impl Radau5 {
             error_vector: zeros(),
             theta: ReusePolicy::for_size(size).theta,
             contraction_factor: 1.0,
+            refactored: true,
             reuse: ReusePolicy::for_size(size),
             newton_tolerance,
             first_step: true,
@@ -412,6 +421,7 @@ impl Radau5 {
                 .factor(matrix, differential, c64::new(alpha / h, beta / h))
                 .is_ok();
         self.factored_for = if complex_ok { Some(h) } else { None };
+        self.refactored = true;
         complex_ok
     }
 
@@ -501,7 +511,15 @@ impl Radau5 {
     /// Simplified Newton iteration for the stage increments of step `h`.
     fn newton(&mut self, system: &mut dyn System, h: f64) -> NewtonOutcome {
         self.newton_start(h);
-        self.contraction_factor = self.contraction_factor.max(f64::EPSILON).powf(0.8);
+        // Hairer carries the contraction over (`FACCON ** 0.8`), so that one iteration may
+        // suffice; with a new factorization (another step size, or a new Jacobian) it is
+        // that of another matrix, and a first correction far above the tolerance would be
+        // accepted unchecked. As CVODE resets its rate at every new matrix, it starts at 1.
+        self.contraction_factor = if std::mem::take(&mut self.refactored) {
+            1.0
+        } else {
+            self.contraction_factor.max(f64::EPSILON).powf(0.8)
+        };
         self.theta = self.reuse.theta;
         let mut iterations = 0usize;
         let mut previous_norm = 0.0f64;

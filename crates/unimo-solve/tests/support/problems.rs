@@ -1,5 +1,5 @@
 //! Test problems shared by the tests, the benchmark and the work-precision example: ROBER
-//! (as a DAE), HIRES, VDPOL from the Bari/CWI test set, plus small problems with known
+//! (as a DAE), HIRES, VDPOL, POLLU from the Bari/CWI test set, plus small problems with known
 //! solutions.
 #![allow(dead_code, clippy::excessive_precision)]
 
@@ -222,6 +222,33 @@ system! {
             jac.set(i, j, v);
         }
         Ok(true)
+    }
+}
+
+/// POLLU: air pollution, 20 stiff ODEs (Jacobian by finite differences).
+pub struct Pollu;
+
+impl Pollu {
+    pub fn reference() -> Reference {
+        Reference {
+            name: "POLLU",
+            t_end: test_set::POLLU_T_END,
+            x0: test_set::POLLU_Y0.to_vec(),
+            solution: test_set::POLLU_REF.to_vec(),
+        }
+    }
+}
+
+impl System for Pollu {
+    fn len(&self) -> usize {
+        20
+    }
+    fn differential(&self) -> &[bool] {
+        &[true; 20]
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) -> Result<(), EvalError> {
+        test_set::pollu_rhs(y, f);
+        Ok(())
     }
 }
 
