@@ -1191,7 +1191,10 @@ fn an_explicit_method_on_a_stiff_model_says_so() {
         String::from_utf8_lossy(&out.stderr).into_owned()
     };
     let explicit = run("dopri5");
-    assert!(explicit.contains("note: the problem looks stiff from t = "), "{explicit}");
+    assert!(
+        explicit.contains("note: the problem looks stiff from t = "),
+        "{explicit}"
+    );
     for method in ["bdf", "radau5"] {
         let implicit = run(method);
         assert!(!implicit.contains("looks stiff"), "{method}: {implicit}");
