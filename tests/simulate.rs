@@ -1184,11 +1184,16 @@ fn an_explicit_method_on_a_stiff_model_says_so() {
             "tests/simulate/StiffTracking.mo",
             "--method",
             method,
+            "--stats",
             "-o",
             "/dev/null",
         ]);
         common::assert_success(&out);
-        String::from_utf8_lossy(&out.stderr).into_owned()
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        // Scripts read the `--stats` object as the last line of a run that ends well.
+        let last = stderr.trim_end().lines().last().unwrap_or("");
+        assert!(last.starts_with("{\"method\""), "{method}: {stderr}");
+        stderr
     };
     let explicit = run("dopri5");
     assert!(

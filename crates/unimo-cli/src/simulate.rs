@@ -179,6 +179,14 @@ fn simulate_flat(
             return code;
         }
     }
+    // Before the `--stats` line, which scripts read as the last line of a run that ends well.
+    if let Some(t) = result.stiff_since {
+        eprintln!(
+            "note: the problem looks stiff from t = {t}: the explicit method's step size \
+             is limited there by its stability, not by the tolerance (Hairer's test); an \
+             implicit method (`--method radau5` or `bdf`) may take fewer steps"
+        );
+    }
     if a.stats {
         print_stats(
             options.method,
@@ -239,13 +247,6 @@ fn how_it_ended(dae: &Dae, map: &SourceMap, result: &SimResult, start: f64) -> i
         eprintln!(
             "note: terminate() at t = {}: {msg}",
             result.times.last().copied().unwrap_or(start)
-        );
-    }
-    if let Some(t) = result.stiff_since {
-        eprintln!(
-            "note: the problem looks stiff from t = {t}: the explicit method's step size \
-             is limited there by its stability, not by the tolerance (Hairer's test); an \
-             implicit method (`--method radau5` or `bdf`) may take fewer steps"
         );
     }
     match &result.error {
