@@ -180,13 +180,7 @@ fn simulate_flat(
         }
     }
     // Before the `--stats` line, which scripts read as the last line of a run that ends well.
-    if let Some(t) = result.stiff_since {
-        eprintln!(
-            "note: the problem looks stiff from t = {t}: the explicit method's step size \
-             is limited there by its stability, not by the tolerance (Hairer's test); an \
-             implicit method (`--method radau5` or `bdf`) may take fewer steps"
-        );
-    }
+    stiffness_note(&result);
     if a.stats {
         print_stats(
             options.method,
@@ -239,6 +233,17 @@ pub(crate) fn native_or_tape(
         eprintln!("note: {msg}; running on the tape");
         None
     })
+}
+
+/// Says when the explicit method found the problem stiff ([`SimResult::stiff_since`]).
+fn stiffness_note(result: &SimResult) {
+    if let Some(t) = result.stiff_since {
+        eprintln!(
+            "note: the problem looks stiff from t = {t}: the explicit method's step size \
+             is limited there by its stability, not by the tolerance (Hairer's test); an \
+             implicit method (`--method radau5` or `bdf`) may take fewer steps"
+        );
+    }
 }
 
 /// Reports a `terminate()` and a failure; the exit code of the run.
