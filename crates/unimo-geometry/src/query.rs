@@ -284,6 +284,10 @@ fn snap_to_cap_axis(shapes: [(&Shape, &Placement, Pose); 2], points: &mut [Conta
     let Some(first) = points.first() else {
         return;
     };
+    // Only round caps turn with the azimuth: other pairs keep parry's normal unexamined.
+    if shapes.iter().all(|(s, p, _)| cap_axis(s, p).is_none()) {
+        return;
+    }
     let n = first.normal;
     let [(a, _, posa), (b, _, posb)] = &shapes;
     let overlap = |c: V3| overlap_along(a, posa, b, posb, c);
