@@ -465,3 +465,39 @@ fn edge_and_change_fire_at_the_switches() {
         close(changes(&r, "switches"), &[0.25, 0.75, 1.25, 1.75]);
     }
 }
+
+/// A ball without a resting rule past its Zeno time (`tests/extreme/LowBall.mo`): its
+/// last bounces are lower than the rounding noise in `h`, where `h < 0` stays true
+/// through a bounce and the ball would fall through the floor with exit status 0
+/// (h = -309 m at t = 12 for h0 = 1 before `sim/zeno.rs`). Every method and tolerance
+/// stops with a code at the Zeno time instead, and no row is below the floor.
+#[test]
+fn a_ball_past_its_zeno_time_stops_there_instead_of_falling_through() {
+    let (g, e): (f64, f64) = (9.81, 0.8);
+    for (model, h0) in [("LowBall", 1.0), ("LowBall2", 2.0), ("LowBall5", 5.0)] {
+        let zeno = (2.0 * h0 / g).sqrt() * (1.0 + e) / (1.0 - e);
+        let m = common::load("tests/extreme/LowBall.mo", Some(model));
+        for method in [Method::Bdf, Method::Radau5, Method::Dopri5] {
+            for rtol in [1e-4, 1e-6, 1e-8] {
+                let r = simulate(
+                    &m.compiled,
+                    &common::sim_options(method, rtol, 0.0, 20.0, 0.05),
+                );
+                let case = format!("{model} {method:?} {rtol:e}");
+                let code = r.error.as_ref().map(SimError::code);
+                assert!(
+                    matches!(code, Some("E4006" | "E4008")),
+                    "{case}: {:?}",
+                    r.error.as_ref().map(SimError::message)
+                );
+                let lowest = column(&r, "h").into_iter().fold(f64::INFINITY, f64::min);
+                assert!(lowest > -1e-12, "{case}: h = {lowest}");
+                let end = *r.times.last().unwrap();
+                assert!(
+                    (end - zeno).abs() < 1e-6,
+                    "{case}: stopped at {end}, Zeno time {zeno}"
+                );
+            }
+        }
+    }
+}

@@ -23,6 +23,7 @@ mod refine;
 mod run;
 mod starts;
 pub mod stepper;
+mod zeno;
 
 /// Internal steps of one simulation before it is stopped.
 const MAX_STEPS: u64 = 20_000_000;
@@ -149,6 +150,15 @@ pub enum SimError {
         /// across zero from both sides), not close in time.
         sliding: bool,
     },
+    /// The events of a zero crossing accumulated below the rounding noise, and after
+    /// the last one's reinit its function went on past zero instead of back (see
+    /// `sim/zeno.rs`).
+    #[error("Zeno point near t = {time}: the events of the zero crossing `{crossing}` accumulated until its function no longer left its rounding-noise band (relative {ROOT_NOISE:e}) between them, and after the last one's reinit it went on past zero instead of back ({events} events): the model's motion is lost here (a bouncing ball would fall through its floor); the model does not say what follows the accumulation, e.g. a resting or sticking state that ends it")]
+    Zeno {
+        time: f64,
+        crossing: String,
+        events: usize,
+    },
     /// A result value became NaN or infinite.
     #[error("`{variable}` is {value} at t = {time}{}{}", step_note(.step), .equation.map(|e| format!(", computed by equation #{}", e.0)).unwrap_or_default())]
     NonFinite {
@@ -187,6 +197,7 @@ impl SimError {
             SimError::EventIteration { .. } => "E4005",
             SimError::Chattering { .. } => "E4006",
             SimError::NonFinite { .. } => "E4007",
+            SimError::Zeno { .. } => "E4008",
         }
     }
 
@@ -282,6 +293,17 @@ struct Ode<'a> {
     /// The relations disagreeing with their operands at the latest time the root
     /// functions were evaluated since the last event (see `crossings::disagreements`).
     last_roots: (f64, Crossed),
+    /// Per root function: the earliest time since its last event at which it was
+    /// outside twice its rounding-noise band (inside the band [`Ode::roots`] reports it
+    /// as exactly zero), infinite if never (see `zeno`).
+    left_noise: Vec<f64>,
+    /// Per root function: after an event of it that happened inside its noise band and
+    /// reinitialized a state, the side it crossed to (true: negative). Cleared when it
+    /// leaves twice the band on the other side or fires again (see `zeno`).
+    zeno_watch: Vec<Option<bool>>,
+    /// A watched root function left twice its band on the side it had crossed to:
+    /// (root, time). The run stops at a Zeno point (`SimError::Zeno`).
+    zeno_hit: Option<(usize, f64)>,
     /// Where the nonlinear loops' Newton iterations start (see [`starts`]).
     loop_starts: LoopStarts,
     /// While a solver step runs (`Some`): the point the registers hold the plan's
@@ -463,11 +485,12 @@ impl System for Ode<'_> {
             // difference inside that noise counts as exactly zero, which the root tracker
             // never reports while it stays there (e.g. a contact force that is 0 in flight
             // and comes out of its block as +-1e-50).
-            out[k] = if g.abs() <= ROOT_NOISE * a.abs().max(b.abs()).max(1.0) {
-                0.0
-            } else {
-                g
-            };
+            let noise = ROOT_NOISE * a.abs().max(b.abs()).max(1.0);
+            out[k] = if g.abs() <= noise { 0.0 } else { g };
+            // A located crossing lies just outside the band: twice its width is out.
+            if g.abs() > 2.0 * noise {
+                zeno::outside(self, k, t, g < 0.0);
+            }
         }
         if t >= self.last_roots.0 {
             self.last_roots = (t, crossings::disagreements(self.m, &self.regs, &self.ev));
@@ -586,6 +609,9 @@ impl<'a> Simulator<'a> {
             differential: vec![true; m.states.len() + usize::from(clock)],
             clock,
             last_roots: (f64::NEG_INFINITY, Vec::new()),
+            left_noise: vec![f64::NEG_INFINITY; m.roots.len()],
+            zeno_watch: vec![None; m.roots.len()],
+            zeno_hit: None,
             evaluations: 0,
             eval_seconds: 0.0,
             last_failure: None,
@@ -872,6 +898,10 @@ mod tests {
             (
                 SimError::Chattering { time: 1.0, crossing: "x > 0".into(), events: 7, sliding: true },
                 "chattering at t = 1: 7 events in a row where the flow drives the zero crossing `x > 0` back across zero from both sides (a sliding mode)",
+            ),
+            (
+                SimError::Zeno { time: 4.0, crossing: "z0: h < 0".into(), events: 72 },
+                "Zeno point near t = 4: the events of the zero crossing `z0: h < 0` accumulated until its function no longer left its rounding-noise band (relative 1e-14) between them, and after the last one's reinit it went on past zero instead of back (72 events): the model's motion is lost here (a bouncing ball would fall through its floor); the model does not say what follows the accumulation, e.g. a resting or sticking state that ends it",
             ),
             (
                 SimError::NonFinite {

@@ -271,6 +271,7 @@ impl Simulator<'_> {
         self.project(solver.as_deref_mut(), t, &mut x)?;
         self.load_state(t, &x)?;
         self.record(t);
+        let quiet = self.ode.quiet_crossings(t, components);
         for &(k, dir) in components {
             self.force_crossing(k, dir);
         }
@@ -290,6 +291,9 @@ impl Simulator<'_> {
             .join(", ");
         let first = components.first().map(|c| c.0);
         self.after_event(t, what, first, solver.as_deref_mut())?;
+        if self.states() != x {
+            self.ode.watch_quiet_reinits(&quiet);
+        }
         let mut settled = self.settle_relations(t, components);
         if settled.fires {
             // The relations just after t make a `when` condition true: it fires now.

@@ -254,6 +254,8 @@ impl Simulator<'_> {
                 reason = StopReason::Root { t, components };
             }
         }
+        // A Zeno point inside the step: its rows would show the lost motion.
+        self.take_zeno(now)?;
         run.steps_taken += 1;
         if !matches!(reason, StopReason::Root { .. }) && self.m().collision.is_some() {
             let x = solver.state().to_vec();
