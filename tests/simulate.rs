@@ -60,6 +60,11 @@ fn run(
     r
 }
 
+/// [`run`] of the model in `file` with BDF at rtol 1e-8, atol 1e-10.
+fn run_file(file: &str, stop: f64, points: usize) -> SimResult {
+    run(&load(file), Method::Bdf, 1e-8, 1e-10, stop, points)
+}
+
 /// Asserts `|got - want| < tol`; `what` names the value when it fails.
 #[track_caller]
 fn assert_near(got: f64, want: f64, tol: f64, what: impl std::fmt::Display) {
@@ -195,7 +200,7 @@ fn guarded_ball_rests_past_the_zeno_time() {
     assert_eq!(value(&r, "v"), 0.0);
     // It came to rest at the Zeno time (within the guard's speed).
     let rest = r.events.last().unwrap().time;
-    assert!((rest - 12.850588106343585).abs() < 1e-6, "rested at {rest}");
+    assert_near(rest, 12.850588106343585, 1e-6, "time of rest");
 }
 
 #[test]
@@ -302,8 +307,8 @@ fn pruning_keeps_what_initialization_reads() {
     let k = column_of(&r, "y");
     let y0 = r.rows[0][k];
     let y1 = r.rows.last().unwrap()[k];
-    assert!((y0 - 3.0).abs() < 1e-12, "y(0) = {y0}, pruned {pruned}");
-    assert!((y1 - 3.0 * (-1.0f64).exp()).abs() < 1e-6, "y(1) = {y1}");
+    assert_near(y0, 3.0, 1e-12, format_args!("y(0), pruned {pruned}"));
+    assert_near(y1, 3.0 * (-1.0f64).exp(), 1e-6, "y(1)");
 }
 
 /// Pruning reaches events: a relation that only a left-out equation holds is no zero
@@ -354,9 +359,8 @@ fn pruning_keeps_fixed_starts_of_dummy_states() {
     let exact =
         |t: f64| 1.5 - 0.5 * (-d * t / 2.0).exp() * ((w * t).cos() + d / (2.0 * w) * (w * t).sin());
     for (t, row) in r.times.iter().zip(&r.rows) {
-        let got = row[k];
         assert_near(
-            got,
+            row[k],
             exact(*t),
             1e-6,
             format_args!("s_rel({t}), pruned {pruned}"),
@@ -368,11 +372,9 @@ fn pruning_keeps_fixed_starts_of_dummy_states() {
 /// t = -0.035 + 0.1 k, so at t = 0.3 it has stepped three times, last at t = 0.265.
 #[test]
 fn time_events_fire_in_models_without_states() {
-    let m = load("tests/simulate/StatelessTimeEvents.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.3, 3);
+    let r = run_file("tests/simulate/StatelessTimeEvents.mo", 0.3, 3);
     assert_eq!(value(&r, "count"), 3.0);
-    let t_start = value(&r, "T_start");
-    assert!((t_start - 0.265).abs() < 1e-9, "T_start = {t_start}");
+    assert_near(value(&r, "T_start"), 0.265, 1e-9, "T_start");
     assert_eq!(r.stats.events, 3, "{}", counters(&r));
 }
 
@@ -380,10 +382,8 @@ fn time_events_fire_in_models_without_states() {
 /// x = t up to t = 1, then x = 2 - t (with pre(y) = false it would fall from the start).
 #[test]
 fn initial_equations_of_pre_values_set_the_state_before_the_start() {
-    let m = load("tests/simulate/PreInitialEquation.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.6, 4);
-    let x = value(&r, "x");
-    assert!((x - 0.4).abs() < 1e-6, "x(1.6) = {x}");
+    let r = run_file("tests/simulate/PreInitialEquation.mo", 1.6, 4);
+    assert_near(value(&r, "x"), 0.4, 1e-6, "x(1.6)");
     assert_eq!(r.stats.events, 1, "{}", counters(&r));
 }
 
@@ -391,10 +391,8 @@ fn initial_equations_of_pre_values_set_the_state_before_the_start() {
 /// branch is 1x2 is decided by the parameter: sum(m) = 2 + 1 + 2 + 3 + 4 + 5 = 17.
 #[test]
 fn structural_if_bindings_of_different_sizes_take_their_branch() {
-    let m = load("tests/simulate/StructuralIfSizes.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
-    let y = value(&r, "y");
-    assert!((y - 17.0).abs() < 1e-12, "y(1) = {y}");
+    let r = run_file("tests/simulate/StructuralIfSizes.mo", 1.0, 2);
+    assert_near(value(&r, "y"), 17.0, 1e-12, "y(1)");
 }
 
 /// The limited op-amp in the linear band: vout = V0 vin / (1 + V0 R1 / (R1 + R2)) at
@@ -441,8 +439,7 @@ fn redundant_fixed_starts_are_checked_not_refused() {
 fn terminal_fires_at_the_end() {
     let m = load("tests/simulate/TerminalEvent.mo");
     let r = run(&m, Method::Bdf, 1e-9, 1e-11, 1.0, 2);
-    let at_end = value(&r, "atEnd");
-    assert!((at_end - (-1.0f64).exp()).abs() < 1e-7, "atEnd = {at_end}");
+    assert_near(value(&r, "atEnd"), (-1.0f64).exp(), 1e-7, "atEnd");
     assert_eq!(value(&r, "n"), 5.0);
     let k = column_of(&r, "atEnd");
     let before: Vec<f64> = r.rows[..r.rows.len() - 1]
@@ -461,8 +458,8 @@ fn function_outputs_sized_by_inputs() {
     );
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
     for k in 1..=3 {
-        let y = value(&r, &format!("y[{k}]"));
-        assert!((y - k as f64).abs() < 1e-12, "y[{k}](1) = {y}");
+        let name = format!("y[{k}]");
+        assert_near(value(&r, &name), k as f64, 1e-12, &name);
     }
 }
 
@@ -471,8 +468,7 @@ fn function_outputs_sized_by_inputs() {
 /// `buf[tick] := ..` at a run-time index (the MSL's RealFFT and machine models).
 #[test]
 fn component_array_references_strings_and_dynamic_indices() {
-    let m = load("tests/simulate/ComponentArrayRefs.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 4);
+    let r = run_file("tests/simulate/ComponentArrayRefs.mo", 1.0, 4);
     let expect = [
         ("total", 6.0),
         ("temperatures", 900.0),
@@ -506,8 +502,7 @@ fn unimplemented_builtins_are_reported_as_not_supported() {
 /// torn by dividing by its coefficient, which is 0 in the other branch.
 #[test]
 fn switched_equation_in_a_loop_is_not_divided_by_zero() {
-    let m = load("tests/simulate/SwitchedLoop.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
+    let r = run_file("tests/simulate/SwitchedLoop.mo", 1.0, 10);
     let (kx, kd, kf) = (column_of(&r, "x"), column_of(&r, "D"), column_of(&r, "F"));
     // before the switch F = 0 and x decays; after it D = der(x) = 0
     assert_eq!(r.rows[0][kf], 0.0);
@@ -669,7 +664,7 @@ fn parameter_conditions_of_if_expressions_are_decided_at_compile_time() {
     assert!(dump.contains("(0 differentiated)"), "{dump}");
     let r = run(&m, Method::Bdf, 1e-6, 1e-8, 1.0, 10);
     assert_eq!(value(&r, "y1"), 0.0);
-    assert!((value(&r, "y") - 1f64.sin()).abs() < 1e-12);
+    assert_near(value(&r, "y"), 1f64.sin(), 1e-12, "y(1)");
 }
 
 /// `when trig` with `trig = sample(0.1, 0.1)` fires at every instant, as
@@ -702,7 +697,7 @@ fn pruning_keeps_the_steps_of_held_roundings() {
     let r = try_run(&compiled, Method::Bdf, 1e-8, 1e-10, 20.0, 40);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     assert_eq!(r.stats.events, 3);
-    assert!((value(&r, "phi") - 20.0).abs() < 1e-6);
+    assert_near(value(&r, "phi"), 20.0, 1e-6, "phi(20)");
 }
 
 /// A `while` loop whose condition depends on variables runs (unrolled, with a check
@@ -776,7 +771,7 @@ fn initialization_solves_for_large_integer_parameters() {
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
     let e = (-1.0f64).exp();
     let exact = e + 2.0 * 67_867_967.0 * 1e-9 * (1.0 - e);
-    assert!((value(&r, "x") - exact).abs() < 1e-8, "{}", value(&r, "x"));
+    assert_near(value(&r, "x"), exact, 1e-8, "x(1)");
 }
 
 /// A parameter with `annotation(Evaluate = true)` and one bound to it alone are fixed
@@ -799,7 +794,7 @@ fn evaluated_parameters_fold_into_the_equations() {
 fn unused_signals_of_an_expandable_connector_are_left_out() {
     let m = load_named("tests/simulate/ExpandableBus.mo", "ExpandableBus.Use");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
-    assert!((value(&r, "z") - 3.0).abs() < 1e-9, "{}", value(&r, "z"));
+    assert_near(value(&r, "z"), 3.0, 1e-9, "z(1)");
     assert!(!r.names.iter().any(|n| n == "bus.unused"), "{:?}", r.names);
     // Connected buses augment each other; a set of members no component uses stays
     // absent on all of them (MultiBody's RobotR3 axis bus, 55 equations short before).
@@ -1103,12 +1098,11 @@ fn an_unexecuted_call_with_effects_is_a_warning() {
 /// x'' = -20 x, x(0) = 0.1, x'(0) = 0.
 #[test]
 fn dependent_preferred_states_give_up_a_regular_set_of_dummies() {
-    let m = load("tests/simulate/DependentRelativeStates.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 4);
+    let r = run_file("tests/simulate/DependentRelativeStates.mo", 1.0, 4);
     let x = value(&r, "x");
     let exact = 0.1 * (20f64.sqrt()).cos();
-    assert!((x - exact).abs() < 1e-6, "x(1) = {x}, exact {exact}");
-    assert!((value(&r, "y") - x).abs() < 1e-12);
+    assert_near(x, exact, 1e-6, "x(1)");
+    assert_near(value(&r, "y"), x, 1e-12, "y(1)");
 }
 
 /// The initial equations draw `r = sin(seed * 1e9)` from the free parameter `seed` and
@@ -1117,11 +1111,10 @@ fn dependent_preferred_states_give_up_a_regular_set_of_dummies() {
 /// are restored after the columns). Without that Newton did not converge.
 #[test]
 fn initial_jacobian_leaves_no_perturbed_values_behind() {
-    let m = load("tests/simulate/InitialDrawFromSeed.mo");
-    let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.2, 1);
+    let r = run_file("tests/simulate/InitialDrawFromSeed.mo", 0.2, 1);
     let x0 = r.rows[0][r.names.iter().position(|n| n == "x").unwrap()];
     let exact = -(7e9f64).sin();
-    assert!((x0 - exact).abs() < 1e-9, "x(0) = {x0}, exact {exact}");
+    assert_near(x0, exact, 1e-9, "x(0)");
 }
 
 /// The method of `simulate --stats`'s JSON line.

@@ -838,7 +838,7 @@ fn calibrate_tolerances(tolerances: &mut Tolerances, differential: &[bool]) {
 }
 
 impl Integrator for Bdf {
-    common_accessors!(Method::Bdf, |s| &s.phi[0]);
+    common_accessors!(Method::Bdf, |s| s.t, &s.phi[0]);
 
     fn reset(&mut self, _system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size || !t.is_finite() {

@@ -14,7 +14,7 @@
 use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, restart_point, Integrator, ProblemSetup};
+use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
 use crate::norm::{weighted_rms, Tolerances};
 use crate::options::{Method, Options};
 use crate::stats::Stats;
@@ -131,10 +131,7 @@ impl StiffnessTest {
 #[derive(Debug, Clone)]
 pub struct Dopri5 {
     setup: ProblemSetup,
-    t: f64,
-    x: Vec<f64>,
-    /// `f(t, x)` (first stage of the next step).
-    f_current: Vec<f64>,
+    start: StepStart,
     step_size: Option<f64>,
     previous_error: f64,
     last_rejected: bool,
@@ -167,9 +164,7 @@ impl Dopri5 {
         let zeros = || vec![0.0; size];
         let mut integrator = Dopri5 {
             setup,
-            t: t0,
-            x: x0.to_vec(),
-            f_current: zeros(),
+            start: StepStart::new(t0, x0),
             step_size: None,
             previous_error: 1e-4,
             last_rejected: false,
@@ -191,20 +186,8 @@ impl Dopri5 {
         Ok(integrator)
     }
 
-    /// The state `x` at `t` and `f` evaluated there: where the next step starts.
-    fn start_at(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.t = t;
-        restart_point(
-            system,
-            (t, x),
-            &mut self.x,
-            &mut self.f_current,
-            &mut self.stats,
-        )
-    }
-
     fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.start_at(system, t, x)?;
+        self.start.move_to(system, (t, x), &mut self.stats)?;
         self.step_size = self.setup.options.initial_step;
         self.previous_error = 1e-4;
         self.last_rejected = false;
@@ -216,9 +199,9 @@ impl Dopri5 {
 
     /// Computes stages 2..7, the new state and the error vector for step `h`.
     fn attempt(&mut self, system: &mut dyn System, h: f64) -> Result<(), EvalError> {
-        let t = self.t;
+        let t = self.start.t;
         let size = self.setup.size;
-        self.stages[0].copy_from_slice(&self.f_current);
+        self.stages[0].copy_from_slice(&self.start.f);
         let rows: [(f64, &[f64]); 5] = [
             (C2, &[A21]),
             (C3, &[A31, A32]),
@@ -233,7 +216,7 @@ impl Dopri5 {
                     .enumerate()
                     .map(|(j, a)| a * self.stages[j][i])
                     .sum();
-                self.stage_state[i] = self.x[i] + h * increment;
+                self.stage_state[i] = self.start.x[i] + h * increment;
             }
             let (done, rest) = self.stages.split_at_mut(stage + 1);
             let _ = done;
@@ -247,7 +230,7 @@ impl Dopri5 {
         }
         let k = &self.stages;
         for i in 0..size {
-            self.x_new[i] = self.x[i]
+            self.x_new[i] = self.start.x[i]
                 + h * (A71 * k[0][i]
                     + A73 * k[2][i]
                     + A74 * k[3][i]
@@ -273,7 +256,7 @@ impl Dopri5 {
     fn error_norm(&mut self) -> f64 {
         self.setup
             .tolerances
-            .scales_of_pair(&self.x, &self.x_new, &mut self.scale);
+            .scales_of_pair(&self.start.x, &self.x_new, &mut self.scale);
         Tolerances::guard_zero_scales(&mut self.scale);
         weighted_rms(&self.error_vector, &self.scale)
     }
@@ -283,9 +266,9 @@ impl Dopri5 {
         let k = &self.stages;
         let [r1, r2, r3, r4, r5] = &mut self.dense.coefficients;
         for i in 0..self.setup.size {
-            let difference = self.x_new[i] - self.x[i];
+            let difference = self.x_new[i] - self.start.x[i];
             let spline = h * k[0][i] - difference;
-            r1[i] = self.x[i];
+            r1[i] = self.start.x[i];
             r2[i] = difference;
             r3[i] = spline;
             r4[i] = difference - h * k[6][i] - spline;
@@ -297,7 +280,7 @@ impl Dopri5 {
                     + D6 * k[5][i]
                     + D7 * k[6][i]);
         }
-        self.dense.start = self.t;
+        self.dense.start = self.start.t;
         self.dense.end = t_end;
         self.dense.end_state.copy_from_slice(&self.x_new);
     }
@@ -310,15 +293,15 @@ impl Dopri5 {
         if let Some(step) = self.step_size {
             return Ok(step);
         }
-        let problem = self
-            .setup
-            .initial_step_problem(self.t, &self.x, &self.f_current, 4, t_limit);
+        let problem =
+            self.setup
+                .initial_step_problem(self.start.t, &self.start.x, &self.start.f, 4, t_limit);
         initial_step(&problem, system, &mut self.stats)
     }
 }
 
 impl Integrator for Dopri5 {
-    common_accessors!(Method::Dopri5, |s| &s.x);
+    common_accessors!(Method::Dopri5, |s| s.start.t, &s.start.x);
 
     fn stiff_since(&self) -> Option<f64> {
         self.stiffness.since
@@ -338,17 +321,18 @@ impl Integrator for Dopri5 {
         x: &[f64],
     ) -> Result<(), SolveError> {
         self.setup.check_len(x)?;
-        if self.dense.end == self.t {
+        if self.dense.end == self.start.t {
             for i in 0..x.len() {
-                self.dense.coefficients[1][i] += x[i] - self.x[i];
+                self.dense.coefficients[1][i] += x[i] - self.start.x[i];
             }
             self.dense.end_state.copy_from_slice(x);
         }
-        self.start_at(system, self.t, x)
+        let t = self.start.t;
+        self.start.move_to(system, (t, x), &mut self.stats)
     }
 
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
-        if t_limit <= self.t {
+        if t_limit <= self.start.t {
             return Ok(());
         }
         let max_step = self.setup.options.max_step;
@@ -356,15 +340,21 @@ impl Integrator for Dopri5 {
         let exponent = 0.2 - BETA * 0.75;
         let mut failures = 0usize;
         loop {
-            h = step_above_floor(h, self.t, failures > 0, &self.error_vector, &self.scale)?;
-            let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
+            h = step_above_floor(
+                h,
+                self.start.t,
+                failures > 0,
+                &self.error_vector,
+                &self.scale,
+            )?;
+            let (h_try, hits_limit) = clip_to_limit(self.start.t, h, t_limit);
             let error = match self.attempt(system, h_try) {
                 Ok(()) => self.error_norm(),
                 Err(error) => {
                     failures += 1;
                     self.stats.rejected_steps += 1;
                     if failures >= MAX_CONSECUTIVE_FAILURES {
-                        return Err(eval_failure(self.t, error));
+                        return Err(eval_failure(self.start.t, error));
                     }
                     h = 0.25 * h_try;
                     self.last_rejected = true;
@@ -389,7 +379,11 @@ impl Integrator for Dopri5 {
                     h_new = h_new.max(h.min(max_step));
                 }
                 self.previous_error = error.max(1e-4);
-                let t_end = if hits_limit { t_limit } else { self.t + h_try };
+                let t_end = if hits_limit {
+                    t_limit
+                } else {
+                    self.start.t + h_try
+                };
                 self.stiffness.after_step(
                     t_end,
                     h_try,
@@ -397,9 +391,9 @@ impl Integrator for Dopri5 {
                     (&self.x_new, &self.stage_state),
                 );
                 self.store_dense_output(h_try, t_end);
-                self.t = t_end;
-                self.x.copy_from_slice(&self.x_new);
-                self.f_current.copy_from_slice(&self.stages[6]);
+                self.start.t = t_end;
+                self.start.x.copy_from_slice(&self.x_new);
+                self.start.f.copy_from_slice(&self.stages[6]);
                 self.stats.steps += 1;
                 self.last_rejected = false;
                 self.step_size = Some(h_new);

@@ -73,17 +73,18 @@ pub trait Integrator {
     fn set_max_step(&mut self, h: f64);
 }
 
-/// The [`Integrator`] functions that only read or set common fields (`t`, `dense`,
-/// `stats`, `setup`), one definition for every method: `$state` is the current state
-/// of `self` named `$s`.
+/// The [`Integrator`] functions that only read or set common fields (`dense`, `stats`,
+/// `setup`), one definition for every method: `$time` and `$state` are the current time
+/// and state of `self` named `$s`.
 macro_rules! common_accessors {
-    ($method:expr, |$s:ident| $state:expr) => {
+    ($method:expr, |$s:ident| $time:expr, $state:expr) => {
         fn method(&self) -> Method {
             $method
         }
 
         fn current_time(&self) -> f64 {
-            self.t
+            let $s = self;
+            $time
         }
 
         fn state(&self) -> &[f64] {
@@ -200,16 +201,39 @@ impl ProblemSetup {
     }
 }
 
-/// Moves a one-step method to `(t, x)`: `x` copied into `state`, `f(t, x)` into `f`.
-pub(crate) fn restart_point(
-    system: &mut dyn System,
-    (t, x): (f64, &[f64]),
-    state: &mut [f64],
-    f: &mut [f64],
-    stats: &mut Stats,
-) -> Result<(), SolveError> {
-    state.copy_from_slice(x);
-    rhs_checked(system, t, x, f, stats).map_err(|error| eval_failure(t, error))
+/// Where a one-step method's next step starts: the time, the state and `f` there (the
+/// first stage of the next step). Dormand–Prince and Radau5 keep one; BDF starts from its
+/// history instead.
+#[derive(Debug, Clone)]
+pub(crate) struct StepStart {
+    pub t: f64,
+    pub x: Vec<f64>,
+    /// `f(t, x)`.
+    pub f: Vec<f64>,
+}
+
+impl StepStart {
+    /// At `(t0, x0)`, `f` not evaluated yet (zero): [`move_to`](Self::move_to) before
+    /// the first step.
+    pub fn new(t0: f64, x0: &[f64]) -> StepStart {
+        StepStart {
+            t: t0,
+            x: x0.to_vec(),
+            f: vec![0.0; x0.len()],
+        }
+    }
+
+    /// Moves to `(t, x)` and evaluates `f` there (counted in `stats`).
+    pub fn move_to(
+        &mut self,
+        system: &mut dyn System,
+        (t, x): (f64, &[f64]),
+        stats: &mut Stats,
+    ) -> Result<(), SolveError> {
+        self.t = t;
+        self.x.copy_from_slice(x);
+        rhs_checked(system, t, x, &mut self.f, stats).map_err(|error| eval_failure(t, error))
+    }
 }
 
 /// Converts a failed evaluation at a point that cannot be retried into a [`SolveError`].

@@ -104,19 +104,22 @@ pub(crate) struct SingularMatrix;
 
 /// Factors and solves `(shift * M - J) y = b` for a diagonal 0/1 mass matrix `M`.
 pub(crate) struct ShiftedLu<T: LuScalar> {
-    size: usize,
     backend: Backend<T>,
 }
 
 enum Backend<T: LuScalar> {
     Small(SmallLu<T>),
-    Dense {
-        factors: Mat<T>,
-        permutation: Vec<usize>,
-        permutation_inverse: Vec<usize>,
-        buffer: MemBuffer,
-    },
+    Dense(DenseBackend<T>),
     Sparse(Box<SparseBackend<T>>),
+}
+
+/// faer's dense partial-pivoting LU, factored in place in preallocated storage.
+struct DenseBackend<T: LuScalar> {
+    factors: Mat<T>,
+    permutation: Vec<usize>,
+    permutation_inverse: Vec<usize>,
+    /// Workspace of the factorization and the solves.
+    buffer: MemBuffer,
 }
 
 struct SparseBackend<T: LuScalar> {
@@ -152,7 +155,6 @@ impl<T: LuScalar> ShiftedLu<T> {
     pub fn dense(size: usize) -> Self {
         if size < SMALL_DENSE_LIMIT {
             return ShiftedLu {
-                size,
                 backend: Backend::Small(SmallLu::new(size)),
             };
         }
@@ -161,18 +163,8 @@ impl<T: LuScalar> ShiftedLu<T> {
 
     /// faer's dense LU of a `size × size` matrix, whatever its size.
     pub fn faer_dense(size: usize) -> Self {
-        let factor_req =
-            dense_factor::lu_in_place_scratch::<usize, T>(size, size, Par::Seq, Default::default());
-        let solve_req = dense_solve::solve_in_place_scratch::<usize, T>(size, 1, Par::Seq);
-        let buffer = MemBuffer::new(factor_req.or(solve_req));
         ShiftedLu {
-            size,
-            backend: Backend::Dense {
-                factors: Mat::zeros(size, size),
-                permutation: vec![0; size],
-                permutation_inverse: vec![0; size],
-                buffer,
-            },
+            backend: Backend::Dense(DenseBackend::new(size)),
         }
     }
 
@@ -185,7 +177,6 @@ impl<T: LuScalar> ShiftedLu<T> {
             .collect();
         let values = vec![T::from(0.0); pattern.nonzeros()];
         ShiftedLu {
-            size,
             backend: Backend::Sparse(Box::new(SparseBackend {
                 diagonal: None,
                 diagonal_analyzed: false,
@@ -232,34 +223,7 @@ impl<T: LuScalar> ShiftedLu<T> {
     ) -> Result<(), SingularMatrix> {
         match &mut self.backend {
             Backend::Small(small) => small.factor_shifted(jacobian, differential, shift),
-            Backend::Dense {
-                factors,
-                permutation,
-                permutation_inverse,
-                buffer,
-            } => {
-                factors.fill(T::from(0.0));
-                jacobian.for_each_entry(|i, j, value| {
-                    factors[(i, j)] = T::from(0.0) - T::from(value);
-                });
-                for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-                    factors[(i, i)] += shift;
-                }
-                dense_factor::lu_in_place(
-                    factors.as_mut(),
-                    permutation,
-                    permutation_inverse,
-                    Par::Seq,
-                    MemStack::new(buffer),
-                    Default::default(),
-                );
-                let singular = (0..self.size).any(|i| !factors[(i, i)].is_usable_pivot());
-                if singular {
-                    Err(SingularMatrix)
-                } else {
-                    Ok(())
-                }
-            }
+            Backend::Dense(dense) => dense.factor(jacobian, differential, shift),
             Backend::Sparse(sparse) => sparse.factor(jacobian, differential, shift),
         }
     }
@@ -272,38 +236,69 @@ impl<T: LuScalar> ShiftedLu<T> {
     }
 
     fn solve_untimed(&mut self, rhs: &mut [T]) {
-        let size = self.size;
         match &mut self.backend {
-            Backend::Small(small) => return small.solve(rhs),
-            Backend::Sparse(sparse) if sparse.diagonal_factored => {
-                if let Some(diagonal) = &mut sparse.diagonal {
-                    return diagonal.solve(rhs);
-                }
-            }
-            _ => {}
+            Backend::Small(small) => small.solve(rhs),
+            Backend::Dense(dense) => dense.solve(rhs),
+            Backend::Sparse(sparse) => sparse.solve(rhs),
         }
-        let rhs_matrix = MatMut::from_column_major_slice_mut(rhs, size, 1);
-        match &mut self.backend {
-            Backend::Small(_) => {}
-            Backend::Dense {
-                factors,
-                permutation,
-                permutation_inverse,
-                buffer,
-            } => {
-                let perm = PermRef::new_checked(permutation, permutation_inverse, size);
-                dense_solve::solve_in_place_with_conj(
-                    factors.as_ref(),
-                    factors.as_ref(),
-                    perm,
-                    Conj::No,
-                    rhs_matrix,
-                    Par::Seq,
-                    MemStack::new(buffer),
-                );
-            }
-            Backend::Sparse(sparse) => sparse.solve(rhs_matrix),
+    }
+}
+
+impl<T: LuScalar> DenseBackend<T> {
+    fn new(size: usize) -> Self {
+        let factor_req =
+            dense_factor::lu_in_place_scratch::<usize, T>(size, size, Par::Seq, Default::default());
+        let solve_req = dense_solve::solve_in_place_scratch::<usize, T>(size, 1, Par::Seq);
+        DenseBackend {
+            factors: Mat::zeros(size, size),
+            permutation: vec![0; size],
+            permutation_inverse: vec![0; size],
+            buffer: MemBuffer::new(factor_req.or(solve_req)),
         }
+    }
+
+    fn factor(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        shift: T,
+    ) -> Result<(), SingularMatrix> {
+        let factors = &mut self.factors;
+        factors.fill(T::from(0.0));
+        jacobian.for_each_entry(|i, j, value| {
+            factors[(i, j)] = T::from(0.0) - T::from(value);
+        });
+        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
+            factors[(i, i)] += shift;
+        }
+        dense_factor::lu_in_place(
+            factors.as_mut(),
+            &mut self.permutation,
+            &mut self.permutation_inverse,
+            Par::Seq,
+            MemStack::new(&mut self.buffer),
+            Default::default(),
+        );
+        let singular = (0..factors.nrows()).any(|i| !factors[(i, i)].is_usable_pivot());
+        if singular {
+            Err(SingularMatrix)
+        } else {
+            Ok(())
+        }
+    }
+
+    fn solve(&mut self, rhs: &mut [T]) {
+        let size = self.factors.nrows();
+        let perm = PermRef::new_checked(&self.permutation, &self.permutation_inverse, size);
+        dense_solve::solve_in_place_with_conj(
+            self.factors.as_ref(),
+            self.factors.as_ref(),
+            perm,
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, size, 1),
+            Par::Seq,
+            MemStack::new(&mut self.buffer),
+        );
     }
 }
 
@@ -371,7 +366,13 @@ impl<T: LuScalar> SparseBackend<T> {
         Ok(())
     }
 
-    fn solve(&mut self, rhs: MatMut<'_, T>) {
+    fn solve(&mut self, rhs: &mut [T]) {
+        if self.diagonal_factored {
+            if let Some(diagonal) = &mut self.diagonal {
+                return diagonal.solve(rhs);
+            }
+        }
+        let rhs = MatMut::from_column_major_slice_mut(rhs, self.pattern.size(), 1);
         let (true, Some(symbolic), Some(buffer)) =
             (self.factored, &self.symbolic, &mut self.buffer)
         else {

@@ -34,7 +34,7 @@ use faer::c64;
 use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, restart_point, Integrator, ProblemSetup};
+use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::ShiftedLu;
 use crate::norm::{weighted_rms, worst_components, Tolerances};
@@ -169,9 +169,7 @@ enum NewtonOutcome {
 /// The Radau IIA (order 5) integrator.
 pub struct Radau5 {
     setup: ProblemSetup,
-    t: f64,
-    x: Vec<f64>,
-    f_current: Vec<f64>,
+    start: StepStart,
     step_size: Option<f64>,
     jacobian: JacobianEvaluator,
     /// A Jacobian exists and may be reused.
@@ -272,9 +270,7 @@ impl Radau5 {
         let mut integrator = Radau5 {
             jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),
             setup,
-            t: t0,
-            x: x0.to_vec(),
-            f_current: zeros(),
+            start: StepStart::new(t0, x0),
             step_size: None,
             jacobian_valid: false,
             jacobian_fresh: false,
@@ -331,20 +327,8 @@ impl Radau5 {
         Ok(integrator)
     }
 
-    /// The state `x` at `t` and `f` evaluated there: where the next step starts.
-    fn start_at(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.t = t;
-        restart_point(
-            system,
-            (t, x),
-            &mut self.x,
-            &mut self.f_current,
-            &mut self.stats,
-        )
-    }
-
     fn restart(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.start_at(system, t, x)?;
+        self.start.move_to(system, (t, x), &mut self.stats)?;
         self.update_scale();
         self.step_size = self.setup.options.initial_step;
         self.jacobian_valid = false;
@@ -366,7 +350,9 @@ impl Radau5 {
     }
 
     fn update_scale(&mut self) {
-        self.setup.tolerances.scales_of(&self.x, &mut self.scale);
+        self.setup
+            .tolerances
+            .scales_of(&self.start.x, &mut self.scale);
         Tolerances::guard_zero_scales(&mut self.scale);
     }
 
@@ -378,9 +364,9 @@ impl Radau5 {
         if let Some(step) = self.step_size {
             return Ok(step);
         }
-        let problem = self
-            .setup
-            .initial_step_problem(self.t, &self.x, &self.f_current, 3, t_limit);
+        let problem =
+            self.setup
+                .initial_step_problem(self.start.t, &self.start.x, &self.start.f, 3, t_limit);
         initial_step(&problem, system, &mut self.stats)
     }
 
@@ -392,13 +378,13 @@ impl Radau5 {
         self.jacobian
             .evaluate(
                 system,
-                self.t,
-                &self.x,
-                &self.f_current,
+                self.start.t,
+                &self.start.x,
+                &self.start.f,
                 &self.scale,
                 &mut self.stats,
             )
-            .map_err(|error| eval_failure(self.t, error))?;
+            .map_err(|error| eval_failure(self.start.t, error))?;
         self.jacobian_valid = true;
         self.jacobian_fresh = true;
         self.factored_for = None;
@@ -453,11 +439,11 @@ impl Radau5 {
     fn evaluate_stages(&mut self, system: &mut dyn System, h: f64) -> Result<(), EvalError> {
         for (k, c) in [C1, C2, 1.0].into_iter().enumerate() {
             for i in 0..self.setup.size {
-                self.stage_state[i] = self.x[i] + self.z[k][i];
+                self.stage_state[i] = self.start.x[i] + self.z[k][i];
             }
             rhs_checked(
                 system,
-                self.t + c * h,
+                self.start.t + c * h,
                 &self.stage_state,
                 &mut self.z[k],
                 &mut self.stats,
@@ -604,7 +590,7 @@ impl Radau5 {
                 0.0
             };
             self.w[1][i] = mass_term;
-            self.error_vector[i] = mass_term + self.f_current[i];
+            self.error_vector[i] = mass_term + self.start.f[i];
         }
         self.real_lu.solve(&mut self.error_vector);
         let error = weighted_rms(&self.error_vector, &self.scale).max(1e-10);
@@ -612,9 +598,9 @@ impl Radau5 {
             return error;
         }
         for i in 0..size {
-            self.stage_state[i] = self.x[i] + self.error_vector[i];
+            self.stage_state[i] = self.start.x[i] + self.error_vector[i];
         }
-        let t = self.t;
+        let t = self.start.t;
         let mut refreshed = std::mem::take(&mut self.w[0]);
         let result = rhs_checked(
             system,
@@ -641,7 +627,7 @@ impl Radau5 {
         t_end: f64,
     ) -> Result<(), EvalError> {
         for i in 0..self.setup.size {
-            self.stage_state[i] = self.x[i] + self.z[2][i];
+            self.stage_state[i] = self.start.x[i] + self.z[2][i];
         }
         rhs_checked(
             system,
@@ -659,34 +645,34 @@ impl Radau5 {
         let [cont0, cont1, cont2, cont3] = &mut self.dense.cont;
         for i in 0..self.setup.size {
             let (z1, z2, z3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
-            self.x[i] += z3;
-            cont0[i] = self.x[i];
+            self.start.x[i] += z3;
+            cont0[i] = self.start.x[i];
             cont1[i] = (z2 - z3) / C2M1;
             let ak = (z1 - z2) / C1MC2;
             let acont3 = (ak - z1 / C1) / C2;
             cont2[i] = (ak - cont1[i]) / C1M1;
             cont3[i] = cont2[i] - acont3;
         }
-        self.dense.start = self.t;
+        self.dense.start = self.start.t;
         self.dense.end = t_end;
-        self.t = t_end;
+        self.start.t = t_end;
         self.previous_step = h;
         self.first_step = false;
         self.stats.steps += 1;
         self.update_scale();
-        self.f_current.copy_from_slice(&self.w[0]);
+        self.start.f.copy_from_slice(&self.w[0]);
         self.jacobian_fresh = false;
     }
 
-    /// Before the step `h` from `self.t` is stored: keeps its start point and the previous
+    /// Before the step `h` from `self.start.t` is stored: keeps its start point and the previous
     /// polynomial (swapped, not copied; `accept` overwrites the whole polynomial).
     fn keep_step_start(&mut self, h: f64) {
         let before = &mut self.before;
         before.valid = true;
-        before.x.copy_from_slice(&self.x);
-        std::mem::swap(&mut before.f, &mut self.f_current);
+        before.x.copy_from_slice(&self.start.x);
+        std::mem::swap(&mut before.f, &mut self.start.f);
         std::mem::swap(&mut before.dense, &mut self.dense);
-        before.t = self.t;
+        before.t = self.start.t;
         before.step = h;
         before.previous_step = self.previous_step;
         before.first_step = self.first_step;
@@ -725,9 +711,9 @@ impl Radau5 {
             return Ok(());
         }
         Err(match eval_error {
-            Some(error) => eval_failure(self.t, error),
+            Some(error) => eval_failure(self.start.t, error),
             None => SolveError::NewtonFailed {
-                time: self.t,
+                time: self.start.t,
                 step: h,
                 worst: worst_components(&self.z[0], &self.scale),
             },
@@ -750,7 +736,7 @@ pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> boo
 }
 
 impl Integrator for Radau5 {
-    common_accessors!(Method::Radau5, |s| &s.x);
+    common_accessors!(Method::Radau5, |s| s.start.t, &s.start.x);
 
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.setup.check_len(x)?;
@@ -767,14 +753,15 @@ impl Integrator for Radau5 {
         x: &[f64],
     ) -> Result<(), SolveError> {
         self.setup.check_len(x)?;
-        if self.dense.end == self.t {
+        if self.dense.end == self.start.t {
             for i in 0..x.len() {
-                let delta = x[i] - self.x[i];
+                let delta = x[i] - self.start.x[i];
                 self.dense.cont[0][i] += delta;
                 self.dense.cont[1][i] += delta;
             }
         }
-        self.start_at(system, self.t, x)
+        let t = self.start.t;
+        self.start.move_to(system, (t, x), &mut self.stats)
     }
 
     fn interpolation_error(&self) -> f64 {
@@ -787,10 +774,10 @@ impl Integrator for Radau5 {
         }
         let before = &mut self.before;
         before.valid = false;
-        self.x.copy_from_slice(&before.x);
-        std::mem::swap(&mut before.f, &mut self.f_current);
+        self.start.x.copy_from_slice(&before.x);
+        std::mem::swap(&mut before.f, &mut self.start.f);
         std::mem::swap(&mut before.dense, &mut self.dense);
-        self.t = before.t;
+        self.start.t = before.t;
         self.step_size = Some(before.step);
         self.previous_step = before.previous_step;
         self.first_step = before.first_step;
@@ -805,7 +792,7 @@ impl Integrator for Radau5 {
     }
 
     fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
-        if t_limit <= self.t {
+        if t_limit <= self.start.t {
             return Ok(());
         }
         let max_step = self.setup.options.max_step;
@@ -814,18 +801,18 @@ impl Integrator for Radau5 {
         loop {
             h = step_above_floor(
                 h,
-                self.t,
+                self.start.t,
                 failures + singular > 0,
                 &self.error_vector,
                 &self.scale,
             )?;
-            let (h_try, hits_limit) = clip_to_limit(self.t, h, t_limit);
+            let (h_try, hits_limit) = clip_to_limit(self.start.t, h, t_limit);
             self.ensure_jacobian(system)?;
             if !self.factor(h_try) {
                 singular += 1;
                 if singular >= MAX_SINGULAR {
                     return Err(SolveError::SingularMatrix {
-                        time: self.t,
+                        time: self.start.t,
                         step: h_try,
                     });
                 }
@@ -856,7 +843,11 @@ impl Integrator for Radau5 {
                 self.jacobian_valid = self.jacobian_fresh;
                 continue;
             }
-            let t_end = if hits_limit { t_limit } else { self.t + h_try };
+            let t_end = if hits_limit {
+                t_limit
+            } else {
+                self.start.t + h_try
+            };
             if let Err(error) = self.evaluate_at_new_point(system, t_end) {
                 self.fail_or_shrink(&mut failures, h_try, Some(error))?;
                 h = 0.5 * h_try;
