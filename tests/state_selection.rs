@@ -351,3 +351,31 @@ fn mechanisms_switch_states_with_rows_between_grid_points() {
         }
     }
 }
+
+/// At equal `stateSelect`, the variable with a fixed start value keeps its state: the
+/// lever's angle, not the length `s = L cos(phi)` (also `prefer`; a function of it with
+/// default priority makes the choice static, not a run-time state set). `s` is
+/// stationary in `phi` where the lever starts (`phi = 0`): solving `phi` from `s` there
+/// has a singular Jacobian, and the run failed at t = 0 with `E4003` (as MSL's
+/// `MultiBody.Examples.Elementary.LineForceWithTwoMasses` did with its line force's
+/// length). The motion matches the angle-only ODE.
+#[test]
+fn a_fixed_start_decides_between_states_of_one_priority() {
+    let files = ["tests/state_selection/FixedStart.mo"];
+    let lever = load(&files, "LeverWithLength");
+    let states = &lever.compiled.state_names;
+    assert!(
+        states.iter().any(|s| s == "phi") && !states.iter().any(|s| s == "s"),
+        "{states:?}"
+    );
+    let reference = load(&files, "LeverReference");
+    for method in [Method::Bdf, Method::Radau5] {
+        let r = run(&lever, method, 1e-8, 10.0, 0.1);
+        let want = run(&reference, Method::Radau5, 1e-12, 10.0, 0.1);
+        let worst = column(&r, "phi")
+            .zip(column(&want, "phi"))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-6, "{method:?}: phi off by {worst:e}");
+    }
+}

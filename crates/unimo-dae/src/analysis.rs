@@ -291,7 +291,13 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
             sys.dae.scalar(base).state_select
         })
         .collect();
-    let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities);
+    // Whether v has a fixed start value of its own (ties of priority, see
+    // `select_dummy_derivatives_with_sets`; a derivative has none: a position's initial
+    // condition says nothing about which velocity is a state).
+    let fixed_starts: Vec<bool> = (0..graph.n_vars())
+        .map(|k| sys.dae.scalar(sys.scalar(st::VarId(k as u32))).fixed == Some(true))
+        .collect();
+    let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities, &fixed_starts);
     let mut dummies = selected.map_err(|e| struct_error(&sys, e))?;
     let state_sets = add_state_sets(&mut sys, &mut dummies);
     let graph = sys.graph.clone();
@@ -466,6 +472,7 @@ fn select_dummies(
     graph: &st::BipartiteGraph,
     pantelides: &st::PantelidesResult,
     priorities: &[st::StateSelectPriority],
+    fixed_starts: &[bool],
 ) -> Result<st::DummyDerivatives, st::StructError> {
     let sys_cell = std::cell::RefCell::new(sys);
     let mut values = crate::params::ParameterValues::default();
@@ -481,6 +488,7 @@ fn select_dummies(
         graph,
         pantelides,
         |v| priorities[v.index()],
+        |v| fixed_starts[v.index()],
         |eqs, candidates| is_dynamic_set(&mut sys_cell.borrow_mut(), priorities, eqs, candidates),
         Some(&mut coefficient),
     )

@@ -104,7 +104,7 @@ pub fn select_dummy_derivatives(
     pantelides: &PantelidesResult,
     priority: impl Fn(VarId) -> StateSelectPriority,
 ) -> Result<DummyDerivatives, StructError> {
-    select_dummy_derivatives_with_sets(graph, pantelides, priority, |_, _| false, None)
+    select_dummy_derivatives_with_sets(graph, pantelides, priority, |_| false, |_, _| false, None)
 }
 
 /// [`select_dummy_derivatives`] with dynamic state selection: a connected component of
@@ -119,10 +119,16 @@ pub fn select_dummy_derivatives(
 /// variable, where it has one), a level's choice that is structurally valid but
 /// numerically singular is replaced per connected component by the first regular one
 /// in the candidates' order ([`crate::regular`]).
+///
+/// `fixed_start(integral)` breaks ties of priority: at equal `stateSelect`, a variable
+/// the model gives a fixed start value (its initial condition) keeps its state before
+/// one it does not (the modeller's coordinates: a joint angle rather than the length of
+/// a line force that depends on it, and is stationary in it where the joint starts).
 pub fn select_dummy_derivatives_with_sets(
     graph: &BipartiteGraph,
     pantelides: &PantelidesResult,
     priority: impl Fn(VarId) -> StateSelectPriority,
+    fixed_start: impl Fn(VarId) -> bool,
     mut dynamic: impl FnMut(&[EqId], &[VarId]) -> bool,
     mut coefficient: Option<Coefficient<'_>>,
 ) -> Result<DummyDerivatives, StructError> {
@@ -157,6 +163,7 @@ pub fn select_dummy_derivatives_with_sets(
             let state = chains.var_integral(d).expect("candidates are derivatives");
             (
                 priority(state),
+                fixed_start(state),
                 Reverse(var_levels[state.index()]),
                 in_input[d.index()],
                 d,
