@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Turns out/results.tsv (written by run.sh) into the markdown report on stdout.
 
-Usage: make_table.py OUT_DIR RUNS SCIPY_RUNS [BRUSS_RUNS]
+Usage: make_table.py OUT_DIR RUNS SCIPY_RUNS [BRUSS_RUNS [ROUNDS]]
+
+A configuration measured in several rounds has one row per round in results.tsv: its time
+is the median of the rounds' times (each a median of RUNS runs); its digits and steps are
+the first round's (the runs are deterministic; a round that disagrees is reported).
 """
 import sys
 from pathlib import Path
@@ -9,6 +13,7 @@ from pathlib import Path
 out = Path(sys.argv[1])
 runs, scipy_runs = sys.argv[2], sys.argv[3]
 bruss_runs = sys.argv[4] if len(sys.argv) > 4 else runs
+rounds = int(sys.argv[5]) if len(sys.argv) > 5 else 1
 PROBLEMS = ["ROBER", "HIRES", "VDPOL", "POLLU", "BRUSS2D"]
 TOOLS = ["unimo", "IDA", "diffsol", "SciPy"]
 
@@ -21,6 +26,24 @@ for line in (out / "results.tsv").read_text().splitlines():
     status = "\t".join(f[8:])
     rows.append(dict(problem=problem, tool=tool, method=method, rtol=float(rtol),
                      atol=float(atol), scd=scd, steps=steps, ms=float(ms), status=status))
+
+# One row per configuration: the median of its rounds' times.
+merged = {}
+for r in rows:
+    key = (r["problem"], r["tool"], r["method"], r["rtol"])
+    if key not in merged:
+        merged[key] = dict(r, times=[r["ms"]])
+        continue
+    m = merged[key]
+    m["times"].append(r["ms"])
+    if (r["scd"], r["steps"], r["status"]) != (m["scd"], m["steps"], m["status"]):
+        note = f"round {len(m['times'])}: {r['scd']} scd, {r['steps']} steps, {r['status']}"
+        m["status"] = m["status"] + f" (differs in {note})"
+for m in merged.values():
+    t = sorted(m["times"])
+    k = len(t)
+    m["ms"] = t[k // 2] if k % 2 else (t[k // 2 - 1] + t[k // 2]) / 2
+rows = list(merged.values())
 
 method_order = {}
 for r in rows:
@@ -100,9 +123,12 @@ print("# unimo vs. IDA vs. diffsol vs. SciPy: error against run time\n")
 print("Written by `bench/compare/run.sh` (see README.md there). scd = -log10(max_i |y_i - ref_i| / |ref_i|)"
       " at the end time; time = median wall time of "
       f"{runs} runs (SciPy: {scipy_runs} runs; BRUSS2D: {bruss_runs} runs, SciPy 1), all measured in"
-      " one session, one tool after the other.\n")
+      f" one session. ROBER, HIRES, VDPOL and POLLU ran in {rounds} rounds, each round unimo, IDA"
+      " and diffsol one after the other (a slow stretch of the shared machine falls on every"
+      " tool): their time is the median of the rounds' medians. BRUSS2D and SciPy ran once, one"
+      " tool after the other.\n")
 print((out / "versions.md").read_text())
-print("Load average (1, 5, 15 min) read before each tool; the machine has 2 cores and was shared"
+print("Load average (1, 5, 15 min) read before each tool and round; the machine has 2 cores and was shared"
       " with other work, so times can be noisy:\n")
 for line in (out / "load.txt").read_text().splitlines():
     print(f"- {line}")

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# Runs the whole comparison, one tool after the other, and writes results.md.
-#   bash bench/compare/run.sh              (from anywhere; RUNS=5 SCIPY_RUNS=5 by default)
-# Environment: RUNS (runs per configuration for unimo, IDA and diffsol), SCIPY_RUNS,
+# Runs the whole comparison and writes results.md. The four small problems run in ROUNDS
+# rounds, each round every tool (unimo, IDA, diffsol) one after the other, so that a slow
+# or fast stretch of the shared machine falls on all of them; a cell's time is the median
+# of its rounds' medians. BRUSS2D and SciPy run once, one tool after the other.
+#   bash bench/compare/run.sh              (from anywhere; RUNS=5 SCIPY_RUNS=5 ROUNDS=5 by default)
+# Environment: ROUNDS, RUNS (runs per configuration and round for unimo, IDA and diffsol), SCIPY_RUNS,
 # BRUSS_RUNS (runs per configuration of the 2,048-equation BRUSS2D, default 3; SciPy runs
 # it once), CARGO_TARGET_DIR for the diffsol project (default /work/tgt-compare).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
 RUNS="${RUNS:-5}"
+ROUNDS="${ROUNDS:-5}"
 SCIPY_RUNS="${SCIPY_RUNS:-5}"
 BRUSS_RUNS="${BRUSS_RUNS:-3}"
 export BRUSS2D_REF="$HERE/refs/bruss2d.csv"
@@ -59,36 +63,39 @@ python3 "$HERE/scipy_compare.py" check
 } > "$OUT/versions.md"
 cat "$OUT/versions.md"
 
-# ---- 1. unimo ------------------------------------------------------------------------
-load "before unimo"
-for spec in "Robertson ROBER rober 1e-6 $RUNS" "Hires HIRES hires 1e-2 $RUNS" \
-    "VanDerPol VDPOL vdpol 1e-2 $RUNS" "Pollu POLLU pollu 1 $RUNS" \
-    "Brusselator2D BRUSS2D bruss2d 1e-2 $BRUSS_RUNS"; do
-  set -- $spec
-  "$UNIMO" bench "$REPO/models/$1.mo" --reference "$HERE/refs/$3.csv" \
+# ---- 1.-3. unimo, IDA, diffsol ------------------------------------------------------------
+# unimo: one model file per problem; appends its rows to results.tsv.
+unimo_bench() { # problem model ref atol-factor runs
+  "$UNIMO" bench "$REPO/models/$2.mo" --reference "$HERE/refs/$3.csv" \
     --atol-factor "$4" --runs "$5" --points 1 --color never > "$OUT/unimo-$3.txt" || true
   cat "$OUT/unimo-$3.txt"
   # model method rtol atol median_ms steps scd_end scd_grid [FAILED: msg]
-  awk -v P="$2" 'NR > 1 {
+  awk -v P="$1" 'NR > 1 {
       status = "ok"; scd = $7
       if (NF > 8) { status = $9; for (i = 10; i <= NF; i++) status = status " " $i; scd = "-" }
       printf "%s\tunimo\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n", P, $2, $3, $4, scd, $6, $5, status
     }' "$OUT/unimo-$3.txt" >> "$OUT/results.tsv"
+}
+SMALL="ROBER:Robertson:rober:1e-6 HIRES:Hires:hires:1e-2 VDPOL:VanDerPol:vdpol:1e-2 POLLU:Pollu:pollu:1"
+for round in $(seq 1 "$ROUNDS"); do
+  load "round $round of $ROUNDS, before unimo"
+  for spec in $SMALL; do
+    IFS=: read -r P M R A <<< "$spec"
+    unimo_bench "$P" "$M" "$R" "$A" "$RUNS"
+  done
+  load "round $round of $ROUNDS, before IDA"
+  for p in rober hires vdpol pollu; do
+    "$HERE/ida/ida_compare" "$RUNS" $p analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+    "$HERE/ida/ida_compare" "$RUNS" $p dq 2>/dev/null | tee -a "$OUT/results.tsv"
+  done
+  load "round $round of $ROUNDS, before diffsol"
+  "$DIFFSOL" "$RUNS" rober hires vdpol pollu 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
 done
-
-# ---- 2. IDA (analytic Jacobian, then difference-quotient Jacobian) -------------------
-load "before IDA"
-for p in rober hires vdpol pollu; do
-  "$HERE/ida/ida_compare" "$RUNS" $p analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
-done
+load "BRUSS2D, before unimo"
+unimo_bench BRUSS2D Brusselator2D bruss2d 1e-2 "$BRUSS_RUNS"
+load "BRUSS2D, before IDA"
 "$HERE/ida/ida_compare" "$BRUSS_RUNS" bruss2d analytic 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
-for p in rober hires vdpol pollu; do
-  "$HERE/ida/ida_compare" "$RUNS" $p dq 2>/dev/null | tee -a "$OUT/results.tsv"
-done
-
-# ---- 3. diffsol ------------------------------------------------------------------------
-load "before diffsol"
-"$DIFFSOL" "$RUNS" rober hires vdpol pollu 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
+load "BRUSS2D, before diffsol"
 # BRUSS2D: BDF only by default (point 4 compares with diffsol's BDF; its SDIRK methods take
 # many times longer on this problem); BRUSS_DIFFSOL_METHODS=bdf,tr_bdf2,esdirk34 for all.
 METHODS="${BRUSS_DIFFSOL_METHODS:-bdf}" "$DIFFSOL" "$BRUSS_RUNS" bruss2d 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
@@ -98,5 +105,5 @@ load "before SciPy"
 python3 "$HERE/scipy_compare.py" "$SCIPY_RUNS" 2>> "$OUT/solutions.txt" | tee -a "$OUT/results.tsv"
 load "after SciPy"
 
-python3 "$HERE/make_table.py" "$OUT" "$RUNS" "$SCIPY_RUNS" "$BRUSS_RUNS" > "$HERE/results.md"
+python3 "$HERE/make_table.py" "$OUT" "$RUNS" "$SCIPY_RUNS" "$BRUSS_RUNS" "$ROUNDS" > "$HERE/results.md"
 echo "wrote $HERE/results.md"
