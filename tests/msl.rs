@@ -50,6 +50,15 @@ const EXAMPLES: &[&str] = &[
     "Modelica.Electrical.Analog.Examples.Resistor",
     "Modelica.Electrical.Analog.Examples.SeriesResonance",
     "Modelica.Electrical.Analog.Examples.SwitchWithArc",
+    // Pass since state selection (2026-11-27): the alias set's strongest `stateSelect`
+    // (RollingWheel's `always` angles), a derivative judged by the variable that names it
+    // (`w = der(phi)`: RollingWheelSet*'s wheel rates, not the always-positions' derivatives),
+    // and at equal priority a fixed start (LineForceWithTwoMasses' joint angle).
+    "Modelica.Mechanics.MultiBody.Examples.Constraints.RevoluteConstraint",
+    "Modelica.Mechanics.MultiBody.Examples.Constraints.UniversalConstraint",
+    "Modelica.Mechanics.MultiBody.Examples.Elementary.LineForceWithTwoMasses",
+    "Modelica.Mechanics.MultiBody.Examples.Elementary.RollingWheel",
+    "Modelica.Mechanics.MultiBody.Examples.Elementary.RollingWheelSetDriving",
     "Modelica.Mechanics.MultiBody.Examples.Elementary.DoublePendulum",
     "Modelica.Mechanics.MultiBody.Examples.Elementary.Pendulum",
     "Modelica.Mechanics.MultiBody.Examples.Elementary.SpringDamperSystem",

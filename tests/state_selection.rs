@@ -379,3 +379,27 @@ fn a_fixed_start_decides_between_states_of_one_priority() {
         assert!(worst < 1e-6, "{method:?}: phi off by {worst:e}");
     }
 }
+
+/// An alias set has its strongest `stateSelect`: the part's `always` angle equated with
+/// the joint's `avoid` one keeps the angle a state, not the length `s` (`prefer`),
+/// which cannot give the angle where it starts (MSL's `Elementary.RollingWheel`, whose
+/// wheel angles are `always` in the part and `avoid` in its joint, failed at t = 0 with
+/// a NaN). Before: states `w, s` and `E4003` at t = 0.
+#[test]
+fn an_alias_set_keeps_its_strongest_state_select() {
+    let files = ["tests/state_selection/FixedStart.mo"];
+    let lever = load(&files, "LeverAliased");
+    let states = &lever.compiled.state_names;
+    assert!(
+        states.iter().any(|s| s == "phi" || s == "angle") && !states.iter().any(|s| s == "s"),
+        "{states:?}"
+    );
+    let reference = load(&files, "LeverReference");
+    let r = run(&lever, Method::Radau5, 1e-8, 10.0, 0.1);
+    let want = run(&reference, Method::Radau5, 1e-12, 10.0, 0.1);
+    let worst = column(&r, "phi")
+        .zip(column(&want, "phi"))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f64, f64::max);
+    assert!(worst < 1e-6, "phi off by {worst:e}");
+}

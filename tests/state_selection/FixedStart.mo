@@ -24,3 +24,21 @@ equation
   der(phi) = w;
   der(w) = -sin(phi) + (1e-3*(3*(L*cos(phi))^2 + 1) - d)*(-L*sin(phi)*w);
 end LeverReference;
+
+model LeverAliased "MSL's Parts.RollingWheel pattern: the part declares its angle `always` and equates it with its joint's, declared `avoid`; the joint's angle is the alias set's representative"
+  parameter Real L = 1;
+  parameter Real d = 0.1;
+  Real angle(start = 0, fixed = true, stateSelect = StateSelect.always) "the part's";
+  Real phi(stateSelect = StateSelect.avoid) "the joint's";
+  Real w(start = 1, fixed = true, stateSelect = StateSelect.prefer);
+  Real s(stateSelect = StateSelect.prefer);
+  Real v(stateSelect = StateSelect.prefer);
+  Real z;
+equation
+  angle = phi;
+  der(phi) = w;
+  s = L*cos(phi);
+  v = der(s);
+  z = s^3 + s;
+  der(w) = -sin(phi) - d*v + 1e-3*der(z);
+end LeverAliased;

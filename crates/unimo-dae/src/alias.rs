@@ -144,7 +144,8 @@ fn reinit_targets(dae: &Dae) -> rustc_hash::FxHashSet<ScalarId> {
 }
 
 /// The start value the representative `rep` takes over from the eliminated `elim`
-/// (`elim = rep` when `same_sign`, else `elim = -rep`).
+/// (`elim = rep` when `same_sign`, else `elim = -rep`), and its `stateSelect` when that
+/// is stronger.
 fn inherit_start(dae: &mut Dae, elim: ScalarId, rep: ScalarId, same_sign: bool) {
     // A fixed start of the alias fixes the representative (unless
     // it is fixed itself); otherwise the representative inherits a
@@ -160,6 +161,12 @@ fn inherit_start(dae: &mut Dae, elim: ScalarId, rep: ScalarId, same_sign: bool) 
             let st = if same_sign { st } else { dae.arena.neg(st) };
             dae.scalars[rep.index()].start = Some(st);
         }
+    }
+    // The alias set's strongest `stateSelect`: MSL's `Parts.RollingWheel` declares its
+    // `angles` `always` and equates them with its joint's, declared `avoid`.
+    let select = dae.scalar(elim).state_select;
+    if select > dae.scalar(rep).state_select {
+        dae.scalars[rep.index()].state_select = select;
     }
 }
 

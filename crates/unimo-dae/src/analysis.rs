@@ -283,19 +283,29 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     let mut sys = DaeSystem::new(dae);
     let pantelides = st::pantelides(&mut sys).map_err(|e| struct_error(&sys, e))?;
     let graph = sys.graph.clone();
-    // The priority of the variable that would lose its state: v's integral.
+    // The priority of the variable that would lose its state: v's integral. A
+    // derivative the model names (`w = der(phi)`) has the named variable's.
+    let names = named_derivatives(sys.dae);
     let priorities: Vec<st::StateSelectPriority> = (0..graph.n_vars())
         .map(|k| {
             let s = sys.scalar(st::VarId(k as u32));
+            if let Some(&v) = names.get(&s) {
+                return sys.dae.scalar(v).state_select;
+            }
             let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
             sys.dae.scalar(base).state_select
         })
         .collect();
     // Whether v has a fixed start value of its own (ties of priority, see
-    // `select_dummy_derivatives_with_sets`; a derivative has none: a position's initial
-    // condition says nothing about which velocity is a state).
+    // `select_dummy_derivatives_with_sets`). A derivative has none (a position's initial
+    // condition says nothing about which velocity is a state), unless the model names
+    // it: `w = der(phi)` with `w` fixed.
     let fixed_starts: Vec<bool> = (0..graph.n_vars())
-        .map(|k| sys.dae.scalar(sys.scalar(st::VarId(k as u32))).fixed == Some(true))
+        .map(|k| {
+            let s = sys.scalar(st::VarId(k as u32));
+            let own = names.get(&s).copied().unwrap_or(s);
+            sys.dae.scalar(own).fixed == Some(true)
+        })
         .collect();
     let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities, &fixed_starts);
     let mut dummies = selected.map_err(|e| struct_error(&sys, e))?;
@@ -457,6 +467,33 @@ fn single_step(
         }
         _ => PlanStep::Block(newton_block(sys.dae, &[eq], &[s], &[], &[r], frozen)),
     }
+}
+
+/// The derivatives `der(x)` that an equation `v = der(x)` (either side) names by a
+/// variable `v`, with the first such `v`: MSL's joints declare `w = der(phi)`, and
+/// `Parts.RollingWheelSet` `der_theta1 = der(theta1)` with `der_theta1(fixed = true)`,
+/// its wheel's rate. The named variable's `stateSelect` and `fixed` decide for the
+/// derivative (not the position's: `x` always a state says nothing about which
+/// velocity is one).
+fn named_derivatives(dae: &Dae) -> HashMap<ScalarId, ScalarId> {
+    let var = |e: ExprId| match dae.arena.node(e) {
+        Node::Var(s) => Some(s),
+        _ => None,
+    };
+    let mut named = HashMap::default();
+    for eq in &dae.equations {
+        let (Some(a), Some(b)) = (var(eq.lhs), var(eq.rhs)) else {
+            continue;
+        };
+        for (v, d) in [(a, b), (b, a)] {
+            if dae.scalar(d).kind == ScalarKind::Derivative
+                && dae.scalar(v).kind != ScalarKind::Derivative
+            {
+                named.entry(d).or_insert(v);
+            }
+        }
+    }
+    named
 }
 
 /// Whether a component of a dummy level gets dynamic state selection: its candidates'
