@@ -283,30 +283,7 @@ pub fn analyze(dae: &mut Dae) -> Result<Analysis, DaeError> {
     let mut sys = DaeSystem::new(dae);
     let pantelides = st::pantelides(&mut sys).map_err(|e| struct_error(&sys, e))?;
     let graph = sys.graph.clone();
-    // The priority of the variable that would lose its state: v's integral. A
-    // derivative the model names (`w = der(phi)`) has the named variable's.
-    let names = named_derivatives(sys.dae);
-    let priorities: Vec<st::StateSelectPriority> = (0..graph.n_vars())
-        .map(|k| {
-            let s = sys.scalar(st::VarId(k as u32));
-            if let Some(&v) = names.get(&s) {
-                return sys.dae.scalar(v).state_select;
-            }
-            let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
-            sys.dae.scalar(base).state_select
-        })
-        .collect();
-    // Whether v has a fixed start value of its own (ties of priority, see
-    // `select_dummy_derivatives_with_sets`). A derivative has none (a position's initial
-    // condition says nothing about which velocity is a state), unless the model names
-    // it: `w = der(phi)` with `w` fixed.
-    let fixed_starts: Vec<bool> = (0..graph.n_vars())
-        .map(|k| {
-            let s = sys.scalar(st::VarId(k as u32));
-            let own = names.get(&s).copied().unwrap_or(s);
-            sys.dae.scalar(own).fixed == Some(true)
-        })
-        .collect();
+    let (priorities, fixed_starts) = selection_ranks(&sys, graph.n_vars());
     let selected = select_dummies(&mut sys, &graph, &pantelides, &priorities, &fixed_starts);
     let mut dummies = selected.map_err(|e| struct_error(&sys, e))?;
     let state_sets = add_state_sets(&mut sys, &mut dummies);
@@ -467,6 +444,40 @@ fn single_step(
         }
         _ => PlanStep::Block(newton_block(sys.dae, &[eq], &[s], &[], &[r], frozen)),
     }
+}
+
+/// Per variable of the structural graph, what decides which variables keep their
+/// states: the priority of the variable that would lose its state, and whether it has
+/// a fixed start (see `select_dummy_derivatives_with_sets`).
+fn selection_ranks(
+    sys: &DaeSystem<'_>,
+    n_vars: usize,
+) -> (Vec<st::StateSelectPriority>, Vec<bool>) {
+    // The priority of the variable that would lose its state: v's integral. A
+    // derivative the model names (`w = der(phi)`) has the named variable's.
+    let names = named_derivatives(sys.dae);
+    let priorities: Vec<st::StateSelectPriority> = (0..n_vars)
+        .map(|k| {
+            let s = sys.scalar(st::VarId(k as u32));
+            if let Some(&v) = names.get(&s) {
+                return sys.dae.scalar(v).state_select;
+            }
+            let base = sys.dae.scalar(s).derivative_of.unwrap_or(s);
+            sys.dae.scalar(base).state_select
+        })
+        .collect();
+    // Whether v has a fixed start value of its own (ties of priority, see
+    // `select_dummy_derivatives_with_sets`). A derivative has none (a position's initial
+    // condition says nothing about which velocity is a state), unless the model names
+    // it: `w = der(phi)` with `w` fixed.
+    let fixed_starts: Vec<bool> = (0..n_vars)
+        .map(|k| {
+            let s = sys.scalar(st::VarId(k as u32));
+            let own = names.get(&s).copied().unwrap_or(s);
+            sys.dae.scalar(own).fixed == Some(true)
+        })
+        .collect();
+    (priorities, fixed_starts)
 }
 
 /// The derivatives `der(x)` that an equation `v = der(x)` (either side) names by a
