@@ -60,6 +60,12 @@ def ok(r):
     return r is not None and r["status"] == "ok"
 
 
+def reference_rtols(prow):
+    """The tolerances the other tools ran at (unimo also runs between them, for the table
+    at equal digits)."""
+    return sorted({r["rtol"] for r in prow if r["tool"] != "unimo"}, reverse=True)
+
+
 def find(problem, tool, method, rtol):
     for r in rows:
         if (r["problem"], r["tool"], r["method"], r["rtol"]) == (problem, tool, method, rtol):
@@ -81,7 +87,7 @@ def verdict():
     print("|---|---|---|---|---|---|---|---|---|")
     for p in PROBLEMS:
         prow = [r for r in rows if r["problem"] == p]
-        for rtol in sorted({r["rtol"] for r in prow}, reverse=True):
+        for rtol in reference_rtols(prow):
             ours = [r for r in prow if r["tool"] == "unimo" and r["rtol"] == rtol]
             good = [r for r in ours if ok(r)]
             failures = [r["method"] for r in ours if not ok(r)]
@@ -115,6 +121,55 @@ def verdict():
     print()
 
 
+def fastest_reaching(prow, target):
+    """Our fastest run, of any method and tolerance, with at least `target` digits."""
+    reaching = [r for r in prow if r["tool"] == "unimo" and ok(r) and float(r["scd"]) >= target]
+    return min(reaching, key=lambda r: r["ms"]) if reaching else None
+
+
+def verdict_equal_digits():
+    """Point 4 read as work against precision: for each cell of diffsol's BDF and of IDA,
+    our fastest measured run that reaches at least its digits."""
+    print("## Point 4 at equal digits\n")
+    print("The same cells read as work against precision: against each run of diffsol's BDF"
+          " and of IDA (analytic Jacobian), our fastest measured run, of any method and"
+          " tolerance (unimo also ran at the tolerances between the columns), with at least"
+          " its digits. Ratios are time(other) / time(ours). The cell holds when the ratio to"
+          " diffsol is >= 1 (or diffsol failed), the ratio to IDA >= 3, and no unimo run of"
+          " the problem failed. Measured, not interpolated: every time in this table is a"
+          " row of \"All results\".\n")
+    print("| problem | rtol | diffsol bdf: scd / ms | ours with >= its digits | vs diffsol |"
+          " IDA: scd / ms | ours with >= its digits | vs IDA | unimo failures | holds |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for p in PROBLEMS:
+        prow = [r for r in rows if r["problem"] == p]
+        failures = sorted({f"{r['method']} {r['rtol']:.0e}" for r in prow
+                           if r["tool"] == "unimo" and not ok(r)})
+        for rtol in reference_rtols(prow):
+            holds = not failures
+            cells = []
+            for tool, method, factor in (("diffsol", "bdf", 1.0), ("IDA", "analytic", 3.0)):
+                ref = find(p, tool, method, rtol) if tool == "diffsol" else next(
+                    (r for r in prow if r["tool"] == "IDA" and r["rtol"] == rtol
+                     and "analytic" in r["method"]), None)
+                if not ok(ref):
+                    cells += ["FAILED" if ref else "-", "-", "-"]
+                    continue
+                ours = fastest_reaching(prow, float(ref["scd"]))
+                if ours is None:
+                    cells += [f"{float(ref['scd']):.2f} / {ms(ref['ms'])}", "none", "-"]
+                    holds = False
+                    continue
+                ratio = ref["ms"] / ours["ms"]
+                holds = holds and ratio >= factor
+                cells += [f"{float(ref['scd']):.2f} / {ms(ref['ms'])}",
+                          f"{ours['method']} {ours['rtol']:.0e}: {float(ours['scd']):.2f} / {ms(ours['ms'])}",
+                          f"{ratio:.2f}x"]
+            print(f"| {p} | {rtol:.0e} | " + " | ".join(cells) +
+                  f" | {', '.join(failures) or 'none'} | {'yes' if holds else 'no'} |")
+    print()
+
+
 def ms(x):
     return f"{x:.3f}" if x < 10 else f"{x:.1f}" if x < 1000 else f"{x:.0f}"
 
@@ -144,7 +199,7 @@ for p in PROBLEMS:
     prow = [r for r in rows if r["problem"] == p]
     if not prow:
         continue
-    rtols = sorted({r["rtol"] for r in prow}, reverse=True)
+    rtols = reference_rtols(prow)
     atol = {r["rtol"]: r["atol"] for r in prow}
     print(f"### {p}\n")
     print("| tool | method | " + " | ".join(f"rtol {t:.0e}, atol {atol[t]:.0e}" for t in rtols) + " |")
@@ -169,6 +224,7 @@ for p in PROBLEMS:
     print()
 
 verdict()
+verdict_equal_digits()
 
 print("## All results\n")
 print("| problem | tool | method | rtol | atol | scd | steps | median ms | note |")
