@@ -68,7 +68,7 @@ cat "$OUT/versions.md"
 unimo_bench() { # problem model ref atol-factor runs
   # The other tools' tolerances and the ones between them (the table at equal digits).
   "$UNIMO" bench "$REPO/models/$2.mo" --reference "$HERE/refs/$3.csv" \
-    --tolerances 1e-3 1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10 \
+    --tolerances 1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10 \
     --atol-factor "$4" --runs "$5" --points 1 --color never > "$OUT/unimo-$3.txt" || true
   cat "$OUT/unimo-$3.txt"
   # model method rtol atol median_ms steps scd_end scd_grid [FAILED: msg]

@@ -322,11 +322,11 @@ pub struct BenchArgs {
     /// Add a library folder.
     #[arg(long = "lib", value_name = "DIR")]
     pub libs: Vec<PathBuf>,
-    /// Methods to compare.
-    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [MethodArg::Bdf, MethodArg::Radau5])]
+    /// Methods to compare, comma-separated (`--methods bdf,radau5`).
+    #[arg(long, value_name = "M,...", value_enum, value_delimiter = ',', default_values_t = [MethodArg::Bdf, MethodArg::Radau5])]
     pub methods: Vec<MethodArg>,
-    /// Relative tolerances.
-    #[arg(long, value_delimiter = ',', default_values_t = [1e-4, 1e-6, 1e-8, 1e-10])]
+    /// Relative tolerances, comma-separated (`--tolerances 1e-4,1e-6`).
+    #[arg(long, value_name = "RTOL,...", value_delimiter = ',', default_values_t = [1e-4, 1e-6, 1e-8, 1e-10])]
     pub tolerances: Vec<f64>,
     /// Absolute tolerance as a multiple of the relative one.
     #[arg(long, value_name = "F", default_value_t = 1e-2)]
