@@ -352,6 +352,29 @@ fn mechanisms_switch_states_with_rows_between_grid_points() {
     }
 }
 
+/// The lever `model` of `tests/state_selection/FixedStart.mo` keeps its angle a state
+/// (as `phi` or its alias `angle`), not the length `s`, and follows the angle-only ODE
+/// to 1e-6 with BDF and Radau5.
+fn lever_keeps_its_angle(model: &str) {
+    let files = ["tests/state_selection/FixedStart.mo"];
+    let lever = load(&files, model);
+    let states = &lever.compiled.state_names;
+    assert!(
+        states.iter().any(|s| s == "phi" || s == "angle") && !states.iter().any(|s| s == "s"),
+        "{model}: {states:?}"
+    );
+    let reference = load(&files, "LeverReference");
+    let want = run(&reference, Method::Radau5, 1e-12, 10.0, 0.1);
+    for method in [Method::Bdf, Method::Radau5] {
+        let r = run(&lever, method, 1e-8, 10.0, 0.1);
+        let worst = column(&r, "phi")
+            .zip(column(&want, "phi"))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-6, "{model} {method:?}: phi off by {worst:e}");
+    }
+}
+
 /// At equal `stateSelect`, the variable with a fixed start value keeps its state: the
 /// lever's angle, not the length `s = L cos(phi)` (also `prefer`; a function of it with
 /// default priority makes the choice static, not a run-time state set). `s` is
@@ -361,23 +384,7 @@ fn mechanisms_switch_states_with_rows_between_grid_points() {
 /// length). The motion matches the angle-only ODE.
 #[test]
 fn a_fixed_start_decides_between_states_of_one_priority() {
-    let files = ["tests/state_selection/FixedStart.mo"];
-    let lever = load(&files, "LeverWithLength");
-    let states = &lever.compiled.state_names;
-    assert!(
-        states.iter().any(|s| s == "phi") && !states.iter().any(|s| s == "s"),
-        "{states:?}"
-    );
-    let reference = load(&files, "LeverReference");
-    for method in [Method::Bdf, Method::Radau5] {
-        let r = run(&lever, method, 1e-8, 10.0, 0.1);
-        let want = run(&reference, Method::Radau5, 1e-12, 10.0, 0.1);
-        let worst = column(&r, "phi")
-            .zip(column(&want, "phi"))
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f64, f64::max);
-        assert!(worst < 1e-6, "{method:?}: phi off by {worst:e}");
-    }
+    lever_keeps_its_angle("LeverWithLength");
 }
 
 /// An alias set has its strongest `stateSelect`: the part's `always` angle equated with
@@ -387,19 +394,5 @@ fn a_fixed_start_decides_between_states_of_one_priority() {
 /// a NaN). Before: states `w, s` and `E4003` at t = 0.
 #[test]
 fn an_alias_set_keeps_its_strongest_state_select() {
-    let files = ["tests/state_selection/FixedStart.mo"];
-    let lever = load(&files, "LeverAliased");
-    let states = &lever.compiled.state_names;
-    assert!(
-        states.iter().any(|s| s == "phi" || s == "angle") && !states.iter().any(|s| s == "s"),
-        "{states:?}"
-    );
-    let reference = load(&files, "LeverReference");
-    let r = run(&lever, Method::Radau5, 1e-8, 10.0, 0.1);
-    let want = run(&reference, Method::Radau5, 1e-12, 10.0, 0.1);
-    let worst = column(&r, "phi")
-        .zip(column(&want, "phi"))
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0f64, f64::max);
-    assert!(worst < 1e-6, "phi off by {worst:e}");
+    lever_keeps_its_angle("LeverAliased");
 }

@@ -66,6 +66,18 @@ def reference_rtols(prow):
     return sorted({r["rtol"] for r in prow if r["tool"] != "unimo"}, reverse=True)
 
 
+def table_head(columns):
+    """A markdown table's header and separator rows."""
+    print("| " + " | ".join(columns) + " |")
+    print("|" + "---|" * len(columns))
+
+
+def ida_analytic(prow, rtol):
+    """IDA's run with the analytic Jacobian at `rtol` among a problem's rows."""
+    return next((r for r in prow if r["tool"] == "IDA" and r["rtol"] == rtol
+                 and "analytic" in r["method"]), None)
+
+
 def find(problem, tool, method, rtol):
     for r in rows:
         if (r["problem"], r["tool"], r["method"], r["rtol"]) == (problem, tool, method, rtol):
@@ -82,9 +94,9 @@ def verdict():
           " digits. Ratios are time(other) / time(ours): above 1, we are faster. The claim"
           " holds in a cell when ours has scd >= diffsol BDF's and ratio >= 1 (or diffsol"
           " failed), ratio to IDA >= 3, and no unimo method failed.\n")
-    print("| problem | rtol | ours: method, scd / ms | diffsol bdf: scd / ms | vs diffsol |"
-          " IDA (analytic): scd / ms | vs IDA | unimo failures | point 4 |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    table_head(["problem", "rtol", "ours: method, scd / ms", "diffsol bdf: scd / ms",
+                "vs diffsol", "IDA (analytic): scd / ms", "vs IDA", "unimo failures",
+                "point 4"])
     for p in PROBLEMS:
         prow = [r for r in rows if r["problem"] == p]
         for rtol in reference_rtols(prow):
@@ -92,9 +104,7 @@ def verdict():
             good = [r for r in ours if ok(r)]
             failures = [r["method"] for r in ours if not ok(r)]
             ds = find(p, "diffsol", "bdf", rtol)
-            idas = [r for r in prow if r["tool"] == "IDA" and r["rtol"] == rtol
-                    and "analytic" in r["method"]]
-            ida = idas[0] if idas else None
+            ida = ida_analytic(prow, rtol)
             if not good:
                 print(f"| {p} | {rtol:.0e} | all failed | | | | | {', '.join(failures)} | no |")
                 continue
@@ -138,9 +148,9 @@ def verdict_equal_digits():
           " diffsol is >= 1 (or diffsol failed), the ratio to IDA >= 3, and no unimo run of"
           " the problem failed. Measured, not interpolated: every time in this table is a"
           " row of \"All results\".\n")
-    print("| problem | rtol | diffsol bdf: scd / ms | ours with >= its digits | vs diffsol |"
-          " IDA: scd / ms | ours with >= its digits | vs IDA | unimo failures | holds |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    table_head(["problem", "rtol", "diffsol bdf: scd / ms", "ours with >= its digits",
+                "vs diffsol", "IDA: scd / ms", "ours with >= its digits", "vs IDA",
+                "unimo failures", "holds"])
     for p in PROBLEMS:
         prow = [r for r in rows if r["problem"] == p]
         failures = sorted({f"{r['method']} {r['rtol']:.0e}" for r in prow
@@ -149,9 +159,7 @@ def verdict_equal_digits():
             holds = not failures
             cells = []
             for tool, method, factor in (("diffsol", "bdf", 1.0), ("IDA", "analytic", 3.0)):
-                ref = find(p, tool, method, rtol) if tool == "diffsol" else next(
-                    (r for r in prow if r["tool"] == "IDA" and r["rtol"] == rtol
-                     and "analytic" in r["method"]), None)
+                ref = find(p, tool, method, rtol) if tool == "diffsol" else ida_analytic(prow, rtol)
                 if not ok(ref):
                     cells += ["FAILED" if ref else "-", "-", "-"]
                     continue
