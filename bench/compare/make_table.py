@@ -66,8 +66,10 @@ def reference_rtols(prow):
     return sorted({r["rtol"] for r in prow if r["tool"] != "unimo"}, reverse=True)
 
 
-def table_head(columns):
-    """A markdown table's header and separator rows."""
+def section(title, intro, columns):
+    """A report section's title, its introduction and its table's header rows."""
+    print(f"## {title}\n")
+    print(intro + "\n")
     print("| " + " | ".join(columns) + " |")
     print("|" + "---|" * len(columns))
 
@@ -88,15 +90,14 @@ def find(problem, tool, method, rtol):
 def verdict():
     """Issue #23's point 4, cell by cell: our best method against diffsol's BDF (digits, then
     time) and against IDA with its analytic Jacobian (time), and whether we failed."""
-    print("## Point 4 of issue #23, per problem and tolerance\n")
-    print("Our best method: of unimo's methods that reach at least diffsol BDF's scd (all of"
-          " them where diffsol fails), the fastest; where none does, the one with the most"
-          " digits. Ratios are time(other) / time(ours): above 1, we are faster. The claim"
-          " holds in a cell when ours has scd >= diffsol BDF's and ratio >= 1 (or diffsol"
-          " failed), ratio to IDA >= 3, and no unimo method failed.\n")
-    table_head(["problem", "rtol", "ours: method, scd / ms", "diffsol bdf: scd / ms",
-                "vs diffsol", "IDA (analytic): scd / ms", "vs IDA", "unimo failures",
-                "point 4"])
+    section("Point 4 of issue #23, per problem and tolerance",
+            "Our best method: of unimo's methods that reach at least diffsol BDF's scd (all of"
+            " them where diffsol fails), the fastest; where none does, the one with the most"
+            " digits. Ratios are time(other) / time(ours): above 1, we are faster. The claim"
+            " holds in a cell when ours has scd >= diffsol BDF's and ratio >= 1 (or diffsol"
+            " failed), ratio to IDA >= 3, and no unimo method failed.",
+            ["problem", "rtol", "ours: method, scd / ms", "diffsol bdf: scd / ms",
+             "vs diffsol", "IDA (analytic): scd / ms", "vs IDA", "unimo failures", "point 4"])
     for p in PROBLEMS:
         prow = [r for r in rows if r["problem"] == p]
         for rtol in reference_rtols(prow):
@@ -140,17 +141,17 @@ def fastest_reaching(prow, target):
 def verdict_equal_digits():
     """Point 4 read as work against precision: for each cell of diffsol's BDF and of IDA,
     our fastest measured run that reaches at least its digits."""
-    print("## Point 4 at equal digits\n")
-    print("The same cells read as work against precision: against each run of diffsol's BDF"
-          " and of IDA (analytic Jacobian), our fastest measured run, of any method and"
-          " tolerance (unimo also ran at the tolerances between the columns), with at least"
-          " its digits. Ratios are time(other) / time(ours). The cell holds when the ratio to"
-          " diffsol is >= 1 (or diffsol failed), the ratio to IDA >= 3, and no unimo run of"
-          " the problem failed. Measured, not interpolated: every time in this table is a"
-          " row of \"All results\".\n")
-    table_head(["problem", "rtol", "diffsol bdf: scd / ms", "ours with >= its digits",
-                "vs diffsol", "IDA: scd / ms", "ours with >= its digits", "vs IDA",
-                "unimo failures", "holds"])
+    section("Point 4 at equal digits",
+            "The same cells read as work against precision: against each run of diffsol's BDF"
+            " and of IDA (analytic Jacobian), our fastest measured run, of any method and"
+            " tolerance (unimo also ran at the tolerances between the columns), with at least"
+            " its digits. Ratios are time(other) / time(ours). The cell holds when the ratio to"
+            " diffsol is >= 1 (or diffsol failed), the ratio to IDA >= 3, and no unimo run of"
+            " the problem failed. Measured, not interpolated: every time in this table is a"
+            " row of \"All results\".",
+            ["problem", "rtol", "diffsol bdf: scd / ms", "ours with >= its digits",
+             "vs diffsol", "IDA: scd / ms", "ours with >= its digits", "vs IDA",
+             "unimo failures", "holds"])
     for p in PROBLEMS:
         prow = [r for r in rows if r["problem"] == p]
         failures = sorted({f"{r['method']} {r['rtol']:.0e}" for r in prow
