@@ -295,7 +295,8 @@ struct Ode<'a> {
     last_roots: (f64, Crossed),
     /// Per root function: the earliest time since its last event at which it was
     /// outside twice its rounding-noise band (inside the band [`Ode::roots`] reports it
-    /// as exactly zero), infinite if never (see `zeno`).
+    /// as exactly zero): `+inf` if never, `-inf` before its first event (which is so
+    /// never quiet; see `zeno`).
     left_noise: Vec<f64>,
     /// Per root function: after an event of it that happened inside its noise band and
     /// reinitialized a state, the side it crossed to (true: negative). Cleared when it
