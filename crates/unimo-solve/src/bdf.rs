@@ -65,10 +65,9 @@ use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
 use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup};
 use crate::jacobian::JacobianEvaluator;
-use crate::linear::ShiftedLu;
+use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, weighted_rms_masked, worst_components, Tolerances};
 use crate::options::{Method, Options};
-use crate::radau5::use_sparse;
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, minimum_step, step_above_floor};
 use crate::system::System;
@@ -199,10 +198,7 @@ impl Bdf {
         calibrate_tolerances(&mut setup.tolerances, &setup.differential);
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let lu = match (sparse, system.sparsity()) {
-            (true, Some(pattern)) => ShiftedLu::sparse(pattern),
-            _ => ShiftedLu::dense(size),
-        };
+        let lu = iteration_lu(system, setup.options.linear_solver);
         let error_mask = if setup.options.suppress_algebraic_error {
             setup.differential.clone()
         } else {
@@ -839,6 +835,10 @@ fn calibrate_tolerances(tolerances: &mut Tolerances, differential: &[bool]) {
 
 impl Integrator for Bdf {
     common_accessors!(Method::Bdf, |s| s.t, &s.phi[0]);
+
+    fn linear_solver(&self) -> Option<LinearSolverKind> {
+        Some(self.lu.kind())
+    }
 
     fn reset(&mut self, _system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size || !t.is_finite() {

@@ -3,7 +3,8 @@
 //! block): below [`SMALL_DENSE_LIMIT`] unknowns our own row-major partial-pivoting LU
 //! (`small_lu.rs`: faer's blocked kernels cost more in set-up than they save on an 18 x 18
 //! matrix); above it faer's dense partial-pivoting LU factored in place in preallocated
-//! storage, or a sparse LU (symbolic analysis once, numeric factorization on every
+//! storage; for small matrices with a known pattern the scheduled LU (`scheduled_lu.rs`,
+//! chosen by [`iteration_lu`]); or a sparse LU (symbolic analysis once, numeric factorization on every
 //! refactor) on the Jacobian's pattern plus the diagonal: our multifrontal LU with diagonal
 //! pivots (`sparse_lu.rs`) while it accepts its pivots, faer's with partial pivoting after.
 
@@ -14,9 +15,11 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
+use crate::options::LinearSolverChoice;
+use crate::scheduled_lu::{ScheduledLu, Work};
 use crate::small_lu::SmallLu;
 use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
-use crate::system::{JacobianMatrix, SparsityPattern};
+use crate::system::{JacobianMatrix, SparsityPattern, System};
 use std::cell::Cell;
 use std::time::Instant;
 
@@ -98,6 +101,31 @@ impl LuScalar for c64 {
     }
 }
 
+/// Which LU factors a method's iteration matrices (`unimo simulate --stats`:
+/// `linear_solver`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearSolverKind {
+    /// Dense LU with partial pivoting (our own below 32 unknowns, faer's above).
+    Dense,
+    /// The scheduled sparse LU of small matrices (`scheduled_lu.rs`); `refused` when it
+    /// refused its diagonal pivots often enough that the dense LU took over.
+    Scheduled { refused: bool },
+    /// The sparse LU of large matrices (`sparse_lu.rs`, faer's after a refusal).
+    Sparse,
+}
+
+impl LinearSolverKind {
+    /// The name `--stats` prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            LinearSolverKind::Dense => "dense",
+            LinearSolverKind::Scheduled { refused: false } => "scheduled",
+            LinearSolverKind::Scheduled { refused: true } => "scheduled, then dense",
+            LinearSolverKind::Sparse => "sparse",
+        }
+    }
+}
+
 /// The factorization failed: a zero or non-finite pivot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct SingularMatrix;
@@ -109,8 +137,58 @@ pub(crate) struct ShiftedLu<T: LuScalar> {
 
 enum Backend<T: LuScalar> {
     Small(SmallLu<T>),
+    Scheduled(Box<ScheduledBackend<T>>),
     Dense(DenseBackend<T>),
     Sparse(Box<SparseBackend<T>>),
+}
+
+/// The scheduled sparse LU (`scheduled_lu.rs`), with a dense LU with partial pivoting for
+/// the matrices whose diagonal pivots it refuses.
+struct ScheduledBackend<T: LuScalar> {
+    scheduled: ScheduledLu<T>,
+    /// Created at the first refusal; after [`MAX_REFUSALS`] refusals it factors every matrix.
+    fallback: Option<Box<ShiftedLu<T>>>,
+    refusals: u32,
+    /// Whether `fallback` holds the last factorization.
+    on_fallback: bool,
+}
+
+/// Refusals of the scheduled LU's diagonal pivots after which the dense LU factors alone
+/// (a refused attempt costs a part of a scheduled factorization, which is itself at most
+/// [`SCHEDULED_WORK_FRACTION`] of a dense one).
+const MAX_REFUSALS: u32 = 3;
+
+/// The scheduled LU replaces the dense one when its factorization and one solve take at
+/// most this fraction of the dense LU's multiply-adds (its indirect addressing costs more
+/// per operation than the dense loops).
+pub(crate) const SCHEDULED_WORK_FRACTION: f64 = 1.0 / 3.0;
+
+/// Whether the implicit methods factor `system`'s iteration matrices with the sparse LU.
+pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
+    choice.picks_sparse(system.len(), system.sparsity().is_some())
+}
+
+/// The LU of `system`'s iteration matrices under `choice`: sparse where [`use_sparse`]
+/// says so; otherwise, when the Jacobian's pattern is known and `choice` is `Auto`, the
+/// scheduled sparse LU if its work is at most [`SCHEDULED_WORK_FRACTION`] of the dense
+/// LU's; dense else.
+pub(crate) fn iteration_lu<T: LuScalar>(
+    system: &dyn System,
+    choice: LinearSolverChoice,
+) -> ShiftedLu<T> {
+    let size = system.len();
+    let Some(pattern) = system.sparsity() else {
+        return ShiftedLu::dense(size);
+    };
+    if use_sparse(system, choice) {
+        return ShiftedLu::sparse(pattern);
+    }
+    if choice == LinearSolverChoice::Auto {
+        if let Some(scheduled) = ShiftedLu::scheduled(pattern, SCHEDULED_WORK_FRACTION) {
+            return scheduled;
+        }
+    }
+    ShiftedLu::dense(size)
 }
 
 /// faer's dense partial-pivoting LU, factored in place in preallocated storage.
@@ -159,6 +237,29 @@ impl<T: LuScalar> ShiftedLu<T> {
             };
         }
         Self::faer_dense(size)
+    }
+
+    /// The scheduled sparse LU on `jacobian_pattern` plus the diagonal, if its work is at
+    /// most `fraction` of the dense LU's (`None` otherwise).
+    pub fn scheduled(jacobian_pattern: &SparsityPattern, fraction: f64) -> Option<Self> {
+        let size = jacobian_pattern.size();
+        if size >= crate::options::SPARSE_AUTO_THRESHOLD.max(SMALL_DENSE_LIMIT) {
+            return None;
+        }
+        let (scheduled, work) = ScheduledLu::analyze(jacobian_pattern);
+        let dense = Work::dense(size);
+        let cost = |w: Work| (w.factor + w.solve) as f64;
+        if cost(work) > fraction * cost(dense) {
+            return None;
+        }
+        Some(ShiftedLu {
+            backend: Backend::Scheduled(Box::new(ScheduledBackend {
+                scheduled,
+                fallback: None,
+                refusals: 0,
+                on_fallback: false,
+            })),
+        })
     }
 
     /// faer's dense LU of a `size × size` matrix, whatever its size.
@@ -223,8 +324,20 @@ impl<T: LuScalar> ShiftedLu<T> {
     ) -> Result<(), SingularMatrix> {
         match &mut self.backend {
             Backend::Small(small) => small.factor_shifted(jacobian, differential, shift),
+            Backend::Scheduled(scheduled) => scheduled.factor(jacobian, differential, shift),
             Backend::Dense(dense) => dense.factor(jacobian, differential, shift),
             Backend::Sparse(sparse) => sparse.factor(jacobian, differential, shift),
+        }
+    }
+
+    /// Which LU this is.
+    pub fn kind(&self) -> LinearSolverKind {
+        match &self.backend {
+            Backend::Small(_) | Backend::Dense(_) => LinearSolverKind::Dense,
+            Backend::Scheduled(s) => LinearSolverKind::Scheduled {
+                refused: s.refusals >= MAX_REFUSALS,
+            },
+            Backend::Sparse(_) => LinearSolverKind::Sparse,
         }
     }
 
@@ -238,8 +351,43 @@ impl<T: LuScalar> ShiftedLu<T> {
     fn solve_untimed(&mut self, rhs: &mut [T]) {
         match &mut self.backend {
             Backend::Small(small) => small.solve(rhs),
+            Backend::Scheduled(scheduled) => scheduled.solve(rhs),
             Backend::Dense(dense) => dense.solve(rhs),
             Backend::Sparse(sparse) => sparse.solve(rhs),
+        }
+    }
+}
+
+impl<T: LuScalar> ScheduledBackend<T> {
+    fn factor(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        shift: T,
+    ) -> Result<(), SingularMatrix> {
+        if self.refusals < MAX_REFUSALS {
+            if self
+                .scheduled
+                .factor_shifted(jacobian, differential, shift)
+                .is_ok()
+            {
+                self.on_fallback = false;
+                return Ok(());
+            }
+            self.refusals += 1;
+        }
+        self.on_fallback = true;
+        let size = jacobian.size();
+        let fallback = self
+            .fallback
+            .get_or_insert_with(|| Box::new(ShiftedLu::dense(size)));
+        fallback.factor_untimed(jacobian, differential, shift)
+    }
+
+    fn solve(&mut self, rhs: &mut [T]) {
+        match (&mut self.fallback, self.on_fallback) {
+            (Some(fallback), true) => fallback.solve_untimed(rhs),
+            _ => self.scheduled.solve(rhs),
         }
     }
 }

@@ -36,9 +36,9 @@ use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
 use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
 use crate::jacobian::JacobianEvaluator;
-use crate::linear::ShiftedLu;
+use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
-use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
+use crate::options::{Method, Options, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
 use crate::system::System;
@@ -262,10 +262,10 @@ impl Radau5 {
         };
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let (real_lu, complex_lu) = match (sparse, system.sparsity()) {
-            (true, Some(pattern)) => (ShiftedLu::sparse(pattern), ShiftedLu::sparse(pattern)),
-            _ => (ShiftedLu::dense(size), ShiftedLu::dense(size)),
-        };
+        let (real_lu, complex_lu) = (
+            iteration_lu(system, setup.options.linear_solver),
+            iteration_lu(system, setup.options.linear_solver),
+        );
         let zeros = || vec![0.0; size];
         let mut integrator = Radau5 {
             jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),
@@ -731,12 +731,12 @@ fn transform_tolerances(tolerances: &mut Tolerances) {
     }
 }
 
-pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
-    choice.picks_sparse(system.len(), system.sparsity().is_some())
-}
-
 impl Integrator for Radau5 {
     common_accessors!(Method::Radau5, |s| s.start.t, &s.start.x);
+
+    fn linear_solver(&self) -> Option<LinearSolverKind> {
+        Some(self.real_lu.kind())
+    }
 
     fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         self.setup.check_len(x)?;

@@ -18,6 +18,7 @@ use crate::bdf::Bdf;
 use crate::dopri5::Dopri5;
 use crate::error::SolveError;
 use crate::integrator::Integrator;
+use crate::linear::LinearSolverKind;
 use crate::options::{Method, Options};
 use crate::radau5::Radau5;
 use crate::roots::{Direction, RootTracker};
@@ -240,6 +241,11 @@ impl Solver {
         stats.root_evals += self.driver_stats.root_evals;
         stats.events += self.driver_stats.events;
         stats
+    }
+
+    /// The LU of the method's iteration matrices (`None` for explicit methods).
+    pub fn linear_solver(&self) -> Option<LinearSolverKind> {
+        self.integrator.linear_solver()
     }
 
     /// The method in use.
