@@ -5,7 +5,7 @@
 //! scheduled LU, and its refusals of diagonal pivots the dense one.
 
 use std::path::PathBuf;
-use unimo_runtime::sim::{jacobian_pattern, simulate, SimOptions, SimResult};
+use unimo_runtime::sim::{jacobian_pattern, simulate, Overrides, SimOptions, SimResult};
 use unimo_solve::{LinearSolverKind, Method};
 
 #[path = "../crates/unimo-solve/tests/support/test_set.rs"]
@@ -45,16 +45,14 @@ fn run_to(
     stop: f64,
     (rtol, atol): (f64, f64),
 ) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        atol,
-        method,
-        interval: stop / 10.0,
-        every_step: false,
-        output_rtol: 0.0,
+    let overrides = Overrides {
+        stop: Some(stop),
+        rtol: Some(rtol),
+        atol: Some(atol),
+        points: Some(10),
+        ..Overrides::default()
     };
+    let o = SimOptions::resolve(&Default::default(), &overrides, method, false).expect("options");
     let r = simulate(&m.compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     r

@@ -113,6 +113,14 @@ macro_rules! common_accessors {
 }
 pub(crate) use common_accessors;
 
+/// What an integrator's constructor starts from: the validated setup and the consistent
+/// point `(t0, x0)` ([`crate::Solver::new`] builds it once for whichever method it creates).
+pub(crate) struct Initial<'a> {
+    pub setup: ProblemSetup,
+    pub t0: f64,
+    pub x0: &'a [f64],
+}
+
 /// What every method needs from the problem, checked once at construction.
 #[derive(Debug, Clone)]
 pub(crate) struct ProblemSetup {

@@ -126,6 +126,31 @@ impl LinearSolverKind {
     }
 }
 
+/// The matrix `shift * M - J` a backend factors, `M_ii = 1` where `differential[i]`.
+#[derive(Clone, Copy)]
+pub(crate) struct ShiftedMatrix<'a, T> {
+    pub jacobian: &'a JacobianMatrix,
+    pub differential: &'a [bool],
+    pub shift: T,
+}
+
+impl<T: LuScalar> ShiftedMatrix<'_, T> {
+    /// Calls `add(i, j, value)` for `-J`'s stored entries, then `add(i, i, shift)` for the
+    /// differential rows: added into zeroed storage, that is the matrix.
+    pub fn for_each_term(&self, mut add: impl FnMut(usize, usize, T)) {
+        self.jacobian
+            .for_each_entry(|i, j, value| add(i, j, T::from(0.0) - T::from(value)));
+        self.for_each_shift(|i, shift| add(i, i, shift));
+    }
+
+    /// Calls `add(i, shift)` for the differential rows.
+    pub fn for_each_shift(&self, mut add: impl FnMut(usize, T)) {
+        for (i, _) in self.differential.iter().enumerate().filter(|(_, d)| **d) {
+            add(i, self.shift);
+        }
+    }
+}
+
 /// The factorization failed: a zero or non-finite pivot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct SingularMatrix;
@@ -311,22 +336,21 @@ impl<T: LuScalar> ShiftedLu<T> {
         shift: T,
     ) -> Result<(), SingularMatrix> {
         let started = fine_timing().then(Instant::now);
-        let factored = self.factor_untimed(jacobian, differential, shift);
+        let factored = self.factor_untimed(ShiftedMatrix {
+            jacobian,
+            differential,
+            shift,
+        });
         add_linear_algebra_time(started);
         factored
     }
 
-    fn factor_untimed(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor_untimed(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         match &mut self.backend {
-            Backend::Small(small) => small.factor_shifted(jacobian, differential, shift),
-            Backend::Scheduled(scheduled) => scheduled.factor(jacobian, differential, shift),
-            Backend::Dense(dense) => dense.factor(jacobian, differential, shift),
-            Backend::Sparse(sparse) => sparse.factor(jacobian, differential, shift),
+            Backend::Small(small) => small.factor_shifted(matrix),
+            Backend::Scheduled(scheduled) => scheduled.factor(matrix),
+            Backend::Dense(dense) => dense.factor(matrix),
+            Backend::Sparse(sparse) => sparse.factor(matrix),
         }
     }
 
@@ -359,29 +383,20 @@ impl<T: LuScalar> ShiftedLu<T> {
 }
 
 impl<T: LuScalar> ScheduledBackend<T> {
-    fn factor(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         if self.refusals < MAX_REFUSALS {
-            if self
-                .scheduled
-                .factor_shifted(jacobian, differential, shift)
-                .is_ok()
-            {
+            if self.scheduled.factor_shifted(matrix).is_ok() {
                 self.on_fallback = false;
                 return Ok(());
             }
             self.refusals += 1;
         }
         self.on_fallback = true;
-        let size = jacobian.size();
+        let size = matrix.jacobian.size();
         let fallback = self
             .fallback
             .get_or_insert_with(|| Box::new(ShiftedLu::dense(size)));
-        fallback.factor_untimed(jacobian, differential, shift)
+        fallback.factor_untimed(matrix)
     }
 
     fn solve(&mut self, rhs: &mut [T]) {
@@ -405,20 +420,10 @@ impl<T: LuScalar> DenseBackend<T> {
         }
     }
 
-    fn factor(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         let factors = &mut self.factors;
         factors.fill(T::from(0.0));
-        jacobian.for_each_entry(|i, j, value| {
-            factors[(i, j)] = T::from(0.0) - T::from(value);
-        });
-        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-            factors[(i, i)] += shift;
-        }
+        matrix.for_each_term(|i, j, value| factors[(i, j)] += value);
         dense_factor::lu_in_place(
             factors.as_mut(),
             &mut self.permutation,
@@ -451,17 +456,11 @@ impl<T: LuScalar> DenseBackend<T> {
 }
 
 impl<T: LuScalar> SparseBackend<T> {
-    fn factor(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         self.values.fill(T::from(0.0));
-        self.scatter_jacobian(jacobian);
-        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-            self.values[self.diagonal_positions[i]] += shift;
-        }
+        self.scatter_jacobian(matrix.jacobian);
+        let (values, diagonal) = (&mut self.values, &self.diagonal_positions);
+        matrix.for_each_shift(|i, shift| values[diagonal[i]] += shift);
         self.diagonal_factored = false;
         if !self.diagonal_analyzed {
             self.diagonal_analyzed = true;

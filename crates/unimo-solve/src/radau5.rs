@@ -34,11 +34,13 @@ use faer::c64;
 use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
+use crate::integrator::{
+    common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
+};
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
-use crate::options::{Method, Options, SPARSE_AUTO_THRESHOLD};
+use crate::options::{Method, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
 use crate::system::System;
@@ -233,13 +235,8 @@ struct Radau5Rewind {
 
 impl Radau5 {
     /// Creates the integrator at the consistent point `(t0, x0)`.
-    pub fn new(
-        system: &mut dyn System,
-        t0: f64,
-        x0: &[f64],
-        options: Options,
-    ) -> Result<Self, SolveError> {
-        let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+    pub(crate) fn new(system: &mut dyn System, initial: Initial<'_>) -> Result<Self, SolveError> {
+        let Initial { mut setup, t0, x0 } = initial;
         let requested = setup.tolerances.relative.clone();
         transform_tolerances(&mut setup.tolerances);
         let tolerance_ratio = requested
