@@ -16,11 +16,12 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
 use crate::options::LinearSolverChoice;
-use crate::scheduled_lu::{ScheduledLu, Work};
+use crate::scheduled_lu::{Schedule, ScheduledLu, Work};
 use crate::small_lu::SmallLu;
 use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
 use crate::system::{JacobianMatrix, SparsityPattern, System};
 use std::cell::Cell;
+use std::sync::Arc;
 use std::time::Instant;
 
 thread_local! {
@@ -271,20 +272,34 @@ impl<T: LuScalar> ShiftedLu<T> {
         if size >= crate::options::SPARSE_AUTO_THRESHOLD.max(SMALL_DENSE_LIMIT) {
             return None;
         }
-        let (scheduled, work) = ScheduledLu::analyze(jacobian_pattern);
-        let dense = Work::dense(size);
+        let schedule = Schedule::analyze(jacobian_pattern);
         let cost = |w: Work| (w.factor + w.solve) as f64;
-        if cost(work) > fraction * cost(dense) {
+        if cost(schedule.work) > fraction * cost(Work::dense(size)) {
             return None;
         }
-        Some(ShiftedLu {
+        Some(Self::on_schedule(Arc::new(schedule)))
+    }
+
+    fn on_schedule(schedule: Arc<Schedule>) -> Self {
+        ShiftedLu {
             backend: Backend::Scheduled(Box::new(ScheduledBackend {
-                scheduled,
+                scheduled: ScheduledLu::new(schedule),
                 fallback: None,
                 refusals: 0,
                 on_fallback: false,
             })),
-        })
+        }
+    }
+
+    /// A LU of the same kind for matrices of other scalars (Radau5's complex one beside
+    /// its real one), sharing the scheduled LU's analysis.
+    pub fn sibling<U: LuScalar>(&self) -> ShiftedLu<U> {
+        match &self.backend {
+            Backend::Small(small) => ShiftedLu::dense(small.size()),
+            Backend::Scheduled(s) => ShiftedLu::on_schedule(s.scheduled.schedule().clone()),
+            Backend::Dense(dense) => ShiftedLu::faer_dense(dense.factors.nrows()),
+            Backend::Sparse(sparse) => ShiftedLu::sparse(&sparse.pattern),
+        }
     }
 
     /// faer's dense LU of a `size × size` matrix, whatever its size.

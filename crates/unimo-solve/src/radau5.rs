@@ -259,10 +259,8 @@ impl Radau5 {
         };
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let (real_lu, complex_lu) = (
-            iteration_lu(system, setup.options.linear_solver),
-            iteration_lu(system, setup.options.linear_solver),
-        );
+        let real_lu: ShiftedLu<f64> = iteration_lu(system, setup.options.linear_solver);
+        let complex_lu = real_lu.sibling();
         let zeros = || vec![0.0; size];
         let mut integrator = Radau5 {
             jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),

@@ -13,17 +13,20 @@
 use crate::linear::{LuScalar, ShiftedMatrix};
 use crate::sparse_lu::{PivotRefused, PIVOT_TOLERANCE};
 use crate::system::SparsityPattern;
+use std::sync::Arc;
 
-/// The analysis (once) and the numeric factors (every refactorization). Indices are `u32`
-/// (the schedule is only built for matrices far smaller than that).
-#[derive(Debug, Clone)]
-pub(crate) struct ScheduledLu<T: LuScalar> {
+/// The analysis: the pivot order, the filled pattern's positions and the elimination's
+/// schedule. It does not depend on the scalars, so a real and a complex LU of one pattern
+/// (Radau5's) share it. Indices are `u32` (the schedule is only built for matrices far
+/// smaller than that).
+#[derive(Debug)]
+pub(crate) struct Schedule {
     /// `old_of_new[k]`: the unknown eliminated at step `k`.
     old_of_new: Vec<u32>,
-    /// The Jacobian's entries `(row, column)` and their position in `values`, in the
+    /// The Jacobian's entries `(row, column)` and their position in the values, in the
     /// pattern's column-major order.
     entries: Vec<(u32, u32, u32)>,
-    /// Position in `values` of each unknown's diagonal entry (original index).
+    /// Position of each unknown's diagonal entry (original index).
     diagonal: Vec<u32>,
     /// Position of each step's pivot.
     pivots: Vec<u32>,
@@ -38,6 +41,15 @@ pub(crate) struct ScheduledLu<T: LuScalar> {
     /// The updates' targets: for each step, for each entry below the pivot, for each
     /// entry right of it, the position of their product's target.
     targets: Vec<u32>,
+    /// Entries of the filled pattern.
+    stored: usize,
+    pub work: Work,
+}
+
+/// The numeric factors of one matrix on a [`Schedule`] (every refactorization).
+#[derive(Debug, Clone)]
+pub(crate) struct ScheduledLu<T: LuScalar> {
+    schedule: Arc<Schedule>,
     /// The filled pattern's values: `L` (unit lower, without its diagonal) and `U`.
     values: Vec<T>,
     inverse_pivots: Vec<T>,
@@ -89,7 +101,11 @@ fn markowitz_order(pattern: &SparsityPattern) -> (Vec<usize>, Vec<bool>) {
     let mut order = Vec::with_capacity(n);
     let (mut lower, mut upper) = (Vec::with_capacity(n), Vec::with_capacity(n));
     for _ in 0..n {
-        let key = |k: usize| ((rows[k] - 1) * (columns[k] - 1), rows[k] + columns[k], k);
+        // The fill bound, then r + c, then the index, in one integer (each below 2^21).
+        let key = |k: usize| {
+            let (r, c) = (rows[k] as u64, columns[k] as u64);
+            ((r - 1) * (c - 1)) << 42 | (r + c) << 21 | k as u64
+        };
         let Some(k) = (0..n).filter(|&k| active[k]).min_by_key(|&k| key(k)) else {
             break;
         };
@@ -116,9 +132,9 @@ fn markowitz_order(pattern: &SparsityPattern) -> (Vec<usize>, Vec<bool>) {
     (order, filled)
 }
 
-impl<T: LuScalar> ScheduledLu<T> {
+impl Schedule {
     /// Analyses the Jacobian pattern `pattern` (the diagonal is added).
-    pub fn analyze(pattern: &SparsityPattern) -> (Self, Work) {
+    pub fn analyze(pattern: &SparsityPattern) -> Schedule {
         let n = pattern.size();
         let (order, filled) = markowitz_order(pattern);
         let mut new_of_old = vec![0usize; n];
@@ -142,7 +158,7 @@ impl<T: LuScalar> ScheduledLu<T> {
             .map(|(i, j)| (i as u32, j as u32, at(i, j)))
             .collect();
         let diagonal = (0..n).map(|i| at(i, i)).collect();
-        let mut lu = ScheduledLu {
+        let mut schedule = Schedule {
             old_of_new: order.iter().map(|&k| k as u32).collect(),
             entries,
             diagonal,
@@ -154,61 +170,83 @@ impl<T: LuScalar> ScheduledLu<T> {
             upper_positions: Vec::new(),
             upper_columns: Vec::new(),
             targets: Vec::new(),
-            values: vec![T::from(0.0); stored as usize],
-            inverse_pivots: vec![T::from(1.0); n],
-            scratch: vec![T::from(0.0); n],
+            stored: stored as usize,
+            work: Work {
+                factor: 0,
+                solve: stored as usize,
+            },
         };
-        let mut work = Work {
-            factor: 0,
-            solve: stored as usize,
-        };
+        let (mut lower, mut upper) = (Vec::with_capacity(n), Vec::with_capacity(n));
         for k in 0..n {
-            lu.pivots.push(position[k * n + k]);
-            let lower: Vec<usize> = (k + 1..n)
-                .filter(|&r| position[r * n + k] != u32::MAX)
-                .collect();
-            let upper: Vec<usize> = (k + 1..n)
-                .filter(|&c| position[k * n + c] != u32::MAX)
-                .collect();
+            schedule.pivots.push(position[k * n + k]);
+            lower.clear();
+            upper.clear();
+            lower.extend((k + 1..n).filter(|&r| position[r * n + k] != u32::MAX));
+            upper.extend((k + 1..n).filter(|&c| position[k * n + c] != u32::MAX));
             for &r in &lower {
-                lu.lower_positions.push(position[r * n + k]);
-                lu.lower_rows.push(r as u32);
-                lu.targets
+                schedule.lower_positions.push(position[r * n + k]);
+                schedule.lower_rows.push(r as u32);
+                schedule
+                    .targets
                     .extend(upper.iter().map(|&c| position[r * n + c]));
             }
             for &c in &upper {
-                lu.upper_positions.push(position[k * n + c]);
-                lu.upper_columns.push(c as u32);
+                schedule.upper_positions.push(position[k * n + c]);
+                schedule.upper_columns.push(c as u32);
             }
-            lu.lower_starts.push(lu.lower_positions.len() as u32);
-            lu.upper_starts.push(lu.upper_positions.len() as u32);
-            work.factor += lower.len() * (upper.len() + 1);
+            schedule
+                .lower_starts
+                .push(schedule.lower_positions.len() as u32);
+            schedule
+                .upper_starts
+                .push(schedule.upper_positions.len() as u32);
+            schedule.work.factor += lower.len() * (upper.len() + 1);
         }
-        (lu, work)
+        schedule
+    }
+}
+
+impl<T: LuScalar> ScheduledLu<T> {
+    /// Storage for the factors of matrices on `schedule`.
+    pub fn new(schedule: Arc<Schedule>) -> Self {
+        let n = schedule.pivots.len();
+        ScheduledLu {
+            values: vec![T::from(0.0); schedule.stored],
+            inverse_pivots: vec![T::from(1.0); n],
+            scratch: vec![T::from(0.0); n],
+            schedule,
+        }
+    }
+
+    /// The schedule, to share with a LU of other scalars.
+    pub fn schedule(&self) -> &Arc<Schedule> {
+        &self.schedule
     }
 
     /// Writes `matrix` (its Jacobian's entries on the analysed pattern) into the factors'
     /// storage and factors it.
     pub fn factor_shifted(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), PivotRefused> {
+        let schedule = &*self.schedule;
         self.values.fill(T::from(0.0));
-        for &(i, j, p) in &self.entries {
+        for &(i, j, p) in &schedule.entries {
             let value = matrix.jacobian.get(i as usize, j as usize);
             self.values[p as usize] = T::from(0.0) - T::from(value);
         }
-        let (values, diagonal) = (&mut self.values, &self.diagonal);
+        let (values, diagonal) = (&mut self.values, &schedule.diagonal);
         matrix.for_each_shift(|i, shift| values[diagonal[i] as usize] += shift);
         self.factor()
     }
 
     fn factor(&mut self) -> Result<(), PivotRefused> {
+        let schedule = &*self.schedule;
         let values = &mut self.values;
-        let mut targets = self.targets.iter();
-        for k in 0..self.pivots.len() {
-            let lower = &self.lower_positions
-                [self.lower_starts[k] as usize..self.lower_starts[k + 1] as usize];
-            let upper = &self.upper_positions
-                [self.upper_starts[k] as usize..self.upper_starts[k + 1] as usize];
-            let pivot = values[self.pivots[k] as usize];
+        let mut targets = schedule.targets.iter();
+        for k in 0..schedule.pivots.len() {
+            let lower = &schedule.lower_positions
+                [schedule.lower_starts[k] as usize..schedule.lower_starts[k + 1] as usize];
+            let upper = &schedule.upper_positions
+                [schedule.upper_starts[k] as usize..schedule.upper_starts[k + 1] as usize];
+            let pivot = values[schedule.pivots[k] as usize];
             let largest = lower
                 .iter()
                 .map(|&p| values[p as usize].pivot_size())
@@ -235,35 +273,36 @@ impl<T: LuScalar> ScheduledLu<T> {
 
     /// Solves `A x = b` in place with the last factorization.
     pub fn solve(&mut self, b: &mut [T]) {
+        let schedule = &*self.schedule;
         let y = &mut self.scratch;
-        for (k, &old) in self.old_of_new.iter().enumerate() {
+        for (k, &old) in schedule.old_of_new.iter().enumerate() {
             y[k] = b[old as usize];
         }
         let values = &self.values;
         // L y = b (unit diagonal), column by column.
         for k in 0..y.len() {
-            let range = self.lower_starts[k] as usize..self.lower_starts[k + 1] as usize;
+            let range = schedule.lower_starts[k] as usize..schedule.lower_starts[k + 1] as usize;
             let yk = y[k];
-            for (&p, &r) in self.lower_positions[range.clone()]
+            for (&p, &r) in schedule.lower_positions[range.clone()]
                 .iter()
-                .zip(&self.lower_rows[range])
+                .zip(&schedule.lower_rows[range])
             {
                 y[r as usize] -= values[p as usize] * yk;
             }
         }
         // U x = y, from the last row up.
         for k in (0..y.len()).rev() {
-            let range = self.upper_starts[k] as usize..self.upper_starts[k + 1] as usize;
+            let range = schedule.upper_starts[k] as usize..schedule.upper_starts[k + 1] as usize;
             let mut s = y[k];
-            for (&q, &c) in self.upper_positions[range.clone()]
+            for (&q, &c) in schedule.upper_positions[range.clone()]
                 .iter()
-                .zip(&self.upper_columns[range])
+                .zip(&schedule.upper_columns[range])
             {
                 s -= values[q as usize] * y[c as usize];
             }
             y[k] = s * self.inverse_pivots[k];
         }
-        for (k, &old) in self.old_of_new.iter().enumerate() {
+        for (k, &old) in schedule.old_of_new.iter().enumerate() {
             b[old as usize] = y[k];
         }
     }
@@ -274,6 +313,8 @@ mod tests {
     use super::*;
     use crate::small_lu::SmallLu;
     use crate::system::JacobianMatrix;
+
+    use faer::c64;
 
     fn shifted<'a, T>(
         jacobian: &'a JacobianMatrix,
@@ -286,7 +327,12 @@ mod tests {
             shift,
         }
     }
-    use faer::c64;
+
+    fn analyze<T: LuScalar>(pattern: &SparsityPattern) -> (ScheduledLu<T>, Work) {
+        let schedule = Arc::new(Schedule::analyze(pattern));
+        let work = schedule.work;
+        (ScheduledLu::new(schedule), work)
+    }
 
     /// The lower-triangular-plus-diagonal pattern of a chain, and one with an arrow (a
     /// dense first row and column: natural order fills everything, the right order none).
@@ -297,10 +343,10 @@ mod tests {
 
     #[test]
     fn an_arrow_is_factored_without_fill() {
-        let (lu, work) = ScheduledLu::<f64>::analyze(&arrow(10));
+        let (lu, work) = analyze::<f64>(&arrow(10));
         // The hub goes in the last 2 x 2 block: each step before has one entry below and
         // one right of its pivot.
-        assert!(!lu.old_of_new[..8].contains(&0));
+        assert!(!lu.schedule.old_of_new[..8].contains(&0));
         assert_eq!(lu.values.len(), 28);
         assert_eq!(
             work,
@@ -339,7 +385,7 @@ mod tests {
         let jacobian = jacobian_on(&pattern, 17);
         let differential: Vec<bool> = (0..12).map(|i| i % 5 != 4).collect();
         let b: Vec<f64> = (0..12).map(|i| 1.0 - 0.3 * i as f64).collect();
-        let (mut scheduled, _) = ScheduledLu::<f64>::analyze(&pattern);
+        let (mut scheduled, _) = analyze::<f64>(&pattern);
         let mut dense = SmallLu::<f64>::new(12);
         scheduled
             .factor_shifted(shifted(&jacobian, &differential, 50.0))
@@ -354,7 +400,7 @@ mod tests {
             assert!((x[i] - y[i]).abs() <= 1e-13 * (1.0 + y[i].abs()), "row {i}");
         }
         let shift = c64::new(40.0, -25.0);
-        let (mut scheduled, _) = ScheduledLu::<c64>::analyze(&pattern);
+        let (mut scheduled, _) = analyze::<c64>(&pattern);
         let mut dense = SmallLu::<c64>::new(12);
         scheduled
             .factor_shifted(shifted(&jacobian, &differential, shift))
@@ -382,7 +428,7 @@ mod tests {
         for (i, j, v) in [(0, 0, 0.0), (1, 0, -1.0), (0, 1, -1.0), (1, 1, 0.0)] {
             assert!(jacobian.set(i, j, v));
         }
-        let (mut lu, _) = ScheduledLu::<f64>::analyze(&pattern);
+        let (mut lu, _) = analyze::<f64>(&pattern);
         assert_eq!(
             lu.factor_shifted(shifted(&jacobian, &[false, false], 1.0)),
             Err(PivotRefused)

@@ -31,6 +31,11 @@ impl<T: LuScalar> SmallLu<T> {
         }
     }
 
+    /// The matrices' size.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
     /// Writes `matrix` into the factors' storage and factors it.
     pub fn factor_shifted(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         let n = self.size;
