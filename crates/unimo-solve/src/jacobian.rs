@@ -14,7 +14,9 @@ use crate::system::{JacobianMatrix, SparsityPattern, System};
 #[derive(Debug, Clone)]
 pub(crate) struct JacobianEvaluator {
     matrix: JacobianMatrix,
-    /// Columns grouped by color; `None` means one column at a time.
+    /// Columns grouped by color (with a pattern, computed at the first differences: a
+    /// system with an analytic Jacobian never needs them); `None` means one column at a
+    /// time.
     color_groups: Option<Vec<Vec<usize>>>,
     pattern: Option<SparsityPattern>,
     x_perturbed: Vec<f64>,
@@ -32,10 +34,9 @@ impl JacobianEvaluator {
             (None, true) => JacobianMatrix::sparse(SparsityPattern::dense(size)),
             _ => JacobianMatrix::dense(size),
         };
-        let color_groups = pattern.as_ref().map(color_columns);
         JacobianEvaluator {
             matrix,
-            color_groups,
+            color_groups: None,
             pattern,
             x_perturbed: vec![0.0; size],
             f_perturbed: vec![0.0; size],
@@ -72,6 +73,9 @@ impl JacobianEvaluator {
         for (j, increment) in self.increments.iter_mut().enumerate() {
             let raw = f64::EPSILON.sqrt() * x[j].abs().max(scale[j]).max(1e-5);
             *increment = (x[j] + raw) - x[j];
+        }
+        if self.color_groups.is_none() {
+            self.color_groups = self.pattern.as_ref().map(color_columns);
         }
         match self.color_groups.take() {
             Some(groups) => {
