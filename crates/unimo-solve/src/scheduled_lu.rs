@@ -30,14 +30,18 @@ pub(crate) struct Schedule {
     diagonal: Vec<u32>,
     /// Position of each step's pivot.
     pivots: Vec<u32>,
-    /// Step `k`'s entries below its pivot (`lower_positions`, rows in `lower_rows`, new
-    /// indices) are `lower_starts[k]..lower_starts[k + 1]`; likewise right of it.
+    /// Step `k`'s entries below its pivot (their positions) are
+    /// `lower_positions[lower_starts[k]..lower_starts[k + 1]]`; likewise right of it.
     lower_starts: Vec<u32>,
     lower_positions: Vec<u32>,
-    lower_rows: Vec<u32>,
     upper_starts: Vec<u32>,
     upper_positions: Vec<u32>,
-    upper_columns: Vec<u32>,
+    /// The forward substitution in one list: `(row, position, column)` of `L`'s entries,
+    /// by column (`y[row] -= L[row, column] y[column]`).
+    forward: Vec<(u32, u32, u32)>,
+    /// The back substitution's `(position, column)` of `U`'s entries right of the
+    /// diagonal, row `k`'s at `upper_starts[k]..upper_starts[k + 1]`.
+    backward: Vec<(u32, u32)>,
     /// The updates' targets: for each step, for each entry below the pivot, for each
     /// entry right of it, the position of their product's target.
     targets: Vec<u32>,
@@ -165,11 +169,11 @@ impl Schedule {
             pivots: Vec::with_capacity(n),
             lower_starts: vec![0],
             lower_positions: Vec::new(),
-            lower_rows: Vec::new(),
             upper_starts: vec![0],
             upper_positions: Vec::new(),
-            upper_columns: Vec::new(),
             targets: Vec::new(),
+            forward: Vec::new(),
+            backward: Vec::new(),
             stored: stored as usize,
             work: Work {
                 factor: 0,
@@ -185,14 +189,16 @@ impl Schedule {
             upper.extend((k + 1..n).filter(|&c| position[k * n + c] != u32::MAX));
             for &r in &lower {
                 schedule.lower_positions.push(position[r * n + k]);
-                schedule.lower_rows.push(r as u32);
+                schedule
+                    .forward
+                    .push((r as u32, position[r * n + k], k as u32));
                 schedule
                     .targets
                     .extend(upper.iter().map(|&c| position[r * n + c]));
             }
             for &c in &upper {
                 schedule.upper_positions.push(position[k * n + c]);
-                schedule.upper_columns.push(c as u32);
+                schedule.backward.push((position[k * n + c], c as u32));
             }
             schedule
                 .lower_starts
@@ -280,24 +286,15 @@ impl<T: LuScalar> ScheduledLu<T> {
         }
         let values = &self.values;
         // L y = b (unit diagonal), column by column.
-        for k in 0..y.len() {
-            let range = schedule.lower_starts[k] as usize..schedule.lower_starts[k + 1] as usize;
-            let yk = y[k];
-            for (&p, &r) in schedule.lower_positions[range.clone()]
-                .iter()
-                .zip(&schedule.lower_rows[range])
-            {
-                y[r as usize] -= values[p as usize] * yk;
-            }
+        for &(r, p, k) in &schedule.forward {
+            let yk = y[k as usize];
+            y[r as usize] -= values[p as usize] * yk;
         }
         // U x = y, from the last row up.
         for k in (0..y.len()).rev() {
             let range = schedule.upper_starts[k] as usize..schedule.upper_starts[k + 1] as usize;
             let mut s = y[k];
-            for (&q, &c) in schedule.upper_positions[range.clone()]
-                .iter()
-                .zip(&schedule.upper_columns[range])
-            {
+            for &(q, c) in &schedule.backward[range] {
                 s -= values[q as usize] * y[c as usize];
             }
             y[k] = s * self.inverse_pivots[k];
