@@ -157,7 +157,30 @@ pub struct ClassDef {
     pub span: Span,
 }
 
+/// A class's prefixes as both parsers read them: `partial`, the other prefixes and the
+/// kind.
+pub type ClassHead = (bool, ClassPrefixes, ClassKind);
+
 impl ClassDef {
+    /// A class definition from what the parsers read: `encapsulated`, its head (prefixes
+    /// and kind), its specifier (name and body) and its span.
+    pub fn new(
+        encapsulated: bool,
+        (partial, prefixes, kind): ClassHead,
+        (name, body): (Ident, ClassBody),
+        span: Span,
+    ) -> ClassDef {
+        ClassDef {
+            encapsulated,
+            partial,
+            prefixes,
+            kind,
+            name,
+            body,
+            span,
+        }
+    }
+
     /// The component clauses a long class declares, each with its element, in
     /// declaration order (none for a short, derivative or enumeration class).
     pub fn component_clauses(&self) -> impl Iterator<Item = (&Element, &ComponentClause)> {
