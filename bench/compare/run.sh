@@ -5,6 +5,7 @@
 # of its rounds' medians. BRUSS2D and SciPy run once, one tool after the other.
 #   bash bench/compare/run.sh              (from anywhere; RUNS=5 SCIPY_RUNS=5 ROUNDS=5 by default)
 # Environment: ROUNDS, RUNS (runs per configuration and round for unimo, IDA and diffsol), SCIPY_RUNS,
+# UNIMO_TOLERANCES (comma-separated; default the 1-2-5 series from 5e-3 to 1e-10),
 # BRUSS_RUNS (runs per configuration of the 2,048-equation BRUSS2D, default 3; SciPy runs
 # it once), CARGO_TARGET_DIR for the diffsol project (default /work/tgt-compare).
 set -euo pipefail
@@ -14,6 +15,9 @@ RUNS="${RUNS:-5}"
 ROUNDS="${ROUNDS:-5}"
 SCIPY_RUNS="${SCIPY_RUNS:-5}"
 BRUSS_RUNS="${BRUSS_RUNS:-3}"
+# unimo's tolerances: the 1-2-5 series from 5e-3 to 1e-10 (the other tools run at 1e-4,
+# 1e-6, 1e-8, 1e-10; the table at equal digits reads unimo's whole work-precision curve).
+UNIMO_TOLERANCES="${UNIMO_TOLERANCES:-5e-3,2e-3,1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5,5e-6,2e-6,1e-6,5e-7,2e-7,1e-7,5e-8,2e-8,1e-8,5e-9,2e-9,1e-9,1e-10}"
 export BRUSS2D_REF="$HERE/refs/bruss2d.csv"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-/work/tgt-compare}"
 OUT="$HERE/out"
@@ -68,7 +72,7 @@ cat "$OUT/versions.md"
 unimo_bench() { # problem model ref atol-factor runs
   # The other tools' tolerances and the ones between them (the table at equal digits).
   "$UNIMO" bench "$REPO/models/$2.mo" --reference "$HERE/refs/$3.csv" \
-    --tolerances 1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10 \
+    --tolerances "$UNIMO_TOLERANCES" \
     --atol-factor "$4" --runs "$5" --points 1 --color never > "$OUT/unimo-$3.txt" || true
   cat "$OUT/unimo-$3.txt"
   # model method rtol atol median_ms steps scd_end scd_grid [FAILED: msg]

@@ -623,7 +623,7 @@ fn print_stats(
         None => String::new(),
     };
     eprintln!(
-        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"jacobian_nonzeros\":{},\"sparse_lu\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}{}}}",
+        "{{\"method\":\"{}\",\"states\":{},\"steps\":{},\"rejected\":{},\"rhs\":{},\"jacobians\":{},\"lu\":{},\"newton\":{},\"events\":{},\"event_iterations\":{},\"plan_evaluations\":{},\"state_selections\":{},\"pruned_equations\":{},\"parameters_folded\":{},\"plan_ops\":{},\"zero_crossings\":{},\"jacobian_nonzeros\":{},\"sparse_lu\":{},\"linear_solver\":{},\"compile_ms\":{:.3},\"simulate_ms\":{:.3},\"phases_ms\":{},{}{}{}}}",
         format!("{method:?}").to_lowercase(),
         compiled.states.len(),
         s.solver.steps,
@@ -643,6 +643,8 @@ fn print_stats(
         s.jacobian_nonzeros
             .map_or_else(|| "null".to_string(), |n| n.to_string()),
         s.sparse_lu,
+        s.linear_solver
+            .map_or_else(|| "null".to_string(), |k| format!("\"{}\"", k.name())),
         compile_ms,
         simulate_ms,
         phases.json(),

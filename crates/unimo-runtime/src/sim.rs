@@ -230,6 +230,8 @@ pub struct SimStats {
     pub jacobian_nonzeros: Option<usize>,
     /// The implicit method factored its iteration matrices with the sparse LU.
     pub sparse_lu: bool,
+    /// The LU of the implicit method's iteration matrices (`None`: an explicit method).
+    pub linear_solver: Option<unimo_solve::LinearSolverKind>,
     /// The projection onto the model's invariants (`Unimo.invariant`), when it has any.
     pub projection: Option<unimo_solve::ProjectionStats>,
 }

@@ -63,12 +63,11 @@
 use crate::dense_output::DenseOutput;
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup};
+use crate::integrator::{common_accessors, eval_failure, Initial, Integrator, ProblemSetup};
 use crate::jacobian::JacobianEvaluator;
-use crate::linear::ShiftedLu;
+use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, weighted_rms_masked, worst_components, Tolerances};
-use crate::options::{Method, Options};
-use crate::radau5::use_sparse;
+use crate::options::Method;
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, initial_step, minimum_step, step_above_floor};
 use crate::system::System;
@@ -189,20 +188,12 @@ pub struct Bdf {
 
 impl Bdf {
     /// Creates the integrator at the consistent point `(t0, x0)`.
-    pub fn new(
-        system: &mut dyn System,
-        t0: f64,
-        x0: &[f64],
-        options: Options,
-    ) -> Result<Self, SolveError> {
-        let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+    pub(crate) fn new(system: &mut dyn System, initial: Initial<'_>) -> Result<Self, SolveError> {
+        let Initial { mut setup, t0, x0 } = initial;
         calibrate_tolerances(&mut setup.tolerances, &setup.differential);
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let lu = match (sparse, system.sparsity()) {
-            (true, Some(pattern)) => ShiftedLu::sparse(pattern),
-            _ => ShiftedLu::dense(size),
-        };
+        let lu = iteration_lu(system, setup.options.linear_solver);
         let error_mask = if setup.options.suppress_algebraic_error {
             setup.differential.clone()
         } else {
@@ -839,6 +830,10 @@ fn calibrate_tolerances(tolerances: &mut Tolerances, differential: &[bool]) {
 
 impl Integrator for Bdf {
     common_accessors!(Method::Bdf, |s| s.t, &s.phi[0]);
+
+    fn linear_solver(&self) -> Option<LinearSolverKind> {
+        Some(self.lu.kind())
+    }
 
     fn reset(&mut self, _system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
         if x.len() != self.setup.size || !t.is_finite() {

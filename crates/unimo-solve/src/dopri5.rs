@@ -14,9 +14,11 @@
 use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
+use crate::integrator::{
+    common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
+};
 use crate::norm::{weighted_rms, Tolerances};
-use crate::options::{Method, Options};
+use crate::options::Method;
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, step_above_floor, step_after_accepted};
 use crate::system::System;
@@ -169,13 +171,8 @@ pub struct Dopri5 {
 
 impl Dopri5 {
     /// Creates the integrator at `(t0, x0)`; fails for systems with algebraic rows.
-    pub fn new(
-        system: &mut dyn System,
-        t0: f64,
-        x0: &[f64],
-        options: Options,
-    ) -> Result<Self, SolveError> {
-        let setup = ProblemSetup::new(system, t0, x0, options)?;
+    pub(crate) fn new(system: &mut dyn System, initial: Initial<'_>) -> Result<Self, SolveError> {
+        let Initial { setup, t0, x0 } = initial;
         if setup.algebraic_rows() > 0 {
             return Err(SolveError::AlgebraicRowsNotSupported {
                 method: Method::Dopri5.name(),

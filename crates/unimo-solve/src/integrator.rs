@@ -4,6 +4,7 @@
 use crate::dense_output::DenseOutput;
 use crate::error::SolveError;
 use crate::evaluate::rhs_checked;
+use crate::linear::LinearSolverKind;
 use crate::options::Method;
 use crate::stats::Stats;
 use crate::step_control::{initial_step, InitialStepProblem};
@@ -63,6 +64,11 @@ pub trait Integrator {
     /// test in DOPRI5: `h |λ| > 3.25` estimated on 15 accepted steps in a row), `None`
     /// for implicit methods and while it did not.
     fn stiff_since(&self) -> Option<f64> {
+        None
+    }
+
+    /// The LU of the iteration matrices, `None` for explicit methods.
+    fn linear_solver(&self) -> Option<LinearSolverKind> {
         None
     }
 
@@ -153,6 +159,14 @@ macro_rules! one_step_method {
     };
 }
 pub(crate) use one_step_method;
+
+/// What an integrator's constructor starts from: the validated setup and the consistent
+/// point `(t0, x0)` ([`crate::Solver::new`] builds it once for whichever method it creates).
+pub(crate) struct Initial<'a> {
+    pub setup: ProblemSetup,
+    pub t0: f64,
+    pub x0: &'a [f64],
+}
 
 /// What every method needs from the problem, checked once at construction.
 #[derive(Debug, Clone)]

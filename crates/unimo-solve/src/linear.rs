@@ -3,7 +3,8 @@
 //! block): below [`SMALL_DENSE_LIMIT`] unknowns our own row-major partial-pivoting LU
 //! (`small_lu.rs`: faer's blocked kernels cost more in set-up than they save on an 18 x 18
 //! matrix); above it faer's dense partial-pivoting LU factored in place in preallocated
-//! storage, or a sparse LU (symbolic analysis once, numeric factorization on every
+//! storage; for small matrices with a known pattern the scheduled LU (`scheduled_lu.rs`,
+//! chosen by [`iteration_lu`]); or a sparse LU (symbolic analysis once, numeric factorization on every
 //! refactor) on the Jacobian's pattern plus the diagonal: our multifrontal LU with diagonal
 //! pivots (`sparse_lu.rs`) while it accepts its pivots, faer's with partial pivoting after.
 
@@ -14,10 +15,13 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
+use crate::options::LinearSolverChoice;
+use crate::scheduled_lu::{Schedule, ScheduledLu, Work};
 use crate::small_lu::SmallLu;
 use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
-use crate::system::{JacobianMatrix, SparsityPattern};
+use crate::system::{JacobianMatrix, SparsityPattern, System};
 use std::cell::Cell;
+use std::sync::Arc;
 use std::time::Instant;
 
 thread_local! {
@@ -98,6 +102,56 @@ impl LuScalar for c64 {
     }
 }
 
+/// Which LU factors a method's iteration matrices (`unimo simulate --stats`:
+/// `linear_solver`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearSolverKind {
+    /// Dense LU with partial pivoting (our own below 32 unknowns, faer's above).
+    Dense,
+    /// The scheduled sparse LU of small matrices (`scheduled_lu.rs`); `refused` when it
+    /// refused its diagonal pivots often enough that the dense LU took over.
+    Scheduled { refused: bool },
+    /// The sparse LU of large matrices (`sparse_lu.rs`, faer's after a refusal).
+    Sparse,
+}
+
+impl LinearSolverKind {
+    /// The name `--stats` prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            LinearSolverKind::Dense => "dense",
+            LinearSolverKind::Scheduled { refused: false } => "scheduled",
+            LinearSolverKind::Scheduled { refused: true } => "scheduled, then dense",
+            LinearSolverKind::Sparse => "sparse",
+        }
+    }
+}
+
+/// The matrix `shift * M - J` a backend factors, `M_ii = 1` where `differential[i]`.
+#[derive(Clone, Copy)]
+pub(crate) struct ShiftedMatrix<'a, T> {
+    pub jacobian: &'a JacobianMatrix,
+    pub differential: &'a [bool],
+    pub shift: T,
+}
+
+impl<T: LuScalar> ShiftedMatrix<'_, T> {
+    /// Calls `add(i, j, value)` for `-J`'s stored entries, then `add(i, i, shift)` for the
+    /// differential rows: added into zeroed storage, that is the matrix.
+    pub fn for_each_term(&self, mut add: impl FnMut(usize, usize, T)) {
+        self.jacobian
+            .for_each_entry(|i, j, value| add(i, j, T::from(0.0) - T::from(value)));
+        self.for_each_shift(|i, shift| add(i, i, shift));
+    }
+
+    /// Calls `add(i, shift)` for the differential rows.
+    pub fn for_each_shift(&self, mut add: impl FnMut(usize, T)) {
+        for (i, _) in self.differential.iter().enumerate().filter(|(_, d)| **d) {
+            add(i, self.shift);
+        }
+    }
+}
+
 /// The factorization failed: a zero or non-finite pivot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct SingularMatrix;
@@ -109,8 +163,58 @@ pub(crate) struct ShiftedLu<T: LuScalar> {
 
 enum Backend<T: LuScalar> {
     Small(SmallLu<T>),
+    Scheduled(Box<ScheduledBackend<T>>),
     Dense(DenseBackend<T>),
     Sparse(Box<SparseBackend<T>>),
+}
+
+/// The scheduled sparse LU (`scheduled_lu.rs`), with a dense LU with partial pivoting for
+/// the matrices whose diagonal pivots it refuses.
+struct ScheduledBackend<T: LuScalar> {
+    scheduled: ScheduledLu<T>,
+    /// Created at the first refusal; after [`MAX_REFUSALS`] refusals it factors every matrix.
+    fallback: Option<Box<ShiftedLu<T>>>,
+    refusals: u32,
+    /// Whether `fallback` holds the last factorization.
+    on_fallback: bool,
+}
+
+/// Refusals of the scheduled LU's diagonal pivots after which the dense LU factors alone
+/// (a refused attempt costs a part of a scheduled factorization, which is itself at most
+/// [`SCHEDULED_WORK_FRACTION`] of a dense one).
+const MAX_REFUSALS: u32 = 3;
+
+/// The scheduled LU replaces the dense one when its factorization and one solve take at
+/// most this fraction of the dense LU's multiply-adds (its indirect addressing costs more
+/// per operation than the dense loops).
+pub(crate) const SCHEDULED_WORK_FRACTION: f64 = 1.0 / 3.0;
+
+/// Whether the implicit methods factor `system`'s iteration matrices with the sparse LU.
+pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
+    choice.picks_sparse(system.len(), system.sparsity().is_some())
+}
+
+/// The LU of `system`'s iteration matrices under `choice`: sparse where [`use_sparse`]
+/// says so; otherwise, when the Jacobian's pattern is known and `choice` is `Auto`, the
+/// scheduled sparse LU if its work is at most [`SCHEDULED_WORK_FRACTION`] of the dense
+/// LU's; dense else.
+pub(crate) fn iteration_lu<T: LuScalar>(
+    system: &dyn System,
+    choice: LinearSolverChoice,
+) -> ShiftedLu<T> {
+    let size = system.len();
+    let Some(pattern) = system.sparsity() else {
+        return ShiftedLu::dense(size);
+    };
+    if use_sparse(system, choice) {
+        return ShiftedLu::sparse(pattern);
+    }
+    if choice == LinearSolverChoice::Auto {
+        if let Some(scheduled) = ShiftedLu::scheduled(pattern, SCHEDULED_WORK_FRACTION) {
+            return scheduled;
+        }
+    }
+    ShiftedLu::dense(size)
 }
 
 /// faer's dense partial-pivoting LU, factored in place in preallocated storage.
@@ -159,6 +263,43 @@ impl<T: LuScalar> ShiftedLu<T> {
             };
         }
         Self::faer_dense(size)
+    }
+
+    /// The scheduled sparse LU on `jacobian_pattern` plus the diagonal, if its work is at
+    /// most `fraction` of the dense LU's (`None` otherwise).
+    pub fn scheduled(jacobian_pattern: &SparsityPattern, fraction: f64) -> Option<Self> {
+        let size = jacobian_pattern.size();
+        if size >= crate::options::SPARSE_AUTO_THRESHOLD.max(SMALL_DENSE_LIMIT) {
+            return None;
+        }
+        let schedule = Schedule::analyze(jacobian_pattern);
+        let cost = |w: Work| (w.factor + w.solve) as f64;
+        if cost(schedule.work) > fraction * cost(Work::dense(size)) {
+            return None;
+        }
+        Some(Self::on_schedule(Arc::new(schedule)))
+    }
+
+    fn on_schedule(schedule: Arc<Schedule>) -> Self {
+        ShiftedLu {
+            backend: Backend::Scheduled(Box::new(ScheduledBackend {
+                scheduled: ScheduledLu::new(schedule),
+                fallback: None,
+                refusals: 0,
+                on_fallback: false,
+            })),
+        }
+    }
+
+    /// A LU of the same kind for matrices of other scalars (Radau5's complex one beside
+    /// its real one), sharing the scheduled LU's analysis.
+    pub fn sibling<U: LuScalar>(&self) -> ShiftedLu<U> {
+        match &self.backend {
+            Backend::Small(small) => ShiftedLu::dense(small.size()),
+            Backend::Scheduled(s) => ShiftedLu::on_schedule(s.scheduled.schedule().clone()),
+            Backend::Dense(dense) => ShiftedLu::faer_dense(dense.factors.nrows()),
+            Backend::Sparse(sparse) => ShiftedLu::sparse(&sparse.pattern),
+        }
     }
 
     /// faer's dense LU of a `size × size` matrix, whatever its size.
@@ -210,21 +351,32 @@ impl<T: LuScalar> ShiftedLu<T> {
         shift: T,
     ) -> Result<(), SingularMatrix> {
         let started = fine_timing().then(Instant::now);
-        let factored = self.factor_untimed(jacobian, differential, shift);
+        let factored = self.factor_untimed(ShiftedMatrix {
+            jacobian,
+            differential,
+            shift,
+        });
         add_linear_algebra_time(started);
         factored
     }
 
-    fn factor_untimed(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor_untimed(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         match &mut self.backend {
-            Backend::Small(small) => small.factor_shifted(jacobian, differential, shift),
-            Backend::Dense(dense) => dense.factor(jacobian, differential, shift),
-            Backend::Sparse(sparse) => sparse.factor(jacobian, differential, shift),
+            Backend::Small(small) => small.factor_shifted(matrix),
+            Backend::Scheduled(scheduled) => scheduled.factor(matrix),
+            Backend::Dense(dense) => dense.factor(matrix),
+            Backend::Sparse(sparse) => sparse.factor(matrix),
+        }
+    }
+
+    /// Which LU this is.
+    pub fn kind(&self) -> LinearSolverKind {
+        match &self.backend {
+            Backend::Small(_) | Backend::Dense(_) => LinearSolverKind::Dense,
+            Backend::Scheduled(s) => LinearSolverKind::Scheduled {
+                refused: s.refusals >= MAX_REFUSALS,
+            },
+            Backend::Sparse(_) => LinearSolverKind::Sparse,
         }
     }
 
@@ -238,8 +390,34 @@ impl<T: LuScalar> ShiftedLu<T> {
     fn solve_untimed(&mut self, rhs: &mut [T]) {
         match &mut self.backend {
             Backend::Small(small) => small.solve(rhs),
+            Backend::Scheduled(scheduled) => scheduled.solve(rhs),
             Backend::Dense(dense) => dense.solve(rhs),
             Backend::Sparse(sparse) => sparse.solve(rhs),
+        }
+    }
+}
+
+impl<T: LuScalar> ScheduledBackend<T> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
+        if self.refusals < MAX_REFUSALS {
+            if self.scheduled.factor_shifted(matrix).is_ok() {
+                self.on_fallback = false;
+                return Ok(());
+            }
+            self.refusals += 1;
+        }
+        self.on_fallback = true;
+        let size = matrix.jacobian.size();
+        let fallback = self
+            .fallback
+            .get_or_insert_with(|| Box::new(ShiftedLu::dense(size)));
+        fallback.factor_untimed(matrix)
+    }
+
+    fn solve(&mut self, rhs: &mut [T]) {
+        match (&mut self.fallback, self.on_fallback) {
+            (Some(fallback), true) => fallback.solve_untimed(rhs),
+            _ => self.scheduled.solve(rhs),
         }
     }
 }
@@ -257,20 +435,10 @@ impl<T: LuScalar> DenseBackend<T> {
         }
     }
 
-    fn factor(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         let factors = &mut self.factors;
         factors.fill(T::from(0.0));
-        jacobian.for_each_entry(|i, j, value| {
-            factors[(i, j)] = T::from(0.0) - T::from(value);
-        });
-        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-            factors[(i, i)] += shift;
-        }
+        matrix.for_each_term(|i, j, value| factors[(i, j)] += value);
         dense_factor::lu_in_place(
             factors.as_mut(),
             &mut self.permutation,
@@ -303,17 +471,11 @@ impl<T: LuScalar> DenseBackend<T> {
 }
 
 impl<T: LuScalar> SparseBackend<T> {
-    fn factor(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    fn factor(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         self.values.fill(T::from(0.0));
-        self.scatter_jacobian(jacobian);
-        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-            self.values[self.diagonal_positions[i]] += shift;
-        }
+        self.scatter_jacobian(matrix.jacobian);
+        let (values, diagonal) = (&mut self.values, &self.diagonal_positions);
+        matrix.for_each_shift(|i, shift| values[diagonal[i]] += shift);
         self.diagonal_factored = false;
         if !self.diagonal_analyzed {
             self.diagonal_analyzed = true;

@@ -34,11 +34,13 @@ use faer::c64;
 use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
-use crate::integrator::{common_accessors, eval_failure, Integrator, ProblemSetup, StepStart};
+use crate::integrator::{
+    common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
+};
 use crate::jacobian::JacobianEvaluator;
-use crate::linear::ShiftedLu;
+use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
-use crate::options::{LinearSolverChoice, Method, Options, SPARSE_AUTO_THRESHOLD};
+use crate::options::{Method, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
 use crate::step_control::{clip_to_limit, step_above_floor, step_after_accepted};
 use crate::system::System;
@@ -233,13 +235,8 @@ struct Radau5Rewind {
 
 impl Radau5 {
     /// Creates the integrator at the consistent point `(t0, x0)`.
-    pub fn new(
-        system: &mut dyn System,
-        t0: f64,
-        x0: &[f64],
-        options: Options,
-    ) -> Result<Self, SolveError> {
-        let mut setup = ProblemSetup::new(system, t0, x0, options)?;
+    pub(crate) fn new(system: &mut dyn System, initial: Initial<'_>) -> Result<Self, SolveError> {
+        let Initial { mut setup, t0, x0 } = initial;
         let requested = setup.tolerances.relative.clone();
         transform_tolerances(&mut setup.tolerances);
         let tolerance_ratio = requested
@@ -262,10 +259,8 @@ impl Radau5 {
         };
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let (real_lu, complex_lu) = match (sparse, system.sparsity()) {
-            (true, Some(pattern)) => (ShiftedLu::sparse(pattern), ShiftedLu::sparse(pattern)),
-            _ => (ShiftedLu::dense(size), ShiftedLu::dense(size)),
-        };
+        let real_lu: ShiftedLu<f64> = iteration_lu(system, setup.options.linear_solver);
+        let complex_lu = real_lu.sibling();
         let zeros = || vec![0.0; size];
         let mut integrator = Radau5 {
             jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),
@@ -717,12 +712,12 @@ fn transform_tolerances(tolerances: &mut Tolerances) {
     }
 }
 
-pub(crate) fn use_sparse(system: &dyn System, choice: LinearSolverChoice) -> bool {
-    choice.picks_sparse(system.len(), system.sparsity().is_some())
-}
-
 impl Integrator for Radau5 {
     common_accessors!(Method::Radau5, |s| s.start.t, &s.start.x);
+
+    fn linear_solver(&self) -> Option<LinearSolverKind> {
+        Some(self.real_lu.kind())
+    }
 
     crate::integrator::one_step_method!(3);
 

@@ -4,8 +4,7 @@
 //! factoring or solving. On an 18 x 18 matrix it takes a fraction of the instructions of
 //! faer's blocked LU, whose set-up and recursion dominate at this size.
 
-use crate::linear::{LuScalar, SingularMatrix};
-use crate::system::JacobianMatrix;
+use crate::linear::{LuScalar, ShiftedMatrix, SingularMatrix};
 
 /// The factors `P A = L U` of one square matrix (`L` unit lower, both in `factors`).
 #[derive(Debug, Clone)]
@@ -32,22 +31,17 @@ impl<T: LuScalar> SmallLu<T> {
         }
     }
 
-    /// Builds `shift * M - J` (`M_ii = 1` where `differential[i]`) and factors it.
-    pub fn factor_shifted(
-        &mut self,
-        jacobian: &JacobianMatrix,
-        differential: &[bool],
-        shift: T,
-    ) -> Result<(), SingularMatrix> {
+    /// The matrices' size.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// Writes `matrix` into the factors' storage and factors it.
+    pub fn factor_shifted(&mut self, matrix: ShiftedMatrix<'_, T>) -> Result<(), SingularMatrix> {
         let n = self.size;
         self.factors.fill(T::from(0.0));
         let factors = &mut self.factors;
-        jacobian.for_each_entry(|i, j, value| {
-            factors[i * n + j] = T::from(0.0) - T::from(value);
-        });
-        for (i, _) in differential.iter().enumerate().filter(|(_, d)| **d) {
-            self.factors[i * n + i] += shift;
-        }
+        matrix.for_each_term(|i, j, value| factors[i * n + j] += value);
         self.factor()
     }
 
@@ -129,6 +123,7 @@ impl<T: LuScalar> SmallLu<T> {
 mod tests {
     use super::*;
     use crate::linear::ShiftedLu;
+    use crate::system::JacobianMatrix;
     use faer::c64;
 
     /// A deterministic pseudo-random `n × n` Jacobian (xorshift), some entries zero.

@@ -17,7 +17,8 @@
 use crate::bdf::Bdf;
 use crate::dopri5::Dopri5;
 use crate::error::SolveError;
-use crate::integrator::Integrator;
+use crate::integrator::{Initial, Integrator, ProblemSetup};
+use crate::linear::LinearSolverKind;
 use crate::options::{Method, Options};
 use crate::radau5::Radau5;
 use crate::roots::{Direction, RootTracker};
@@ -122,10 +123,15 @@ impl Solver {
         } else {
             None
         };
+        let initial = Initial {
+            setup: ProblemSetup::new(system, t0, x0, options)?,
+            t0,
+            x0,
+        };
         let integrator: Box<dyn Integrator + Send> = match method.resolved() {
-            Method::Dopri5 => Box::new(Dopri5::new(system, t0, x0, options)?),
-            Method::Radau5 => Box::new(Radau5::new(system, t0, x0, options)?),
-            _ => Box::new(Bdf::new(system, t0, x0, options)?),
+            Method::Dopri5 => Box::new(Dopri5::new(system, initial)?),
+            Method::Radau5 => Box::new(Radau5::new(system, initial)?),
+            _ => Box::new(Bdf::new(system, initial)?),
         };
         let mut solver = Solver {
             integrator,
@@ -240,6 +246,11 @@ impl Solver {
         stats.root_evals += self.driver_stats.root_evals;
         stats.events += self.driver_stats.events;
         stats
+    }
+
+    /// The LU of the method's iteration matrices (`None` for explicit methods).
+    pub fn linear_solver(&self) -> Option<LinearSolverKind> {
+        self.integrator.linear_solver()
     }
 
     /// The method in use.

@@ -6,7 +6,7 @@ use super::{SimError, SimOptions, SimResult, Simulator, MAX_STEPS};
 use std::time::Instant;
 use unimo_solve::newton::NewtonTolerance;
 use unimo_solve::{fine_timing, linear_algebra_seconds};
-use unimo_solve::{Direction, LinearSolverChoice, Options, SolveError, Solver, StopReason, System};
+use unimo_solve::{Direction, Options, SolveError, Solver, StopReason, System};
 
 /// The integration loop's state between its steps.
 pub(super) struct Integration<'o> {
@@ -120,8 +120,6 @@ impl Simulator<'_> {
         }
         let pattern = self.ode.pattern.as_ref();
         self.result.stats.jacobian_nonzeros = pattern.map(|p| p.nonzeros());
-        self.result.stats.sparse_lu = o.method.resolved() != unimo_solve::Method::Dopri5
-            && LinearSolverChoice::Auto.picks_sparse(self.ode.len(), pattern.is_some());
         let mut run = Integration {
             o,
             max_step: options_max_step,
@@ -416,6 +414,9 @@ impl Simulator<'_> {
             self.result.error.get_or_insert(e);
         }
         self.result.stats.solver = solver.stats();
+        self.result.stats.linear_solver = solver.linear_solver();
+        self.result.stats.sparse_lu =
+            self.result.stats.linear_solver == Some(unimo_solve::LinearSolverKind::Sparse);
         self.result.stiff_since = solver.stiff_since();
         self.result.stats.projection = solver.projection_stats();
         self.result.stats.rhs_evaluations = self.ode.evaluations;
