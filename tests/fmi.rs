@@ -43,18 +43,35 @@ fn fmpy_available() -> bool {
     found
 }
 
-/// One exported model: its source arguments and the variables compared.
+/// One exported model: where it comes from and the variables compared.
 struct Case<'a> {
     stem: &'a str,
-    source: &'a [&'a str],
+    source: Source<'a>,
     vars: &'a str,
+}
+
+/// A model file of the repository, or a model of the MSL by its name.
+#[derive(Clone, Copy)]
+enum Source<'a> {
+    File(&'a str),
+    Msl(&'a str),
+}
+
+impl Source<'_> {
+    /// The `unimo` arguments that name the model.
+    fn args(&self) -> Vec<&str> {
+        match *self {
+            Source::File(path) => vec![path],
+            Source::Msl(model) => vec!["--lib", "../shared/msl", "--model", model],
+        }
+    }
 }
 
 fn export(case: &Case<'_>, fmi: &str, kind: &str) -> PathBuf {
     let fmu = temp(&format!("{}-{fmi}-{kind}.fmu", case.stem));
     let fmu_s = fmu.to_string_lossy().into_owned();
     let mut args = vec!["fmu"];
-    args.extend_from_slice(case.source);
+    args.extend(case.source.args());
     args.extend_from_slice(&["--fmi", fmi, "--kind", kind, "-o", &fmu_s]);
     ok(&unimo(&args));
     fmu
@@ -74,7 +91,7 @@ fn agree(
     let csv = temp(&format!("{}-{fmi}-{kind}.csv", case.stem));
     let csv_s = csv.to_string_lossy().into_owned();
     let mut args = vec!["simulate"];
-    args.extend_from_slice(case.source);
+    args.extend(case.source.args());
     // The comparison is on the output grid: no rows between its points.
     args.extend_from_slice(&[
         "--vars",
@@ -136,13 +153,13 @@ const TIGHT_ME: &[&str] = &["rtol=1e-9"];
 
 const BALL: Case = Case {
     stem: "ball",
-    source: &["models/BouncingBall.mo"],
+    source: Source::File("models/BouncingBall.mo"),
     vars: "h,v",
 };
 
 const VAN_DER_POL: Case = Case {
     stem: "vdp",
-    source: &["models/VanDerPol.mo"],
+    source: Source::File("models/VanDerPol.mo"),
     vars: "y1,y2",
 };
 
@@ -150,30 +167,20 @@ const VAN_DER_POL: Case = Case {
 /// `terminate()` at t = 20 ends both runs).
 const SLIDE_ROLL: Case = Case {
     stem: "slideroll",
-    source: &["models/SlideRollSwitch.mo"],
+    source: Source::File("models/SlideRollSwitch.mo"),
     vars: "FlySlideRollBody.r[1],FlySlideRollBody.r[2],FlySlideRollBody.v[1],\
            FlySlideRollBody.omega[2],FlySlideRollBody.omega[3],ConstraintSurfaces.State",
 };
 
 const FIRST: Case = Case {
     stem: "first",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Mechanics.Rotational.Examples.First",
-    ],
+    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.First"),
     vars: "damper.phi_rel,damper.w_rel,inertia3.phi,inertia3.w",
 };
 
 const OSCILLATOR: Case = Case {
     stem: "oscillator",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Mechanics.Translational.Examples.Oscillator",
-    ],
+    source: Source::Msl("Modelica.Mechanics.Translational.Examples.Oscillator"),
     vars: "damper1.s_rel,damper1.v_rel,mass1.s,mass1.v",
 };
 
@@ -181,12 +188,7 @@ const OSCILLATOR: Case = Case {
 /// external functions in the FMU's flat model), friction with stuck/sliding modes.
 const COUPLED_CLUTCHES: Case = Case {
     stem: "clutches",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Mechanics.Rotational.Examples.CoupledClutches",
-    ],
+    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.CoupledClutches"),
     vars: "clutch1.w_rel,clutch2.w_rel,clutch3.w_rel,J1.w,J4.w",
 };
 
@@ -195,12 +197,7 @@ const COUPLED_CLUTCHES: Case = Case {
 /// must see it leave on the other side.
 const FRICTION: Case = Case {
     stem: "friction",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Mechanics.Rotational.Examples.Friction",
-    ],
+    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.Friction"),
     vars: "clutch.phi_rel,clutch.w_rel,inertia3.phi,inertia3.w,spring.phi_rel,spring.w_rel,\
            brake.mode,clutch.mode",
 };
@@ -208,12 +205,7 @@ const FRICTION: Case = Case {
 /// A lossy gear stuck at t = 0 that starts to turn backwards at once.
 const LOSSY_GEAR: Case = Case {
     stem: "lossygear",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Mechanics.Rotational.Examples.LossyGearDemo1",
-    ],
+    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.LossyGearDemo1"),
     vars: "Inertia2.phi,Inertia2.w,gear.mode",
 };
 
@@ -221,12 +213,7 @@ const LOSSY_GEAR: Case = Case {
 /// stays at its zero across the first sample instant without crossing it.
 const HARMONIC_DISTORTION: Case = Case {
     stem: "thd",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Blocks.Examples.TotalHarmonicDistortion",
-    ],
+    source: Source::Msl("Modelica.Blocks.Examples.TotalHarmonicDistortion"),
     vars: "thd1.y,thdRMS.y,thd1.valid",
 };
 
@@ -235,26 +222,21 @@ const HARMONIC_DISTORTION: Case = Case {
 /// sampled at fixed instants, the first at the start time.
 const UNIFORM_NOISE: Case = Case {
     stem: "noise",
-    source: &[
-        "--lib",
-        "../shared/msl",
-        "--model",
-        "Modelica.Blocks.Examples.Noise.UniformNoise",
-    ],
+    source: Source::Msl("Modelica.Blocks.Examples.Noise.UniformNoise"),
     vars: "uniformNoise1.y,uniformNoise2.y,uniformNoise2_y",
 };
 
 /// Paper B: a ball bouncing on a box through the collision world (penalty contact).
 const COLLISION_BALL: Case = Case {
     stem: "collisionball",
-    source: &["models/CollisionBouncingBall.mo"],
+    source: Source::File("models/CollisionBouncingBall.mo"),
     vars: "ball.r[3],ball.v[3]",
 };
 
 /// Paper B: sixteen balls on a table, impulses at impacts.
 const BILLIARDS: Case = Case {
     stem: "billiards",
-    source: &["models/Billiards.mo"],
+    source: Source::File("models/Billiards.mo"),
     vars: "cue.r[1],cue.v[1],b1.r[1],b1.v[1],b1.r[2],b1.v[2],b4.r[1],b4.v[2]",
 };
 

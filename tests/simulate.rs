@@ -14,9 +14,11 @@ fn load(file: &str) -> unimo_cli::LoadedModel {
         .unwrap_or_else(|e| panic!("{file}:\n{e}"))
 }
 
-/// Model `model` of the file `file` (relative to the project).
-fn load_named(file: &str, model: &str) -> unimo_cli::LoadedModel {
-    unimo_cli::load_model(&[common::root().join(file)], Some(model))
+/// Model `model` (`Package.Model`) of its package's file `tests/simulate/Package.mo`.
+fn load_named(model: &str) -> unimo_cli::LoadedModel {
+    let package = model.split('.').next().unwrap_or(model);
+    let file = format!("tests/simulate/{package}.mo");
+    unimo_cli::load_model(&[common::root().join(&file)], Some(model))
         .unwrap_or_else(|e| panic!("{file} {model}:\n{e}"))
 }
 
@@ -706,7 +708,7 @@ fn pruning_keeps_the_steps_of_held_roundings() {
 /// assertion error (E4004) at the instant it would, not with a wrong index.
 #[test]
 fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
-    let m = load_named("tests/simulate/WhileLoops.mo", "WhileLoops.Search");
+    let m = load_named("WhileLoops.Search");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 4.5, 9);
     for (t, k) in r.times.iter().zip(common::column(&r, "k")) {
         let mid = (t.fract() - 0.5).abs() < 1e-9;
@@ -715,7 +717,7 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
         }
     }
     assert_eq!(value(&r, "k"), 6.0);
-    let m = load_named("tests/simulate/WhileLoops.mo", "WhileLoops.TooLong");
+    let m = load_named("WhileLoops.TooLong");
     let r = try_run(&m.compiled, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
     let e = r.error.expect("the loop needs more than 64 iterations");
     assert_eq!(e.code(), "E4004");
@@ -735,10 +737,7 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
 /// same instant, whichever comes first (twice = 2 s[2] = 36 after t = 0.2).
 #[test]
 fn when_clauses_of_one_instant_see_each_other() {
-    let m = load_named(
-        "tests/simulate/DiscreteInstants.mo",
-        "DiscreteInstants.Fibonacci",
-    );
+    let m = load_named("DiscreteInstants.Fibonacci");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 0.25, 5);
     let at = |name: &str, t: f64| {
         let k = r.names.iter().position(|n| n == name).unwrap();
@@ -764,10 +763,7 @@ fn when_clauses_of_one_instant_see_each_other() {
 /// x(1) = e^-1 + k 1e-9 (1 - e^-1) with k = 2 seed.
 #[test]
 fn initialization_solves_for_large_integer_parameters() {
-    let m = load_named(
-        "tests/simulate/DiscreteInstants.mo",
-        "DiscreteInstants.LargeSeed",
-    );
+    let m = load_named("DiscreteInstants.LargeSeed");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 2);
     let e = (-1.0f64).exp();
     let exact = e + 2.0 * 67_867_967.0 * 1e-9 * (1.0 - e);
@@ -792,13 +788,13 @@ fn evaluated_parameters_fold_into_the_equations() {
 /// (spec 9.1.3): the model balances and z = 2 t + 1.
 #[test]
 fn unused_signals_of_an_expandable_connector_are_left_out() {
-    let m = load_named("tests/simulate/ExpandableBus.mo", "ExpandableBus.Use");
+    let m = load_named("ExpandableBus.Use");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
     assert_near(value(&r, "z"), 3.0, 1e-9, "z(1)");
     assert!(!r.names.iter().any(|n| n == "bus.unused"), "{:?}", r.names);
     // Connected buses augment each other; a set of members no component uses stays
     // absent on all of them (MultiBody's RobotR3 axis bus, 55 equations short before).
-    let m = load_named("tests/simulate/ExpandableBus.mo", "ExpandableBus.Chain");
+    let m = load_named("ExpandableBus.Chain");
     let r = run(&m, Method::Bdf, 1e-8, 1e-10, 1.0, 2);
     assert_near(value(&r, "b.w"), 4.0, 1e-9, "b.w");
     assert!(
@@ -867,16 +863,15 @@ fn switched_linear_loops_are_solved_in_one_step() {
 /// arguments given in the call win over the modifiers.
 #[test]
 fn functions_called_through_components_use_the_instance() {
-    let file = "tests/simulate/FunctionThroughComponent.mo";
     let col = |r: &SimResult, n: &str| r.names.iter().position(|x| x == n).unwrap();
-    let m = load_named(file, "FunctionThroughComponent.Default");
+    let m = load_named("FunctionThroughComponent.Default");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
     let kx = col(&r, "b.x");
     for (t, row) in r.times.iter().zip(&r.rows) {
         let x = 2.0 * (-t).exp() - 1.0;
         assert_near(row[kx], x, 1e-7, format_args!("x({t})"));
     }
-    let m = load_named(file, "FunctionThroughComponent.Redeclared");
+    let m = load_named("FunctionThroughComponent.Redeclared");
     let r = run(&m, Method::Bdf, 1e-10, 1e-12, 1.0, 4);
     let (kx, kz, kw) = (col(&r, "b.x"), col(&r, "z"), col(&r, "w"));
     for (t, row) in r.times.iter().zip(&r.rows) {

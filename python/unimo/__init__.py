@@ -294,25 +294,10 @@ def simulate(
     libs: Sequence[PathLike] = (),
     params: Optional[Mapping[str, ParamValue]] = None,
     tunable: Union[None, bool, Sequence[str]] = None,
-    *,
-    stop_time: Optional[float] = None,
-    method: str = "auto",
-    rtol: Optional[float] = None,
-    atol: Optional[float] = None,
-    outputs: Optional[Sequence[str]] = None,
-    start_time: Optional[float] = None,
-    interval: Optional[float] = None,
-    points: Optional[int] = None,
+    **options: Any,
 ) -> Result:
     """Compiles and simulates in one call: ``compile(path, model, libs, params,
-    tunable).simulate(...)`` with the keyword arguments of :meth:`Model.simulate`."""
-    return compile(path, model, libs, params, tunable).simulate(
-        stop_time=stop_time,
-        method=method,
-        rtol=rtol,
-        atol=atol,
-        outputs=outputs,
-        start_time=start_time,
-        interval=interval,
-        points=points,
-    )
+    tunable).simulate(**options)``, ``options`` being the keyword arguments of
+    :meth:`Model.simulate` (``stop_time``, ``method``, ``rtol``, ``atol``, ``outputs``,
+    ``start_time``, ``interval``, ``points``)."""
+    return compile(path, model, libs, params, tunable).simulate(**options)

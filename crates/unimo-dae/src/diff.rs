@@ -64,8 +64,7 @@ fn derivative_node(
         }
         Node::Ext(f, ops) => external_derivative(a, f, ops, seed, memo),
         Node::Add(x, y) => {
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             a.add(dx, dy)
         }
         Node::Neg(x) => {
@@ -73,16 +72,14 @@ fn derivative_node(
             a.neg(dx)
         }
         Node::Mul(x, y) => {
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             let l = a.mul(dx, y);
             let r = a.mul(x, dy);
             a.add(l, r)
         }
         Node::Div(x, y) => {
             // (dx*y - x*dy) / y^2  written as dx/y - x*dy/y^2
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             let first = a.div(dx, y);
             let xdy = a.mul(x, dy);
             let two = a.constant(2.0);
@@ -91,8 +88,7 @@ fn derivative_node(
             a.sub(first, second)
         }
         Node::Pow(x, y) => {
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             power_derivative(a, e, (x, y), (dx, dy))
         }
         Node::Fn1(f, x) => {
@@ -104,13 +100,11 @@ fn derivative_node(
             a.mul(inner, dx)
         }
         Node::Fn2(f, x, y) => {
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             fn2_derivative(a, f, x, y, dx, dy)
         }
         Node::If(c, x, y) => {
-            let dx = d(a, x, seed);
-            let dy = d(a, y, seed);
+            let (dx, dy) = operand_derivatives(a, (x, y), seed, memo);
             a.if_(c, dx, dy)
         }
         Node::NoEvent(x) => {
@@ -118,6 +112,18 @@ fn derivative_node(
             a.no_event(dx)
         }
     }
+}
+
+/// The derivatives of the operands `x` and `y` of a node with two, `x`'s first.
+fn operand_derivatives(
+    a: &mut ExprArena,
+    (x, y): (ExprId, ExprId),
+    seed: &mut Seed<'_>,
+    memo: &mut HashMap<ExprId, ExprId>,
+) -> (ExprId, ExprId) {
+    let dx = derivative(a, x, seed, memo);
+    let dy = derivative(a, y, seed, memo);
+    (dx, dy)
 }
 
 /// The derivative of a table's value: its slope times the derivative of its input (the

@@ -29,40 +29,8 @@ impl ScalarId {
 /// and events come from their entries in `unimo_builtins::BUILTINS`.
 pub use unimo_builtins::{Fn1, Fn2};
 
-/// Relational operators; a relation is 1.0 when true and 0.0 when false.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
-pub enum RelOp {
-    Lt,
-    Le,
-    Gt,
-    Ge,
-    Eq,
-    Ne,
-}
-
-impl RelOp {
-    pub fn symbol(self) -> &'static str {
-        match self {
-            RelOp::Lt => "<",
-            RelOp::Le => "<=",
-            RelOp::Gt => ">",
-            RelOp::Ge => ">=",
-            RelOp::Eq => "==",
-            RelOp::Ne => "<>",
-        }
-    }
-
-    pub fn apply(self, a: f64, b: f64) -> bool {
-        match self {
-            RelOp::Lt => a < b,
-            RelOp::Le => a <= b,
-            RelOp::Gt => a > b,
-            RelOp::Ge => a >= b,
-            RelOp::Eq => a == b,
-            RelOp::Ne => a != b,
-        }
-    }
-}
+/// Relational operators, the AST's: a relation is 1.0 when true and 0.0 when false.
+pub use unimo_syntax::ast::RelOp;
 
 /// The pattern of the leaves other than constants and variables: the nodes without
 /// operands whose value only the run knows (`pre` values, `time`, `initial()`,

@@ -500,20 +500,13 @@ fn binary(e: &Expr, op: BinaryOp, a: &Value, b: &Value) -> Result<Value, EvalErr
                 _ => Err(unsupported(e, "`and`/`or` need Booleans")),
             }
         }
-        Lt | Le | Gt | Ge | Eq | Ne => {
+        Rel(relation) => {
             let ord = match (a, b) {
                 (Value::Str(x), Value::Str(y)) => x.cmp(y) as i32 as f64,
                 (Value::Bool(x), Value::Bool(y)) => (*x as i32 - *y as i32) as f64,
                 _ => num(e, a)? - num(e, b)?,
             };
-            Ok(Value::Bool(match op {
-                Lt => ord < 0.0,
-                Le => ord <= 0.0,
-                Gt => ord > 0.0,
-                Ge => ord >= 0.0,
-                Eq => ord == 0.0,
-                _ => ord != 0.0,
-            }))
+            Ok(Value::Bool(relation.apply(ord, 0.0)))
         }
         Add | ElemAdd if matches!((a, b), (Value::Str(_), Value::Str(_))) => match (a, b) {
             (Value::Str(x), Value::Str(y)) => Ok(Value::Str(format!("{x}{y}"))),

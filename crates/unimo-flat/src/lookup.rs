@@ -33,7 +33,7 @@ pub fn is_elementwise(op: unimo_syntax::ast::BinaryOp) -> bool {
 /// Operators whose result is a Boolean (relations and `and`/`or`).
 pub fn is_boolean(op: unimo_syntax::ast::BinaryOp) -> bool {
     use unimo_syntax::ast::BinaryOp::*;
-    matches!(op, Lt | Le | Gt | Ge | Eq | Ne | And | Or)
+    matches!(op, Rel(_) | And | Or)
 }
 
 /// The argument of a call of an element-wise builtin with one positional argument

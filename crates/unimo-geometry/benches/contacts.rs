@@ -3,7 +3,7 @@
 //! (`contacts` vs `contacts_general`, `time_of_impact` vs `time_of_impact_general`).
 
 use unimo_geometry::query::{contacts_general, time_of_impact_general};
-use unimo_geometry::{contacts, time_of_impact, Placement, Scratch, Shape, ShapeKind};
+use unimo_geometry::{contacts, time_of_impact, Moving, Placement, Scratch, Shape, ShapeKind};
 
 fn main() {
     divan::main();
@@ -43,8 +43,7 @@ type ContactQuery = fn(
 ) -> Result<usize, unimo_geometry::Unsupported>;
 
 /// `time_of_impact` or `time_of_impact_general`.
-type SweepQuery =
-    fn(&Shape, &Placement, [f64; 3], &Shape, &Placement, [f64; 3], f64) -> Option<f64>;
+type SweepQuery = fn(Moving<'_>, Moving<'_>, f64) -> Option<f64>;
 
 fn contact(b: divan::Bencher, case: &str, query: ContactQuery) {
     let (sa, pa, sb, pb) = pair(case == "sphere-plane");
@@ -66,7 +65,19 @@ fn contact(b: divan::Bencher, case: &str, query: ContactQuery) {
 fn sweep(b: divan::Bencher, case: &str, query: SweepQuery) {
     let (sa, pa, sb, pb) = pair(case == "sphere-plane");
     let v = [0.0, 0.0, -1.0];
-    b.bench_local(|| query(&sa, divan::black_box(&pa), v, &sb, &pb, [0.0; 3], 1.0));
+    b.bench_local(|| {
+        let mover = Moving {
+            shape: &sa,
+            placement: divan::black_box(&pa),
+            velocity: v,
+        };
+        let target = Moving {
+            shape: &sb,
+            placement: &pb,
+            velocity: [0.0; 3],
+        };
+        query(mover, target, 1.0)
+    });
 }
 
 #[divan::bench(args = ["sphere-sphere", "sphere-plane"])]

@@ -522,21 +522,23 @@ pub fn aabb(s: &Shape, p: &Placement) -> Aabb {
     }
 }
 
-/// First time in `[0, max_time]` at which A moving with velocity `va` and B with `vb`
-/// (translation only, from placements `pa`, `pb`) touch: `Some(0)` when they already
-/// overlap. `None` when they do not meet or the pair has no shape cast (ellipsoids).
-pub fn time_of_impact(
-    a: &Shape,
-    pa: &Placement,
-    va: V3,
-    b: &Shape,
-    pb: &Placement,
-    vb: V3,
-    max_time: f64,
-) -> Option<f64> {
-    check_placement(pa).ok()?;
-    check_placement(pb).ok()?;
-    match (&a.kind, &b.kind) {
+/// A body in a sweep: its shape, its placement at the sweep's start and its velocity
+/// (translation only).
+#[derive(Clone, Copy)]
+pub struct Moving<'a> {
+    pub shape: &'a Shape,
+    pub placement: &'a Placement,
+    pub velocity: V3,
+}
+
+/// First time in `[0, max_time]` at which A and B, each moving with its velocity,
+/// touch: `Some(0)` when they already overlap. `None` when they do not meet or the pair
+/// has no shape cast (ellipsoids).
+pub fn time_of_impact(a: Moving<'_>, b: Moving<'_>, max_time: f64) -> Option<f64> {
+    check_placement(a.placement).ok()?;
+    check_placement(b.placement).ok()?;
+    let (pa, va, pb, vb) = (a.placement, a.velocity, b.placement, b.velocity);
+    match (&a.shape.kind, &b.shape.kind) {
         (ShapeKind::Sphere { radius: ra }, ShapeKind::Sphere { radius: rb }) => {
             let rel = sub3(pb.r, pa.r);
             return sphere_sweep(rel, sub3(vb, va), ra + rb, max_time);
@@ -549,7 +551,7 @@ pub fn time_of_impact(
         }
         _ => {}
     }
-    time_of_impact_general(a, pa, va, b, pb, vb, max_time)
+    time_of_impact_general(a, b, max_time)
 }
 
 fn sub3(a: V3, b: V3) -> V3 {
@@ -594,24 +596,16 @@ fn plane_sweep(c: V3, v: V3, radius: f64, plane: &Placement, vp: V3, max_time: f
 
 /// [`time_of_impact`] by parry's shape cast for every pair (the path spheres take
 /// without their closed forms).
-pub fn time_of_impact_general(
-    a: &Shape,
-    pa: &Placement,
-    va: V3,
-    b: &Shape,
-    pb: &Placement,
-    vb: V3,
-    max_time: f64,
-) -> Option<f64> {
-    check_placement(pa).ok()?;
-    check_placement(pb).ok()?;
-    let (ga, gb) = (a.parry.as_ref()?, b.parry.as_ref()?);
+pub fn time_of_impact_general(a: Moving<'_>, b: Moving<'_>, max_time: f64) -> Option<f64> {
+    check_placement(a.placement).ok()?;
+    check_placement(b.placement).ok()?;
+    let (ga, gb) = (a.shape.parry.as_ref()?, b.shape.parry.as_ref()?);
     let hit = query::cast_shapes(
-        &pa.pose(),
-        to_vector(va),
+        &a.placement.pose(),
+        to_vector(a.velocity),
         &*ga.0,
-        &pb.pose(),
-        to_vector(vb),
+        &b.placement.pose(),
+        to_vector(b.velocity),
         &*gb.0,
         ShapeCastOptions::with_max_time_of_impact(max_time),
     )
@@ -626,6 +620,14 @@ mod tests {
 
     fn sh(k: K) -> Shape {
         Shape::new(k).unwrap()
+    }
+
+    fn moving<'a>(shape: &'a Shape, placement: &'a Placement, velocity: V3) -> Moving<'a> {
+        Moving {
+            shape,
+            placement,
+            velocity,
+        }
     }
 
     #[test]
@@ -735,13 +737,10 @@ mod tests {
             half: [0.5, 0.5, 0.005],
         });
         // 100 m/s downwards from 1 m above: touches after (1 - 0.03)/100 s.
+        let start = Placement::at([0.0, 0.0, 1.0]);
         let t = time_of_impact(
-            &ball,
-            &Placement::at([0.0, 0.0, 1.0]),
-            [0.0, 0.0, -100.0],
-            &plate,
-            &Placement::IDENTITY,
-            [0.0; 3],
+            moving(&ball, &start, [0.0, 0.0, -100.0]),
+            moving(&plate, &Placement::IDENTITY, [0.0; 3]),
             1.0,
         )
         .unwrap();
@@ -831,12 +830,8 @@ mod tests {
         assert!(closest(&block, &nan, &block, &Placement::IDENTITY, 1.0).is_err());
         assert_eq!(
             time_of_impact(
-                &block,
-                &far,
-                [0.0; 3],
-                &block,
-                &Placement::IDENTITY,
-                [0.0; 3],
+                moving(&block, &far, [0.0; 3]),
+                moving(&block, &Placement::IDENTITY, [0.0; 3]),
                 1.0
             ),
             None
@@ -954,8 +949,9 @@ mod tests {
             let (pa, pb) = (rng.placement(2.0), rng.placement(2.0));
             let (va, vb) = (rng.v3(3.0), rng.v3(3.0));
             for (x, px, vx, y, py, vy) in [(&a, &pa, va, &b, &pb, vb), (&b, &pb, vb, &a, &pa, va)] {
-                let fast = time_of_impact(x, px, vx, y, py, vy, 1.0);
-                let general = time_of_impact_general(x, px, vx, y, py, vy, 1.0);
+                let (x, y) = (moving(x, px, vx), moving(y, py, vy));
+                let fast = time_of_impact(x, y, 1.0);
+                let general = time_of_impact_general(x, y, 1.0);
                 match (fast, general) {
                     (Some(f), Some(g)) => {
                         hits += 1;

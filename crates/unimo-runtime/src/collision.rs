@@ -22,8 +22,8 @@ use unimo_codegen::tape::Reg;
 use unimo_dae::collision_args::{CollisionBodyArgs, LawCode, ShapeCode};
 use unimo_geometry::laws::{self, Damping, Friction};
 use unimo_geometry::{
-    aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Placement, Scratch, Shape,
-    ShapeKind, SweepAndPrune,
+    aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Moving, Placement, Scratch,
+    Shape, ShapeKind, SweepAndPrune,
 };
 
 /// Counters for reports.
@@ -365,15 +365,12 @@ impl CollisionState {
             let db = sub(self.placements[b].r, self.origin[b].r);
             let rel = sub(da, db);
             if dot(rel, rel) > 0.0 {
-                if let Some(s) = time_of_impact(
-                    &self.shapes[a],
-                    &self.origin[a],
-                    da,
-                    &self.shapes[b],
-                    &self.origin[b],
-                    db,
-                    1.0,
-                ) {
+                let moving = |i: usize, velocity| Moving {
+                    shape: &self.shapes[i],
+                    placement: &self.origin[i],
+                    velocity,
+                };
+                if let Some(s) = time_of_impact(moving(a, da), moving(b, db), 1.0) {
                     if s < 1.0 {
                         g = -(1.0 - s) * dot(rel, rel).sqrt();
                     }

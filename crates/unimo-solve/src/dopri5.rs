@@ -20,45 +20,67 @@ use crate::integrator::{
 use crate::norm::{weighted_rms, Tolerances};
 use crate::options::Method;
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
+use crate::step_control::{clip_to_limit, step_above_floor, step_after_accepted};
 use crate::system::System;
 
-const C2: f64 = 0.2;
-const C3: f64 = 0.3;
-const C4: f64 = 0.8;
-const C5: f64 = 8.0 / 9.0;
-const A21: f64 = 0.2;
-const A31: f64 = 3.0 / 40.0;
-const A32: f64 = 9.0 / 40.0;
-const A41: f64 = 44.0 / 45.0;
-const A42: f64 = -56.0 / 15.0;
-const A43: f64 = 32.0 / 9.0;
-const A51: f64 = 19372.0 / 6561.0;
-const A52: f64 = -25360.0 / 2187.0;
-const A53: f64 = 64448.0 / 6561.0;
-const A54: f64 = -212.0 / 729.0;
-const A61: f64 = 9017.0 / 3168.0;
-const A62: f64 = -355.0 / 33.0;
-const A63: f64 = 46732.0 / 5247.0;
-const A64: f64 = 49.0 / 176.0;
-const A65: f64 = -5103.0 / 18656.0;
-const A71: f64 = 35.0 / 384.0;
-const A73: f64 = 500.0 / 1113.0;
-const A74: f64 = 125.0 / 192.0;
-const A75: f64 = -2187.0 / 6784.0;
-const A76: f64 = 11.0 / 84.0;
-const E1: f64 = 71.0 / 57600.0;
-const E3: f64 = -71.0 / 16695.0;
-const E4: f64 = 71.0 / 1920.0;
-const E5: f64 = -17253.0 / 339200.0;
-const E6: f64 = 22.0 / 525.0;
-const E7: f64 = -1.0 / 40.0;
-const D1: f64 = -12715105075.0 / 11282082432.0;
-const D3: f64 = 87487479700.0 / 32700410799.0;
-const D4: f64 = -10690763975.0 / 1880347072.0;
-const D5: f64 = 701980252875.0 / 199316789632.0;
-const D6: f64 = -1453857185.0 / 822651844.0;
-const D7: f64 = 69997945.0 / 29380423.0;
+/// The Butcher tableau, row by row: stage `i + 2` is evaluated at `t + c h` with the
+/// state `x + h Σ_j a_j k_j`; the last row (`c = 1`, FSAL) gives the new state, whose
+/// `f` is the seventh stage.
+const TABLEAU: [(f64, &[f64]); 6] = [
+    (0.2, &[0.2]),
+    (0.3, &[3.0 / 40.0, 9.0 / 40.0]),
+    (0.8, &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0]),
+    (
+        8.0 / 9.0,
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+    ),
+    (
+        1.0,
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+    ),
+    (
+        1.0,
+        &[
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
+    ),
+];
+/// The error estimate's weights: `err = h Σ e_i k_i`.
+const ERROR: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// The dense output's fifth coefficient: `h Σ d_i k_i`.
+const DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
 
 const SAFETY: f64 = 0.9;
 const BETA: f64 = 0.04;
@@ -199,53 +221,21 @@ impl Dopri5 {
         let t = self.start.t;
         let size = self.setup.size;
         self.stages[0].copy_from_slice(&self.start.f);
-        let rows: [(f64, &[f64]); 5] = [
-            (C2, &[A21]),
-            (C3, &[A31, A32]),
-            (C4, &[A41, A42, A43]),
-            (C5, &[A51, A52, A53, A54]),
-            (1.0, &[A61, A62, A63, A64, A65]),
-        ];
-        for (stage, (c, coefficients)) in rows.iter().enumerate() {
-            for i in 0..size {
-                let increment: f64 = coefficients
-                    .iter()
-                    .enumerate()
-                    .map(|(j, a)| a * self.stages[j][i])
-                    .sum();
-                self.stage_state[i] = self.start.x[i] + h * increment;
+        for (stage, (c, row)) in TABLEAU.iter().enumerate() {
+            let last = stage + 1 == TABLEAU.len();
+            let state = if last {
+                &mut self.x_new
+            } else {
+                &mut self.stage_state
+            };
+            for (i, value) in state.iter_mut().enumerate() {
+                *value = self.start.x[i] + h * combination(row, &self.stages, i);
             }
-            let (done, rest) = self.stages.split_at_mut(stage + 1);
-            let _ = done;
-            rhs_checked(
-                system,
-                t + c * h,
-                &self.stage_state,
-                &mut rest[0],
-                &mut self.stats,
-            )?;
+            let (_, rest) = self.stages.split_at_mut(stage + 1);
+            rhs_checked(system, t + c * h, state, &mut rest[0], &mut self.stats)?;
         }
-        let k = &self.stages;
         for i in 0..size {
-            self.x_new[i] = self.start.x[i]
-                + h * (A71 * k[0][i]
-                    + A73 * k[2][i]
-                    + A74 * k[3][i]
-                    + A75 * k[4][i]
-                    + A76 * k[5][i]);
-        }
-        let (done, rest) = self.stages.split_at_mut(6);
-        let _ = done;
-        rhs_checked(system, t + h, &self.x_new, &mut rest[0], &mut self.stats)?;
-        let k = &self.stages;
-        for i in 0..size {
-            self.error_vector[i] = h
-                * (E1 * k[0][i]
-                    + E3 * k[2][i]
-                    + E4 * k[3][i]
-                    + E5 * k[4][i]
-                    + E6 * k[5][i]
-                    + E7 * k[6][i]);
+            self.error_vector[i] = h * combination(&ERROR, &self.stages, i);
         }
         Ok(())
     }
@@ -269,31 +259,11 @@ impl Dopri5 {
             r2[i] = difference;
             r3[i] = spline;
             r4[i] = difference - h * k[6][i] - spline;
-            r5[i] = h
-                * (D1 * k[0][i]
-                    + D3 * k[2][i]
-                    + D4 * k[3][i]
-                    + D5 * k[4][i]
-                    + D6 * k[5][i]
-                    + D7 * k[6][i]);
+            r5[i] = h * combination(&DENSE, k, i);
         }
         self.dense.start = self.start.t;
         self.dense.end = t_end;
         self.dense.end_state.copy_from_slice(&self.x_new);
-    }
-
-    fn first_step_size(
-        &mut self,
-        system: &mut dyn System,
-        t_limit: f64,
-    ) -> Result<f64, SolveError> {
-        if let Some(step) = self.step_size {
-            return Ok(step);
-        }
-        let problem =
-            self.setup
-                .initial_step_problem(self.start.t, &self.start.x, &self.start.f, 4, t_limit);
-        initial_step(&problem, system, &mut self.stats)
     }
 }
 
@@ -304,36 +274,17 @@ impl Integrator for Dopri5 {
         self.stiffness.since
     }
 
-    fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.setup.check_len(x)?;
-        self.restart(system, t, x)
-    }
+    crate::integrator::one_step_method!(4);
+}
 
-    /// The step's end moved by a projection: the next step starts there, with `f`
-    /// evaluated again; the step size and the controller's memory are kept, and the
-    /// dense output gets the correction `θ Δ` (`Δ` at the step's end, 0 at its start).
-    fn set_projected_state(
+impl Dopri5 {
+    /// [`Integrator::step`] trying `h` first.
+    fn step_from(
         &mut self,
         system: &mut dyn System,
-        x: &[f64],
+        t_limit: f64,
+        mut h: f64,
     ) -> Result<(), SolveError> {
-        self.setup.check_len(x)?;
-        if self.dense.end == self.start.t {
-            for i in 0..x.len() {
-                self.dense.coefficients[1][i] += x[i] - self.start.x[i];
-            }
-            self.dense.end_state.copy_from_slice(x);
-        }
-        let t = self.start.t;
-        self.start.move_to(system, (t, x), &mut self.stats)
-    }
-
-    fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
-        if t_limit <= self.start.t {
-            return Ok(());
-        }
-        let max_step = self.setup.options.max_step;
-        let mut h = self.first_step_size(system, t_limit)?.min(max_step);
         let exponent = 0.2 - BETA * 0.75;
         let mut failures = 0usize;
         loop {
@@ -368,13 +319,12 @@ impl Integrator for Dopri5 {
             if error <= 1.0 {
                 let factor = (factor_raw / self.previous_error.powf(BETA) / SAFETY)
                     .clamp(MAX_GROWTH_DIVISOR, MAX_SHRINK_DIVISOR);
-                let mut h_new = (h_try / factor).min(max_step);
-                if self.last_rejected {
-                    h_new = h_new.min(h_try);
-                }
-                if hits_limit && h > h_try {
-                    h_new = h_new.max(h.min(max_step));
-                }
+                let h_new = step_after_accepted(
+                    h_try / factor,
+                    (h_try, h),
+                    (self.last_rejected, hits_limit),
+                    self.setup.options.max_step,
+                );
                 self.previous_error = error.max(1e-4);
                 let t_end = if hits_limit {
                     t_limit
@@ -401,4 +351,18 @@ impl Integrator for Dopri5 {
             h = h_try / (factor_raw / SAFETY).min(MAX_SHRINK_DIVISOR);
         }
     }
+
+    /// The step's end moved by a projection to `x`: the dense output gets the correction
+    /// `θ Δ` (`Δ` at the step's end, 0 at its start).
+    fn project_dense_output(&mut self, x: &[f64]) {
+        for i in 0..x.len() {
+            self.dense.coefficients[1][i] += x[i] - self.start.x[i];
+        }
+        self.dense.end_state.copy_from_slice(x);
+    }
+}
+
+/// `Σ_j weights_j k_j[i]`, over the stages `k` the weights reach.
+fn combination(weights: &[f64], k: &[Vec<f64>], i: usize) -> f64 {
+    weights.iter().zip(k).map(|(w, k)| w * k[i]).sum()
 }

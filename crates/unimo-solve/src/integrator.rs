@@ -7,7 +7,7 @@ use crate::evaluate::rhs_checked;
 use crate::linear::LinearSolverKind;
 use crate::options::Method;
 use crate::stats::Stats;
-use crate::step_control::InitialStepProblem;
+use crate::step_control::{initial_step, InitialStepProblem};
 use crate::system::System;
 
 /// One integration method (BDF, Radau5, Dormand–Prince) driven step by step.
@@ -112,6 +112,53 @@ macro_rules! common_accessors {
     };
 }
 pub(crate) use common_accessors;
+
+/// [`Integrator::step`], [`Integrator::reset`] and [`Integrator::set_projected_state`]
+/// of a one-step method, one definition for Dormand–Prince and Radau5: `$order` is the
+/// order of its local error (for a first step's estimate). The method keeps a
+/// [`StepStart`] `start`, its next step size `step_size` (`None` after a restart without
+/// a given initial step), and provides `step_from(system, t_limit, h)` (one accepted
+/// step toward `t_limit`, trying `h` first), `restart(system, t, x)` and
+/// `project_dense_output(x)`. A projection moves the next step's start to the projected
+/// state, with `f` evaluated again; the step size and the controller's memory are kept,
+/// and when the dense output ends there it gets the method's correction (before `start`
+/// moves).
+macro_rules! one_step_method {
+    ($order:expr) => {
+        fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
+            let (start, stats) = (&self.start, &mut self.stats);
+            match start.step_size(
+                self.step_size,
+                (&self.setup, $order),
+                system,
+                t_limit,
+                stats,
+            )? {
+                Some(h) => self.step_from(system, t_limit, h),
+                None => Ok(()),
+            }
+        }
+
+        fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
+            self.setup.check_len(x)?;
+            self.restart(system, t, x)
+        }
+
+        fn set_projected_state(
+            &mut self,
+            system: &mut dyn System,
+            x: &[f64],
+        ) -> Result<(), SolveError> {
+            self.setup.check_len(x)?;
+            if self.dense.end == self.start.t {
+                self.project_dense_output(x);
+            }
+            let t = self.start.t;
+            self.start.move_to(system, (t, x), &mut self.stats)
+        }
+    };
+}
+pub(crate) use one_step_method;
 
 /// What an integrator's constructor starts from: the validated setup and the consistent
 /// point `(t0, x0)` ([`crate::Solver::new`] builds it once for whichever method it creates).
@@ -235,6 +282,32 @@ impl StepStart {
             x: x0.to_vec(),
             f: vec![0.0; x0.len()],
         }
+    }
+
+    /// The size of the next step from here toward `t_limit`, at most the largest step:
+    /// the method's `step_size`, or when it has none (after a restart without a given
+    /// initial step) the estimate of [`initial_step`] for a method whose local error has
+    /// order `order` (its evaluations counted in `stats`). `None` when `t_limit` is not
+    /// ahead: no step to take.
+    pub fn step_size(
+        &self,
+        step_size: Option<f64>,
+        (setup, order): (&ProblemSetup, u32),
+        system: &mut dyn System,
+        t_limit: f64,
+        stats: &mut Stats,
+    ) -> Result<Option<f64>, SolveError> {
+        if t_limit <= self.t {
+            return Ok(None);
+        }
+        let h = match step_size {
+            Some(step) => step,
+            None => {
+                let problem = setup.initial_step_problem(self.t, &self.x, &self.f, order, t_limit);
+                initial_step(&problem, system, stats)?
+            }
+        };
+        Ok(Some(h.min(setup.options.max_step)))
     }
 
     /// Moves to `(t, x)` and evaluates `f` there (counted in `stats`).

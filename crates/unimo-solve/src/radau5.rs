@@ -42,7 +42,7 @@ use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
 use crate::options::{Method, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
-use crate::step_control::{clip_to_limit, initial_step, step_above_floor};
+use crate::step_control::{clip_to_limit, step_above_floor, step_after_accepted};
 use crate::system::System;
 
 const SQRT6: f64 = 2.449_489_742_783_178;
@@ -349,20 +349,6 @@ impl Radau5 {
             .tolerances
             .scales_of(&self.start.x, &mut self.scale);
         Tolerances::guard_zero_scales(&mut self.scale);
-    }
-
-    fn first_step_size(
-        &mut self,
-        system: &mut dyn System,
-        t_limit: f64,
-    ) -> Result<f64, SolveError> {
-        if let Some(step) = self.step_size {
-            return Ok(step);
-        }
-        let problem =
-            self.setup
-                .initial_step_problem(self.start.t, &self.start.x, &self.start.f, 3, t_limit);
-        initial_step(&problem, system, &mut self.stats)
     }
 
     /// Evaluates the Jacobian at the current point if it is missing or stale.
@@ -733,31 +719,7 @@ impl Integrator for Radau5 {
         Some(self.real_lu.kind())
     }
 
-    fn reset(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), SolveError> {
-        self.setup.check_len(x)?;
-        self.restart(system, t, x)
-    }
-
-    /// The step's end moved by a projection: the next step starts there, with `f`
-    /// evaluated again; the step size and the controller's memory are kept, and the
-    /// dense output gets the correction `Δ (1 + s)` (`Δ` at the step's end, 0 at its
-    /// start: `cont0` and `cont1` plus `Δ`).
-    fn set_projected_state(
-        &mut self,
-        system: &mut dyn System,
-        x: &[f64],
-    ) -> Result<(), SolveError> {
-        self.setup.check_len(x)?;
-        if self.dense.end == self.start.t {
-            for i in 0..x.len() {
-                let delta = x[i] - self.start.x[i];
-                self.dense.cont[0][i] += delta;
-                self.dense.cont[1][i] += delta;
-            }
-        }
-        let t = self.start.t;
-        self.start.move_to(system, (t, x), &mut self.stats)
-    }
+    crate::integrator::one_step_method!(3);
 
     fn interpolation_error(&self) -> f64 {
         self.interpolation_error
@@ -785,13 +747,16 @@ impl Integrator for Radau5 {
         self.update_scale();
         true
     }
+}
 
-    fn step(&mut self, system: &mut dyn System, t_limit: f64) -> Result<(), SolveError> {
-        if t_limit <= self.start.t {
-            return Ok(());
-        }
-        let max_step = self.setup.options.max_step;
-        let mut h = self.first_step_size(system, t_limit)?.min(max_step);
+impl Radau5 {
+    /// [`Integrator::step`] trying `h` first.
+    fn step_from(
+        &mut self,
+        system: &mut dyn System,
+        t_limit: f64,
+        mut h: f64,
+    ) -> Result<(), SolveError> {
         let (mut failures, mut singular) = (0usize, 0usize);
         loop {
             h = step_above_floor(
@@ -850,14 +815,13 @@ impl Integrator for Radau5 {
             }
             self.accept(h_try, t_end);
             self.interpolation_error = error * self.tolerance_ratio;
-            let mut h_next = h_new.min(max_step);
-            if self.last_rejected {
-                h_next = h_next.min(h_try);
-            }
+            let mut h_next = step_after_accepted(
+                h_new,
+                (h_try, h),
+                (self.last_rejected, hits_limit),
+                self.setup.options.max_step,
+            );
             self.last_rejected = false;
-            if hits_limit && h > h_try {
-                h_next = h_next.max(h.min(max_step));
-            }
             let quotient = h_next / h_try;
             if self.theta <= self.reuse.theta {
                 if (self.reuse.quot_low..=self.reuse.quot_high).contains(&quotient) {
@@ -868,6 +832,16 @@ impl Integrator for Radau5 {
             }
             self.step_size = Some(h_next);
             return Ok(());
+        }
+    }
+
+    /// The step's end moved by a projection to `x`: the dense output gets the correction
+    /// `Δ (1 + s)` (`Δ` at the step's end, 0 at its start: `cont0` and `cont1` plus `Δ`).
+    fn project_dense_output(&mut self, x: &[f64]) {
+        for i in 0..x.len() {
+            let delta = x[i] - self.start.x[i];
+            self.dense.cont[0][i] += delta;
+            self.dense.cont[1][i] += delta;
         }
     }
 }

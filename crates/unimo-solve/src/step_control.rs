@@ -1,5 +1,6 @@
 //! Step-size helpers shared by the methods: Hairer's initial step selection, the smallest
-//! admissible step at a given time and the bound that keeps a step from passing `t_limit`.
+//! admissible step at a given time, the bound that keeps a step from passing `t_limit` and
+//! the step after an accepted one.
 
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
@@ -48,6 +49,26 @@ pub(crate) fn clip_to_limit(t: f64, step: f64, t_limit: f64) -> (f64, bool) {
     } else {
         (step, false)
     }
+}
+
+/// The step after an accepted step `h_try` of a one-step method: the controller's
+/// `proposal`, at most `max_step`; no larger than `h_try` after a rejection
+/// (`last_rejected`); and when the step was only cut to end on its limit (`hits_limit`,
+/// `planned > h_try`), at least the `planned` step (at most `max_step`) again.
+pub(crate) fn step_after_accepted(
+    proposal: f64,
+    (h_try, planned): (f64, f64),
+    (last_rejected, hits_limit): (bool, bool),
+    max_step: f64,
+) -> f64 {
+    let mut h_next = proposal.min(max_step);
+    if last_rejected {
+        h_next = h_next.min(h_try);
+    }
+    if hits_limit && planned > h_try {
+        h_next = h_next.max(planned.min(max_step));
+    }
+    h_next
 }
 
 /// Inputs of [`initial_step`].

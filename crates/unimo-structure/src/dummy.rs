@@ -461,18 +461,14 @@ impl LevelSelector {
         let local =
             BipartiteGraph::from_adjacency(eqs.len(), adjacency).expect("local ids are in range");
         let mut matching = Matching::for_graph(&local);
-        let mut search = AugmentingPathSearch::new();
+        let mut search = AugmentingPathSearch::pruning();
         let mut matched = 0;
         for candidate in local.eqs() {
             if matched == eqs.len() {
                 break;
             }
-            matched += usize::from(search.augment_from_eq_pruned(
-                &local,
-                &mut matching,
-                candidate,
-                |_| true,
-            ));
+            matched +=
+                usize::from(search.augment_from_eq(&local, &mut matching, candidate, |_| true));
         }
         if matched < eqs.len() {
             let left: Vec<EqId> = local

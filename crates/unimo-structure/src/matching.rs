@@ -319,12 +319,26 @@ pub struct AugmentingPathSearch {
     colored_vars: Vec<VarId>,
     stack: Vec<(EqId, u32)>,
     via: Vec<VarId>,
+    /// Failed searches leave their region dead ([`Self::pruning`]).
+    prune: bool,
 }
 
 impl AugmentingPathSearch {
     /// An empty workspace; it grows with the graphs it is used on.
     pub fn new() -> AugmentingPathSearch {
         AugmentingPathSearch::default()
+    }
+
+    /// An empty workspace whose searches prune: the region a failed search visited
+    /// stays marked dead for later searches on the same graph and allowed set (no
+    /// augmenting path can pass through it while the matching changes only by these
+    /// searches). This makes a greedy sequence of searches (one per candidate root) near
+    /// linear. Call [`Self::clear_dead`] before using the workspace on another problem.
+    pub fn pruning() -> AugmentingPathSearch {
+        AugmentingPathSearch {
+            prune: true,
+            ..AugmentingPathSearch::default()
+        }
     }
 
     /// Equations visited by the last search.
@@ -346,22 +360,7 @@ impl AugmentingPathSearch {
         root: EqId,
         var_allowed: impl Fn(VarId) -> bool,
     ) -> bool {
-        self.search(graph, matching, root, &var_allowed, false)
-    }
-
-    /// Like [`Self::augment_from_eq`], but the region a failed search visited stays
-    /// marked dead for later searches on the same graph and allowed set: no augmenting
-    /// path can pass through it while the matching changes only by these searches.
-    /// This makes a greedy sequence of searches (one per candidate root) near linear.
-    /// Call [`Self::clear_dead`] before using the workspace on another problem.
-    pub fn augment_from_eq_pruned(
-        &mut self,
-        graph: &BipartiteGraph,
-        matching: &mut Matching,
-        root: EqId,
-        var_allowed: impl Fn(VarId) -> bool,
-    ) -> bool {
-        self.search(graph, matching, root, &var_allowed, true)
+        self.search(graph, matching, root, &var_allowed)
     }
 
     /// Forgets the dead regions left by pruned searches.
@@ -404,8 +403,8 @@ impl AugmentingPathSearch {
         m: &mut Matching,
         root: EqId,
         var_allowed: &dyn Fn(VarId) -> bool,
-        prune: bool,
     ) -> bool {
+        let prune = self.prune;
         m.grow(graph.n_eqs(), graph.n_vars());
         self.prepare(graph);
         if prune && self.eq_dead[root.index()] {
@@ -507,10 +506,10 @@ mod tests {
         let g = BipartiteGraph::from_edges(4, 3, &[(0, 0), (1, 0), (2, 0), (2, 1), (3, 2), (3, 1)])
             .unwrap();
         let mut m = Matching::for_graph(&g);
-        let mut s = AugmentingPathSearch::new();
+        let mut s = AugmentingPathSearch::pruning();
         let found = g
             .eqs()
-            .filter(|&e| s.augment_from_eq_pruned(&g, &mut m, e, |_| true))
+            .filter(|&e| s.augment_from_eq(&g, &mut m, e, |_| true))
             .count();
         assert_eq!(found, maximum_matching(&g).size());
     }

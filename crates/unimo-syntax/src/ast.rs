@@ -157,7 +157,30 @@ pub struct ClassDef {
     pub span: Span,
 }
 
+/// A class's prefixes as both parsers read them: `partial`, the other prefixes and the
+/// kind.
+pub type ClassHead = (bool, ClassPrefixes, ClassKind);
+
 impl ClassDef {
+    /// A class definition from what the parsers read: `encapsulated`, its head (prefixes
+    /// and kind), its specifier (name and body) and its span.
+    pub fn new(
+        encapsulated: bool,
+        (partial, prefixes, kind): ClassHead,
+        (name, body): (Ident, ClassBody),
+        span: Span,
+    ) -> ClassDef {
+        ClassDef {
+            encapsulated,
+            partial,
+            prefixes,
+            kind,
+            name,
+            body,
+            span,
+        }
+    }
+
     /// The component clauses a long class declares, each with its element, in
     /// declaration order (none for a short, derivative or enumeration class).
     pub fn component_clauses(&self) -> impl Iterator<Item = (&Element, &ComponentClause)> {
@@ -553,16 +576,48 @@ pub enum UnaryOp {
     Not,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BinaryOp {
-    Or,
-    And,
+/// Relational operators (`<`, `<=`, `>`, `>=`, `==`, `<>`); in the DAE a relation is
+/// 1.0 when true and 0.0 when false.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum RelOp {
     Lt,
     Le,
     Gt,
     Ge,
     Eq,
     Ne,
+}
+
+impl RelOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            RelOp::Lt => "<",
+            RelOp::Le => "<=",
+            RelOp::Gt => ">",
+            RelOp::Ge => ">=",
+            RelOp::Eq => "==",
+            RelOp::Ne => "<>",
+        }
+    }
+
+    /// The relation between `a` and `b`.
+    pub fn apply<T: PartialOrd>(self, a: T, b: T) -> bool {
+        match self {
+            RelOp::Lt => a < b,
+            RelOp::Le => a <= b,
+            RelOp::Gt => a > b,
+            RelOp::Ge => a >= b,
+            RelOp::Eq => a == b,
+            RelOp::Ne => a != b,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinaryOp {
+    Or,
+    And,
+    Rel(RelOp),
     Add,
     Sub,
     Mul,
@@ -580,12 +635,7 @@ impl BinaryOp {
         match self {
             BinaryOp::Or => "or",
             BinaryOp::And => "and",
-            BinaryOp::Lt => "<",
-            BinaryOp::Le => "<=",
-            BinaryOp::Gt => ">",
-            BinaryOp::Ge => ">=",
-            BinaryOp::Eq => "==",
-            BinaryOp::Ne => "<>",
+            BinaryOp::Rel(op) => op.symbol(),
             BinaryOp::Add => "+",
             BinaryOp::Sub => "-",
             BinaryOp::Mul => "*",

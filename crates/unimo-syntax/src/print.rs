@@ -27,7 +27,7 @@ fn binary_precedence(op: BinaryOp) -> u8 {
     match op {
         Or => 2,
         And => 3,
-        Lt | Le | Gt | Ge | Eq | Ne => 5,
+        Rel(_) => 5,
         Add | Sub | ElemAdd | ElemSub => 6,
         Mul | Div | ElemMul | ElemDiv => 7,
         Pow | ElemPow => 8,

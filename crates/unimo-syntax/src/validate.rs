@@ -586,7 +586,7 @@ impl Validator<'_> {
     /// `a < b < c` and `a ^ b ^ c` are not Modelica (both operators are non-associative).
     fn chained(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr) {
         use BinaryOp::*;
-        let relational = |o: BinaryOp| matches!(o, Lt | Le | Gt | Ge | Eq | Ne);
+        let relational = |o: BinaryOp| matches!(o, Rel(_));
         let power = |o: BinaryOp| matches!(o, Pow | ElemPow);
         for (side, sub) in [(false, lhs), (true, rhs)] {
             // The parser keeps explicit parentheses in the span only; a parenthesized

@@ -4,7 +4,7 @@
 use super::array_builtins::as_matrix;
 use super::{unsupported, Local, Lowerer};
 use crate::error::{DaeError, DaeResult};
-use crate::expr::{ExprArena, ExprId, RelOp};
+use crate::expr::{ExprArena, ExprId};
 use crate::tensor::{self, Tensor};
 use unimo_source::Span;
 use unimo_syntax::ast::*;
@@ -227,15 +227,7 @@ impl Lowerer<'_> {
             }
             And => tensor::elementwise(ar, a, b, true, span, ExprArena::and),
             Or => tensor::elementwise(ar, a, b, true, span, ExprArena::or),
-            Lt | Le | Gt | Ge | Eq | Ne => {
-                let rel = match op {
-                    Lt => RelOp::Lt,
-                    Le => RelOp::Le,
-                    Gt => RelOp::Gt,
-                    Ge => RelOp::Ge,
-                    Eq => RelOp::Eq,
-                    _ => RelOp::Ne,
-                };
+            Rel(rel) => {
                 let x = a.as_scalar(span)?;
                 let y = b.as_scalar(span)?;
                 Ok(Tensor::scalar(ar.rel(rel, x, y)))

@@ -20,24 +20,16 @@ impl Lowerer<'_> {
         lhs: &Expr,
         rhs: &Expr,
     ) -> DaeResult<Option<Tensor>> {
-        use BinaryOp::*;
-        if !matches!(op, Eq | Ne | Lt | Le | Gt | Ge) {
+        let BinaryOp::Rel(relation) = op else {
             return Ok(None);
-        }
+        };
         if !self.is_string(lhs) && !self.is_string(rhs) {
             return Ok(None);
         }
         let (Some(a), Some(b)) = (self.string_value(lhs, 0), self.string_value(rhs, 0)) else {
             return Ok(None);
         };
-        let v = match op {
-            Eq => a == b,
-            Ne => a != b,
-            Lt => a < b,
-            Le => a <= b,
-            Gt => a > b,
-            _ => a >= b,
-        };
+        let v = relation.apply(a, b);
         Ok(Some(Tensor::scalar(self.a().boolean(v))))
     }
 

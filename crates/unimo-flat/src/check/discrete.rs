@@ -17,7 +17,7 @@ use crate::flat::{FlatModel, FlatType, FlatVar, Variability};
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use unimo_source::{Diagnostic, Span};
 use unimo_syntax::ast::{
-    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, StatementKind,
+    BinaryOp, ComponentRef, Equation, EquationKind, Expr, ExprKind, RelOp, StatementKind,
 };
 
 /// Built-in operators whose result is discrete-time whatever their arguments.
@@ -172,7 +172,7 @@ impl Vars<'_> {
             ExprKind::Binary { op, lhs, rhs } => {
                 let relation = matches!(
                     op,
-                    BinaryOp::Lt | BinaryOp::Le | BinaryOp::Gt | BinaryOp::Ge
+                    BinaryOp::Rel(RelOp::Lt | RelOp::Le | RelOp::Gt | RelOp::Ge)
                 );
                 if relation && !no_event {
                     return None;

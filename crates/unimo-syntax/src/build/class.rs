@@ -41,15 +41,7 @@ impl Builder<'_> {
                 },
             ),
         };
-        ClassDef {
-            encapsulated,
-            partial,
-            prefixes,
-            kind,
-            name,
-            body,
-            span,
-        }
+        ClassDef::new(encapsulated, (partial, prefixes, kind), (name, body), span)
     }
 
     pub(crate) fn class_specifier(&mut self, pair: Pair<'_, Rule>) -> (Ident, ClassBody) {

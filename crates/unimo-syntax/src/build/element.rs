@@ -355,15 +355,13 @@ impl Builder<'_> {
                 end_name: name.clone(),
                 extends: None,
             });
-            return RedeclaredElement::Class(Box::new(ClassDef {
-                encapsulated: false,
-                partial,
-                prefixes,
-                kind,
-                name,
-                body,
+            let head = (partial, prefixes, kind);
+            return RedeclaredElement::Class(Box::new(ClassDef::new(
+                false,
+                head,
+                (name, body),
                 span,
-            }));
+            )));
         }
         RedeclaredElement::Component(self.component_clause(pair))
     }

@@ -150,7 +150,7 @@ fn empty(span: Span) -> Expr {
 }
 
 /// `partial`, the refining prefixes and the kind of a `class_prefixes` pair.
-fn class_prefixes(pair: Pair<'_, Rule>) -> (bool, ClassPrefixes, ClassKind) {
+fn class_prefixes(pair: Pair<'_, Rule>) -> ClassHead {
     let (mut partial, mut prefixes, mut kind) = (false, ClassPrefixes::default(), ClassKind::Class);
     for q in pair.into_inner() {
         match q.as_rule() {

@@ -8,7 +8,7 @@ use crate::lexer::{Sym, TokenKind};
 impl<'a> P<'a, '_> {
     // ------------------------------------------------------------ classes
 
-    pub(crate) fn class_prefixes(&mut self) -> Option<(bool, ClassPrefixes, ClassKind)> {
+    pub(crate) fn class_prefixes(&mut self) -> Option<ClassHead> {
         let partial = self.eat(Sym::KwPartial);
         let mut prefixes = ClassPrefixes {
             expandable: self.eat(Sym::KwExpandable),
@@ -51,17 +51,14 @@ impl<'a> P<'a, '_> {
     pub(crate) fn class_definition(&mut self) -> Option<ClassDef> {
         let first = self.pos;
         let encapsulated = self.eat(Sym::KwEncapsulated);
-        let (partial, prefixes, kind) = self.class_prefixes()?;
-        let (name, body) = self.class_specifier(false)?;
-        Some(ClassDef {
+        let head = self.class_prefixes()?;
+        let specifier = self.class_specifier(false)?;
+        Some(ClassDef::new(
             encapsulated,
-            partial,
-            prefixes,
-            kind,
-            name,
-            body,
-            span: self.span_from(first),
-        })
+            head,
+            specifier,
+            self.span_from(first),
+        ))
     }
 
     /// `short_only`: inside a modification, only short and enumeration forms exist.

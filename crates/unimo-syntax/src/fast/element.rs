@@ -281,17 +281,12 @@ impl<'a> P<'a, '_> {
     fn redeclared(&mut self) -> Option<RedeclaredElement> {
         if self.at(Sym::KwPartial) || is_class_kind(self.sym()) {
             let first = self.pos;
-            let (partial, prefixes, kind) = self.class_prefixes()?;
-            let (name, body) = self.class_specifier(true)?;
-            return Some(RedeclaredElement::Class(Box::new(ClassDef {
-                encapsulated: false,
-                partial,
-                prefixes,
-                kind,
-                name,
-                body,
-                span: self.span_from(first),
-            })));
+            let head = self.class_prefixes()?;
+            let specifier = self.class_specifier(true)?;
+            let span = self.span_from(first);
+            return Some(RedeclaredElement::Class(Box::new(ClassDef::new(
+                false, head, specifier, span,
+            ))));
         }
         Some(RedeclaredElement::Component(self.component_clause(true)?))
     }
