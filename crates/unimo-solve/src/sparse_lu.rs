@@ -307,16 +307,17 @@ impl<T: LuScalar> StaticLu<T> {
             let rows = &self.rows[front.rows.clone()];
             for (jj, &row) in rows.iter().enumerate() {
                 let x = y[row];
-                for i in 0..k {
-                    y[front.begin + i] -= upper[i + jj * k] * x;
-                }
+                axpy(
+                    &mut y[front.begin..front.end],
+                    &upper[jj * k..(jj + 1) * k],
+                    x,
+                );
             }
+            let own = &mut y[front.begin..front.end];
             for p in (0..k).rev() {
-                let x = y[front.begin + p] / lower[p + p * m];
-                y[front.begin + p] = x;
-                for i in 0..p {
-                    y[front.begin + i] -= lower[i + p * m] * x;
-                }
+                let x = own[p] / lower[p + p * m];
+                own[p] = x;
+                axpy(&mut own[..p], &lower[p * m..p * m + p], x);
             }
         }
         for (new, &old) in self.old_of_new.iter().enumerate() {
