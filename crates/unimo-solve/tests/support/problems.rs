@@ -11,9 +11,48 @@ use unimo_solve::{
 };
 
 /// `impl System` for a test problem: its `rows` (true for a differential one, as many as
-/// unknowns), its right-hand side as a block writing `f` from `y` (and `self`), then
-/// the problem's other methods (Jacobian, roots) as in the impl.
+/// unknowns), its right-hand side as a block writing `f` from `y` (and `self`), its
+/// Jacobian (optional) as a block setting the entries of `jac` at `y` and returning
+/// whether it did, then the problem's other methods (roots) as in the impl. A
+/// second-order equation `x'' = a(x, v)` gives instead of `rows` and `rhs` its
+/// acceleration `a` from `x` and `v = x'` (and `self`): the system `(x, v)' = (v, a)`.
 macro_rules! system {
+    (
+        $ty:ty,
+        second_order: |$s:ident, $x:ident, $v:ident| $acceleration:expr,
+        $($method:tt)*
+    ) => {
+        system! {
+            $ty,
+            rows: [true, true],
+            rhs: |$s, y, f| {
+                let ($x, $v) = (y[0], y[1]);
+                f[0] = y[1];
+                f[1] = $acceleration;
+            }
+            $($method)*
+        }
+    };
+    (
+        $ty:ty,
+        rows: $rows:expr,
+        rhs: |$s:ident, $y:ident, $f:ident| $rhs:block
+        jacobian: |$js:ident, $jy:ident, $jac:ident| $jacobian:block
+        $($method:tt)*
+    ) => {
+        system! {
+            $ty,
+            rows: $rows,
+            rhs: |$s, $y, $f| $rhs
+            fn jacobian(
+                &mut $js,
+                _t: f64,
+                $jy: &[f64],
+                $jac: &mut JacobianMatrix,
+            ) -> Result<bool, EvalError> $jacobian
+            $($method)*
+        }
+    };
     (
         $ty:ty,
         rows: $rows:expr,
@@ -158,12 +197,7 @@ system! {
         out[1] = 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1];
         out[2] = y[0] + y[1] + y[2] - 1.0;
     }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        y: &[f64],
-        jac: &mut JacobianMatrix,
-    ) -> Result<bool, EvalError> {
+    jacobian: |self, y, jac| {
         if !self.analytic_jacobian {
             return Ok(false);
         }
@@ -200,12 +234,7 @@ system! {
     rhs: |self, y, f| {
         test_set::hires_rhs(y, f);
     }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        y: &[f64],
-        jac: &mut JacobianMatrix,
-    ) -> Result<bool, EvalError> {
+    jacobian: |self, y, jac| {
         // One row of the Jacobian a line.
         #[rustfmt::skip]
         let entries = [
@@ -270,17 +299,8 @@ impl VanDerPol {
 
 system! {
     VanDerPol,
-    rows: [true, true],
-    rhs: |self, y, f| {
-        f[0] = y[1];
-        f[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / self.epsilon;
-    }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        y: &[f64],
-        jac: &mut JacobianMatrix,
-    ) -> Result<bool, EvalError> {
+    second_order: |self, x, v| ((1.0 - x * x) * v - x) / self.epsilon,
+    jacobian: |self, y, jac| {
         jac.set(0, 1, 1.0);
         jac.set(1, 0, (-2.0 * y[0] * y[1] - 1.0) / self.epsilon);
         jac.set(1, 1, (1.0 - y[0] * y[0]) / self.epsilon);
@@ -295,11 +315,7 @@ pub struct VanDerPolUnscaled {
 
 system! {
     VanDerPolUnscaled,
-    rows: [true, true],
-    rhs: |self, y, f| {
-        f[0] = y[1];
-        f[1] = self.mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
-    }
+    second_order: |self, x, v| self.mu * (1.0 - x * x) * v - x,
 }
 
 /// `y' = lambda y`.
@@ -348,11 +364,7 @@ pub struct Harmonic;
 
 system! {
     Harmonic,
-    rows: [true, true],
-    rhs: |self, y, f| {
-        f[0] = y[1];
-        f[1] = -y[0];
-    }
+    second_order: |self, x, _v| -x,
 }
 
 /// Falling ball `h'' = -g` with the root function `h`.
@@ -362,11 +374,7 @@ pub struct BouncingBall {
 
 system! {
     BouncingBall,
-    rows: [true, true],
-    rhs: |self, y, f| {
-        f[0] = y[1];
-        f[1] = -self.gravity;
-    }
+    second_order: |self, _h, _v| -self.gravity,
     fn n_roots(&self) -> usize {
         1
     }
