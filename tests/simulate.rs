@@ -22,29 +22,7 @@ fn load_named(model: &str) -> unimo_cli::LoadedModel {
         .unwrap_or_else(|e| panic!("{file} {model}:\n{e}"))
 }
 
-/// A run from 0 to `stop` with `points` output intervals; failures are in the result.
-fn try_run(
-    compiled: &unimo_codegen::model::CompiledModel,
-    method: Method,
-    rtol: f64,
-    atol: f64,
-    stop: f64,
-    points: usize,
-) -> SimResult {
-    let o = SimOptions {
-        start: 0.0,
-        stop,
-        rtol,
-        atol,
-        method,
-        interval: stop / points as f64,
-        every_step: false,
-        output_rtol: 0.0,
-    };
-    simulate(compiled, &o)
-}
-
-/// [`try_run`] that must succeed.
+/// A run from 0 to `stop` with `points` output intervals that must succeed.
 fn run(
     m: &unimo_cli::LoadedModel,
     method: Method,
@@ -53,7 +31,11 @@ fn run(
     stop: f64,
     points: usize,
 ) -> SimResult {
-    let r = try_run(&m.compiled, method, rtol, atol, stop, points);
+    let o = SimOptions {
+        atol,
+        ..common::sim_options(method, rtol, 0.0, stop, stop / points as f64)
+    };
+    let r = simulate(&m.compiled, &o);
     assert!(
         r.error.is_none(),
         "{:?}",
@@ -231,17 +213,10 @@ fn stiff_extremes_finish_in_few_steps() {
 fn stiff_penalty_ball_never_gains_energy() {
     let m = load("models/PenaltyBall.mo");
     for method in [Method::Bdf, Method::Radau5] {
-        let mut o = SimOptions {
-            start: 0.0,
-            stop: 3.0,
-            rtol: 1e-6,
-            atol: 1e-8,
-            method,
-            interval: 0.01,
+        let o = SimOptions {
             every_step: true,
-            output_rtol: 0.0,
+            ..common::sim_options(method, 1e-6, 0.0, 3.0, 0.01)
         };
-        o.every_step = true;
         let r = simulate(&m.compiled, &o);
         assert!(r.error.is_none());
         let k = column_of(&r, "E");
@@ -428,7 +403,8 @@ fn redundant_fixed_starts_are_checked_not_refused() {
     let path = dir.join("RedundantFixedStarts.mo");
     std::fs::write(&path, text).unwrap();
     let bad = unimo_cli::load_model(&[path], None).unwrap();
-    let e = try_run(&bad.compiled, Method::Bdf, 1e-8, 1e-10, 1.0, 2)
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 1.0, 0.5);
+    let e = simulate(&bad.compiled, &o)
         .error
         .expect("contradicting starts fail");
     assert!(e.message().contains("contradict"), "{}", e.message());
@@ -696,7 +672,8 @@ fn pruning_keeps_the_steps_of_held_roundings() {
     let mut plan = m.analysis.plan.clone();
     unimo_dae::prune::prune(&m.dae, &mut plan, &[phi]);
     let compiled = unimo_codegen::model::compile(&m.dae, &plan);
-    let r = try_run(&compiled, Method::Bdf, 1e-8, 1e-10, 20.0, 40);
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 20.0, 0.5);
+    let r = simulate(&compiled, &o);
     assert!(r.error.is_none(), "{:?}", r.error.map(|e| e.message()));
     assert_eq!(r.stats.events, 3);
     assert_near(value(&r, "phi"), 20.0, 1e-6, "phi(20)");
@@ -718,7 +695,8 @@ fn while_loops_on_variables_run_and_stop_when_they_would_need_more() {
     }
     assert_eq!(value(&r, "k"), 6.0);
     let m = load_named("WhileLoops.TooLong");
-    let r = try_run(&m.compiled, Method::Bdf, 1e-8, 1e-10, 1.0, 10);
+    let o = common::sim_options(Method::Bdf, 1e-8, 0.0, 1.0, 0.1);
+    let r = simulate(&m.compiled, &o);
     let e = r.error.expect("the loop needs more than 64 iterations");
     assert_eq!(e.code(), "E4004");
     assert!(
