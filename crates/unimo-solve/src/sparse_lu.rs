@@ -9,9 +9,11 @@
 //!
 //! Storage per supernode `t` (columns `begin..end`, `k` of them; `r` rows below them,
 //! `rows_t`): the front's first `k` columns (`m = k + r` rows, column-major) hold `L` (unit
-//! lower, below the diagonal) and the diagonal block's `U`; a `k × r` block the rest of
-//! the `k` rows of `U`; an `r × r` block collects the Schur complements of the children
-//! and the front's own before they are added into the parent's front.
+//! lower, below the diagonal) and the diagonal block's `U`, whose diagonal is stored as the
+//! pivots' inverses (the back substitution multiplies: a division's latency would chain
+//! its steps); a `k × r` block the rest of the `k` rows of `U`; an `r × r` block collects
+//! the Schur complements of the children and the front's own before they are added into
+//! the parent's front.
 
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
@@ -86,6 +88,8 @@ pub(crate) struct StaticLu<T: LuScalar> {
     work: Vec<T>,
     /// Scratch of the solves: one front's rows below its diagonal block.
     below: Vec<T>,
+    /// Whether this CPU runs the kernels compiled for AVX2 ([`has_avx2`]).
+    avx2: bool,
 }
 
 impl<T: LuScalar> StaticLu<T> {
@@ -174,6 +178,7 @@ impl<T: LuScalar> StaticLu<T> {
             schur: vec![T::from(0.0); schur_len],
             work: vec![T::from(0.0); n],
             below: vec![T::from(0.0); max_below],
+            avx2: has_avx2(),
         };
         for column in 0..n {
             for &row in pattern.column(column) {
@@ -190,6 +195,24 @@ impl<T: LuScalar> StaticLu<T> {
     /// Factors the matrix whose stored entries (in the pattern's column order) are
     /// `values`.
     pub fn factor(&mut self, values: &[T]) -> Result<(), PivotRefused> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU has AVX2 (`has_avx2`).
+            return unsafe { self.factor_avx2(values) };
+        }
+        self.factor_portable(values)
+    }
+
+    /// [`Self::factor`] with the kernels compiled for AVX2: four lanes where the portable
+    /// build has two, the same operations in the same order (the factors are bit-identical).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn factor_avx2(&mut self, values: &[T]) -> Result<(), PivotRefused> {
+        self.factor_portable(values)
+    }
+
+    #[inline(always)]
+    fn factor_portable(&mut self, values: &[T]) -> Result<(), PivotRefused> {
         self.factors.fill(T::from(0.0));
         self.schur.fill(T::from(0.0));
         for (&slot, &value) in self.assembly.iter().zip(values) {
@@ -203,6 +226,7 @@ impl<T: LuScalar> StaticLu<T> {
     }
 
     /// Dense LU of front `t` without row exchanges, then its Schur complement.
+    #[inline(always)]
     fn factor_front(&mut self, t: usize) -> Result<(), PivotRefused> {
         let front = &self.fronts[t];
         let (k, r) = (front.width(), front.below());
@@ -219,6 +243,7 @@ impl<T: LuScalar> StaticLu<T> {
                 return Err(PivotRefused);
             }
             let inverse = T::from(1.0) / pivot;
+            lower[p + p * m] = inverse;
             for v in &mut lower[p + 1 + p * m..(p + 1) * m] {
                 *v *= inverse;
             }
@@ -241,6 +266,7 @@ impl<T: LuScalar> StaticLu<T> {
     }
 
     /// Adds front `t`'s Schur complement into its parent's front.
+    #[inline(always)]
     fn extend_add(&mut self, t: usize) {
         let front = &self.fronts[t];
         let Some(parent) = front.parent else {
@@ -277,6 +303,23 @@ impl<T: LuScalar> StaticLu<T> {
 
     /// Solves `A x = b` in place with the last factorization.
     pub fn solve(&mut self, rhs: &mut [T]) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU has AVX2 (`has_avx2`).
+            return unsafe { self.solve_avx2(rhs) };
+        }
+        self.solve_portable(rhs)
+    }
+
+    /// [`Self::solve`] with the kernels compiled for AVX2 (bit-identical results).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn solve_avx2(&mut self, rhs: &mut [T]) {
+        self.solve_portable(rhs)
+    }
+
+    #[inline(always)]
+    fn solve_portable(&mut self, rhs: &mut [T]) {
         for (new, &old) in self.old_of_new.iter().enumerate() {
             self.work[new] = rhs[old];
         }
@@ -315,7 +358,7 @@ impl<T: LuScalar> StaticLu<T> {
             }
             let own = &mut y[front.begin..front.end];
             for p in (0..k).rev() {
-                let x = own[p] / lower[p + p * m];
+                let x = own[p] * lower[p + p * m];
                 own[p] = x;
                 axpy(&mut own[..p], &lower[p * m..p * m + p], x);
             }
@@ -329,6 +372,7 @@ impl<T: LuScalar> StaticLu<T> {
 /// `S -= L21 U12` for an `r × r` block `S`, `L21` the `r × k` block at `lower` (column
 /// stride `m`) and `U12` the `k × r` block `upper`: four columns of `S` at a time, so that
 /// each load of `L21` serves four of them.
+#[inline(always)]
 fn schur_update<T: LuScalar>(
     schur: &mut [T],
     lower: &[T],
@@ -372,10 +416,24 @@ fn schur_update<T: LuScalar>(
 }
 
 /// `target -= source * factor`.
-#[inline]
+#[inline(always)]
 fn axpy<T: LuScalar>(target: &mut [T], source: &[T], factor: T) {
     for (t, &s) in target.iter_mut().zip(source) {
         *t -= s * factor;
+    }
+}
+
+/// Whether the CPU has AVX2 (x86-64 only): the factorization and the solves then run
+/// their AVX2 builds. No instruction differs in rounding (no fused multiply-add), so the
+/// results are the same bit for bit on every CPU.
+fn has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
     }
 }
 
