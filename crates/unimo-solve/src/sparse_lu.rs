@@ -254,10 +254,13 @@ impl<T: LuScalar> StaticLu<T> {
                 let factor = target[p];
                 axpy(&mut target[p + 1..], column, factor);
             }
-            for j in 0..r {
-                let target = &mut upper[j * k..(j + 1) * k];
-                let factor = target[p];
-                axpy(&mut target[p + 1..], &column[..k - p - 1], factor);
+            // The last pivot's row of `U12` needs no update (and one-column fronts, the
+            // most frequent, none at all).
+            if p + 1 < k {
+                for target in upper.chunks_exact_mut(k) {
+                    let factor = target[p];
+                    axpy(&mut target[p + 1..], &column[..k - p - 1], factor);
+                }
             }
         }
         let schur = &mut self.schur[front.schur..front.schur + r * r];
@@ -348,13 +351,17 @@ impl<T: LuScalar> StaticLu<T> {
             let lower = &self.factors[front.lower..front.lower + m * k];
             let upper = &self.factors[front.upper..front.upper + k * r];
             let rows = &self.rows[front.rows.clone()];
-            for (jj, &row) in rows.iter().enumerate() {
-                let x = y[row];
-                axpy(
-                    &mut y[front.begin..front.end],
-                    &upper[jj * k..(jj + 1) * k],
-                    x,
-                );
+            match k {
+                1 => subtract_upper::<T, 1>(y, front.begin, upper, rows),
+                2 => subtract_upper::<T, 2>(y, front.begin, upper, rows),
+                3 => subtract_upper::<T, 3>(y, front.begin, upper, rows),
+                4 => subtract_upper::<T, 4>(y, front.begin, upper, rows),
+                _ => {
+                    for (column, &row) in upper.chunks_exact(k).zip(rows) {
+                        let x = y[row];
+                        axpy(&mut y[front.begin..front.end], column, x);
+                    }
+                }
             }
             let own = &mut y[front.begin..front.end];
             for p in (0..k).rev() {
@@ -413,6 +420,29 @@ fn schur_update<T: LuScalar>(
             axpy(target, &lower[p * m..p * m + r], upper[p + j * k]);
         }
     }
+}
+
+/// `y[begin..begin + K] -= U12 y[rows]` for a front of `K` columns (`upper` its `K × r`
+/// block, column by column): the `K` values stay in registers over the rows, where an
+/// `axpy` of length `K` per row would cost more in loop set-up than in arithmetic (most
+/// fronts of a 2-D grid's analysis have 1 to 4 columns). The same operations in the same
+/// order as the `axpy` per row.
+#[inline(always)]
+fn subtract_upper<T: LuScalar, const K: usize>(
+    y: &mut [T],
+    begin: usize,
+    upper: &[T],
+    rows: &[usize],
+) {
+    let own = &mut y[begin..begin + K];
+    let mut values: [T; K] = std::array::from_fn(|p| own[p]);
+    for (column, &row) in upper.chunks_exact(K).zip(rows) {
+        let x = y[row];
+        for p in 0..K {
+            values[p] -= column[p] * x;
+        }
+    }
+    y[begin..begin + K].copy_from_slice(&values);
 }
 
 /// `target -= source * factor`.
