@@ -474,15 +474,16 @@ impl Bdf {
         // difference by difference, without a store and load per difference).
         let phi = &self.phi[..=k];
         let gamma = &self.gamma[..=k];
-        for i in 0..self.setup.size {
+        let predicted = self.y_pred.iter_mut().zip(self.yp_pred.iter_mut());
+        for (i, (y_out, yp_out)) in predicted.enumerate() {
             let mut y = phi[0][i];
             let mut yp = 0.0;
             for (difference, g) in phi[1..].iter().zip(&gamma[1..]) {
                 y += difference[i];
                 yp += g * difference[i];
             }
-            self.y_pred[i] = y;
-            self.yp_pred[i] = yp;
+            *y_out = y;
+            *yp_out = yp;
         }
     }
 }
@@ -491,13 +492,14 @@ impl Bdf {
     /// Residual `M x' - f(t, x)` at the current iterate into `delta`.
     fn residual(&mut self, system: &mut dyn System, t: f64) -> Result<(), EvalError> {
         rhs_checked(system, t, &self.y, &mut self.f_value, &mut self.stats)?;
-        for i in 0..self.setup.size {
-            let mass_term = if self.setup.differential[i] {
-                self.yp[i]
-            } else {
-                0.0
-            };
-            self.delta[i] = mass_term - self.f_value[i];
+        let terms = self
+            .yp
+            .iter()
+            .zip(&self.f_value)
+            .zip(&self.setup.differential);
+        for (delta, ((&yp, &f), &differential)) in self.delta.iter_mut().zip(terms) {
+            let mass_term = if differential { yp } else { 0.0 };
+            *delta = mass_term - f;
         }
         Ok(())
     }
@@ -582,10 +584,16 @@ impl Bdf {
                 let factor = 2.0 / (1.0 + ratio);
                 self.delta.iter_mut().for_each(|v| *v *= factor);
             }
-            for i in 0..self.setup.size {
-                self.correction[i] -= self.delta[i];
-                self.y[i] = self.y_pred[i] + self.correction[i];
-                self.yp[i] = self.yp_pred[i] + self.cj * self.correction[i];
+            let cj = self.cj;
+            let iterate = self.y.iter_mut().zip(self.yp.iter_mut());
+            let predicted = self.y_pred.iter().zip(&self.yp_pred);
+            let corrections = self.correction.iter_mut().zip(&self.delta);
+            for (((y, yp), (&y_pred, &yp_pred)), (correction, &delta)) in
+                iterate.zip(predicted).zip(corrections)
+            {
+                *correction -= delta;
+                *y = y_pred + *correction;
+                *yp = yp_pred + cj * *correction;
             }
             let norm = weighted_rms(&self.delta, &self.scale);
             if !norm.is_finite() {
@@ -683,8 +691,8 @@ impl Bdf {
         if k < self.max_order {
             self.phi[k + 1].copy_from_slice(&self.correction);
         }
-        for i in 0..self.setup.size {
-            self.phi[k][i] += self.correction[i];
+        for (value, correction) in self.phi[k].iter_mut().zip(&self.correction) {
+            *value += correction;
         }
         for j in (0..k).rev() {
             let (low, high) = self.phi.split_at_mut(j + 1);

@@ -120,8 +120,11 @@ fn interleaved_sum(values: &[f64], scale: &[f64], mask: Option<&[bool]>) -> f64 
                 .zip(mask.chunks_exact(LANES))
             {
                 for lane in 0..LANES {
-                    let ratio = if keep[lane] { v[lane] / s[lane] } else { 0.0 };
-                    lanes[lane] += ratio * ratio;
+                    // Computed for every component and then dropped (a select the loop
+                    // vectorizes), never added: a masked NaN does not propagate.
+                    let ratio = v[lane] / s[lane];
+                    let square = ratio * ratio;
+                    lanes[lane] += if keep[lane] { square } else { 0.0 };
                 }
             }
             for ((v, s), &keep) in tail_values.iter().zip(tail_scale).zip(tail_mask) {
