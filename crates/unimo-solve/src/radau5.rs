@@ -404,23 +404,26 @@ impl Radau5 {
         }
         let ratio = h / self.previous_step;
         let [_, a1, a2, a3] = &self.dense.cont;
+        let [z0, z1, z2] = &mut self.z;
+        let [w0, w1, w2] = &mut self.w;
         for i in 0..self.setup.size {
             let at = |c: f64| c * (a1[i] + (c - C2M1) * (a2[i] + (c - C1M1) * a3[i]));
-            let (z1, z2, z3) = (at(C1 * ratio), at(C2 * ratio), at(ratio));
-            self.z[0][i] = z1;
-            self.z[1][i] = z2;
-            self.z[2][i] = z3;
-            self.w[0][i] = TI11 * z1 + TI12 * z2 + TI13 * z3;
-            self.w[1][i] = TI21 * z1 + TI22 * z2 + TI23 * z3;
-            self.w[2][i] = TI31 * z1 + TI32 * z2 + TI33 * z3;
+            let (y1, y2, y3) = (at(C1 * ratio), at(C2 * ratio), at(ratio));
+            z0[i] = y1;
+            z1[i] = y2;
+            z2[i] = y3;
+            w0[i] = TI11 * y1 + TI12 * y2 + TI13 * y3;
+            w1[i] = TI21 * y1 + TI22 * y2 + TI23 * y3;
+            w2[i] = TI31 * y1 + TI32 * y2 + TI33 * y3;
         }
     }
 
     /// Replaces `z_k` by `f(t + c_k h, x + z_k)`.
     fn evaluate_stages(&mut self, system: &mut dyn System, h: f64) -> Result<(), EvalError> {
         for (k, c) in [C1, C2, 1.0].into_iter().enumerate() {
-            for i in 0..self.setup.size {
-                self.stage_state[i] = self.start.x[i] + self.z[k][i];
+            let stage = self.start.x.iter().zip(&self.z[k]);
+            for (state, (&x, &z)) in self.stage_state.iter_mut().zip(stage) {
+                *state = x + z;
             }
             rhs_checked(
                 system,
@@ -438,25 +441,28 @@ impl Radau5 {
     fn solve_correction(&mut self, h: f64) {
         let (gamma, alpha, beta) = self.eigenvalues;
         let (fac1, alphn, betan) = (gamma / h, alpha / h, beta / h);
-        for i in 0..self.setup.size {
-            let (a1, a2, a3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
+        let [z0, z1, z2] = &mut self.z;
+        let [w0, w1, w2] = &self.w;
+        let differential = &self.setup.differential;
+        for (i, complex) in self.complex_rhs.iter_mut().enumerate() {
+            let (a1, a2, a3) = (z0[i], z1[i], z2[i]);
             let mut r1 = TI11 * a1 + TI12 * a2 + TI13 * a3;
             let mut r2 = TI21 * a1 + TI22 * a2 + TI23 * a3;
             let mut r3 = TI31 * a1 + TI32 * a2 + TI33 * a3;
-            if self.setup.differential[i] {
-                let (s2, s3) = (-self.w[1][i], -self.w[2][i]);
-                r1 -= self.w[0][i] * fac1;
+            if differential[i] {
+                let (s2, s3) = (-w1[i], -w2[i]);
+                r1 -= w0[i] * fac1;
                 r2 += s2 * alphn - s3 * betan;
                 r3 += s3 * alphn + s2 * betan;
             }
-            self.z[0][i] = r1;
-            self.complex_rhs[i] = c64::new(r2, r3);
+            z0[i] = r1;
+            *complex = c64::new(r2, r3);
         }
-        self.real_lu.solve(&mut self.z[0]);
+        self.real_lu.solve(z0);
         self.complex_lu.solve(&mut self.complex_rhs);
-        for i in 0..self.setup.size {
-            self.z[1][i] = self.complex_rhs[i].re;
-            self.z[2][i] = self.complex_rhs[i].im;
+        for ((re, im), complex) in z1.iter_mut().zip(z2.iter_mut()).zip(&self.complex_rhs) {
+            *re = complex.re;
+            *im = complex.im;
         }
     }
 
@@ -542,16 +548,18 @@ impl Radau5 {
                 }
             }
             previous_norm = norm.max(f64::EPSILON);
+            let [z0, z1, z2] = &mut self.z;
+            let [w0, w1, w2] = &mut self.w;
             for i in 0..self.setup.size {
-                let w1 = self.w[0][i] + self.z[0][i];
-                let w2 = self.w[1][i] + self.z[1][i];
-                let w3 = self.w[2][i] + self.z[2][i];
-                self.w[0][i] = w1;
-                self.w[1][i] = w2;
-                self.w[2][i] = w3;
-                self.z[0][i] = T11 * w1 + T12 * w2 + T13 * w3;
-                self.z[1][i] = T21 * w1 + T22 * w2 + T23 * w3;
-                self.z[2][i] = T31 * w1 + w2;
+                let v1 = w0[i] + z0[i];
+                let v2 = w1[i] + z1[i];
+                let v3 = w2[i] + z2[i];
+                w0[i] = v1;
+                w1[i] = v2;
+                w2[i] = v3;
+                z0[i] = T11 * v1 + T12 * v2 + T13 * v3;
+                z1[i] = T21 * v1 + T22 * v2 + T23 * v3;
+                z2[i] = T31 * v1 + v2;
             }
             if self.contraction_factor * norm <= self.newton_tolerance {
                 return NewtonOutcome::Converged { iterations };
@@ -563,14 +571,12 @@ impl Radau5 {
     fn error_estimate(&mut self, system: &mut dyn System, h: f64) -> f64 {
         let (e1, e2, e3) = (DD1 / h, DD2 / h, DD3 / h);
         let size = self.setup.size;
+        let [z0, z1, z2] = &self.z;
+        let (mass_terms, differential) = (&mut self.w[1], &self.setup.differential);
         for i in 0..size {
-            let combination = e1 * self.z[0][i] + e2 * self.z[1][i] + e3 * self.z[2][i];
-            let mass_term = if self.setup.differential[i] {
-                combination
-            } else {
-                0.0
-            };
-            self.w[1][i] = mass_term;
+            let combination = e1 * z0[i] + e2 * z1[i] + e3 * z2[i];
+            let mass_term = if differential[i] { combination } else { 0.0 };
+            mass_terms[i] = mass_term;
             self.error_vector[i] = mass_term + self.start.f[i];
         }
         self.real_lu.solve(&mut self.error_vector);
@@ -578,8 +584,9 @@ impl Radau5 {
         if error < 1.0 || !(self.first_step || self.last_rejected) {
             return error;
         }
-        for i in 0..size {
-            self.stage_state[i] = self.start.x[i] + self.error_vector[i];
+        let perturbed = self.start.x.iter().zip(&self.error_vector);
+        for (state, (&x, &error)) in self.stage_state.iter_mut().zip(perturbed) {
+            *state = x + error;
         }
         let t = self.start.t;
         let mut refreshed = std::mem::take(&mut self.w[0]);
@@ -594,8 +601,9 @@ impl Radau5 {
         if result.is_err() {
             return error;
         }
-        for i in 0..size {
-            self.error_vector[i] = self.w[0][i] + self.w[1][i];
+        let refreshed = self.w[0].iter().zip(&self.w[1]);
+        for (error, (&f, &mass_term)) in self.error_vector.iter_mut().zip(refreshed) {
+            *error = f + mass_term;
         }
         self.real_lu.solve(&mut self.error_vector);
         weighted_rms(&self.error_vector, &self.scale).max(1e-10)
@@ -607,8 +615,9 @@ impl Radau5 {
         system: &mut dyn System,
         t_end: f64,
     ) -> Result<(), EvalError> {
-        for i in 0..self.setup.size {
-            self.stage_state[i] = self.start.x[i] + self.z[2][i];
+        let end = self.start.x.iter().zip(&self.z[2]);
+        for (state, (&x, &z)) in self.stage_state.iter_mut().zip(end) {
+            *state = x + z;
         }
         rhs_checked(
             system,
