@@ -49,45 +49,38 @@ const LANES: usize = 8;
 
 /// `sqrt(mean((v_i / scale_i)^2))`; NaN propagates (callers treat a non-finite norm as failure).
 pub(crate) fn weighted_rms(values: &[f64], scale: &[f64]) -> f64 {
-    if values.is_empty() {
-        return 0.0;
-    }
-    let sum: f64 = if values.len() < INTERLEAVED_FROM {
-        values
-            .iter()
-            .zip(scale)
-            .map(|(v, s)| {
-                let ratio = v / s;
-                ratio * ratio
-            })
-            .sum()
-    } else {
-        interleaved_sum(values, scale, None)
-    };
-    (sum / values.len() as f64).sqrt()
+    root_mean(values, sum_of_squares(values, scale, None))
 }
 
 /// Like [`weighted_rms`] but only over components where `mask[i]` is true; the mean still
 /// divides by the full length (as IDA's masked norm does).
 pub(crate) fn weighted_rms_masked(values: &[f64], scale: &[f64], mask: &[bool]) -> f64 {
+    root_mean(values, sum_of_squares(values, scale, Some(mask)))
+}
+
+fn root_mean(values: &[f64], sum: f64) -> f64 {
     if values.is_empty() {
         return 0.0;
     }
-    let sum: f64 = if values.len() < INTERLEAVED_FROM {
-        values
-            .iter()
-            .zip(scale)
-            .zip(mask)
-            .filter(|(_, keep)| **keep)
-            .map(|((v, s), _)| {
-                let ratio = v / s;
-                ratio * ratio
-            })
-            .sum()
-    } else {
-        interleaved_sum(values, scale, Some(mask))
-    };
     (sum / values.len() as f64).sqrt()
+}
+
+/// `Σ (v_i / scale_i)^2` over the components `mask` keeps (all without one): in order
+/// below [`INTERLEAVED_FROM`] components, else [`interleaved_sum`].
+fn sum_of_squares(values: &[f64], scale: &[f64], mask: Option<&[bool]>) -> f64 {
+    if values.len() >= INTERLEAVED_FROM {
+        return interleaved_sum(values, scale, mask);
+    }
+    values
+        .iter()
+        .zip(scale)
+        .enumerate()
+        .filter(|&(i, _)| mask.is_none_or(|mask| mask[i]))
+        .map(|(_, (v, s))| {
+            let ratio = v / s;
+            ratio * ratio
+        })
+        .sum()
 }
 
 /// `Σ (v_i / scale_i)^2` over the components `mask` keeps (all without one), in [`LANES`]
