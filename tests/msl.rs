@@ -101,6 +101,37 @@ fn shared(dir: &str) -> PathBuf {
     path
 }
 
+/// The reference folder of `model` and its compared signals (without `time`).
+fn reference_of(model: &str) -> (PathBuf, Vec<String>) {
+    let folder = model
+        .split('.')
+        .fold(shared("msl-reference"), |p, part| p.join(part));
+    let signals = std::fs::read_to_string(folder.join("comparisonSignals.txt"))
+        .unwrap_or_else(|e| panic!("{model}: no comparisonSignals.txt: {e}"))
+        .lines()
+        .map(|l| l.trim().to_owned())
+        .filter(|l| !l.is_empty() && l != "time")
+        .collect();
+    (folder, signals)
+}
+
+/// `unimo simulate` of the MSL's `model` with `args` (before `--output out`), a row
+/// after every solver step besides the grid (as `bench/msl/run.sh` runs them: the
+/// references are denser than the grid).
+fn simulate_msl(model: &str, args: &[&str], out: &Path) -> std::process::Output {
+    let msl = shared("msl");
+    Command::new(env!("CARGO_BIN_EXE_unimo"))
+        .arg("simulate")
+        .arg(msl.join("Modelica/package.mo"))
+        .args(["--model", model, "--lib"])
+        .arg(&msl)
+        .args(args)
+        .args(["--every-step", "--output"])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// A CSV file as its header and columns (unparsable cells are NaN).
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(path)
@@ -198,32 +229,14 @@ fn compare(reference: &Path, result: &Path, signals: &[String]) -> Result<(), St
 
 #[test]
 fn msl_examples_match_the_reference_results() {
-    let msl = shared("msl");
-    let refs = shared("msl-reference");
     let tmp = std::env::temp_dir().join(format!("unimo-msl-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let mut failures = Vec::new();
     for model in EXAMPLES {
-        let folder = model.split('.').fold(refs.clone(), |p, part| p.join(part));
+        let (folder, signals) = reference_of(model);
         let name = model.rsplit('.').next().unwrap();
-        let signals: Vec<String> = std::fs::read_to_string(folder.join("comparisonSignals.txt"))
-            .unwrap_or_else(|e| panic!("{model}: no comparisonSignals.txt: {e}"))
-            .lines()
-            .map(|l| l.trim().to_owned())
-            .filter(|l| !l.is_empty() && l != "time")
-            .collect();
         let out = tmp.join(format!("{name}.csv"));
-        let run = Command::new(env!("CARGO_BIN_EXE_unimo"))
-            .arg("simulate")
-            .arg(msl.join("Modelica/package.mo"))
-            .args(["--model", model, "--lib"])
-            .arg(&msl)
-            // A row after every solver step besides the experiment's grid, as
-            // bench/msl/run.sh runs them (the references are denser than the grid).
-            .args(["--vars", &signals.join(","), "--every-step", "--output"])
-            .arg(&out)
-            .output()
-            .unwrap();
+        let run = simulate_msl(model, &["--vars", &signals.join(",")], &out);
         if !run.status.success() {
             let err = String::from_utf8_lossy(&run.stderr);
             let first = err.lines().find(|l| l.starts_with("error")).unwrap_or("");
@@ -254,40 +267,32 @@ fn msl_examples_match_the_reference_results() {
 /// equations, and the reference's tool picks another consistent choice).
 #[test]
 fn statically_indeterminate_friction_loops_simulate() {
-    let msl = shared("msl");
-    let refs = shared("msl-reference");
     let tmp = std::env::temp_dir().join(format!("unimo-msl-stuck-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
-    let run = |model: &str, vars: &str, out: &Path| {
-        Command::new(env!("CARGO_BIN_EXE_unimo"))
-            .arg("simulate")
-            .arg(msl.join("Modelica/package.mo"))
-            .args(["--model", model, "--lib"])
-            .arg(&msl)
-            .args(["--vars", vars, "--every-step", "--output"])
-            .arg(out)
-            .output()
-            .unwrap()
-    };
     let model = "Modelica.Mechanics.Rotational.Examples.LossyGearDemo2";
     let out = tmp.join("LossyGearDemo2.csv");
-    let done = run(model, "Inertia2.phi,Inertia2.w", &out);
-    assert!(
-        done.status.success(),
-        "{model}: {}",
-        String::from_utf8_lossy(&done.stderr)
-    );
-    let folder = model.split('.').fold(refs.clone(), |p, part| p.join(part));
+    let run = simulate_msl(model, &["--vars", "Inertia2.phi,Inertia2.w"], &out);
+    assert_ran(model, &run);
+    let (folder, _) = reference_of(model);
     let signals = ["Inertia2.phi".to_owned(), "Inertia2.w".to_owned()];
     compare(&folder.join("LossyGearDemo2.csv"), &out, &signals).unwrap();
     let model = "Modelica.Mechanics.Rotational.Examples.HeatLosses";
-    let done = run(model, "inertia1.w", &tmp.join("HeatLosses.csv"));
-    assert!(
-        done.status.success(),
-        "{model}: {}",
-        String::from_utf8_lossy(&done.stderr)
+    let run = simulate_msl(
+        model,
+        &["--vars", "inertia1.w"],
+        &tmp.join("HeatLosses.csv"),
     );
+    assert_ran(model, &run);
     let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// `run` of `model` exited 0 (else its error output is the message).
+fn assert_ran(model: &str, run: &std::process::Output) {
+    assert!(
+        run.status.success(),
+        "{model}: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
 }
 
 /// `Electrical.Analog.Examples.DifferenceAmplifier` to the stop time of its reference
@@ -299,34 +304,14 @@ fn statically_indeterminate_friction_loops_simulate() {
 /// with it at t = 7.7e-7 s. The transient settles to the reference's steady state.
 #[test]
 fn an_ill_conditioned_linear_block_does_not_stop_the_difference_amplifier() {
-    let msl = shared("msl");
-    let refs = shared("msl-reference");
     let model = "Modelica.Electrical.Analog.Examples.DifferenceAmplifier";
-    let folder = model.split('.').fold(refs, |p, part| p.join(part));
-    let signals: Vec<String> = std::fs::read_to_string(folder.join("comparisonSignals.txt"))
-        .unwrap()
-        .lines()
-        .map(|l| l.trim().to_owned())
-        .filter(|l| !l.is_empty() && l != "time")
-        .collect();
+    let (folder, signals) = reference_of(model);
     let tmp = std::env::temp_dir().join(format!("unimo-msl-amp-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();
     let out = tmp.join("DifferenceAmplifier.csv");
-    let run = Command::new(env!("CARGO_BIN_EXE_unimo"))
-        .arg("simulate")
-        .arg(msl.join("Modelica/package.mo"))
-        .args(["--model", model, "--lib"])
-        .arg(&msl)
-        .args(["--stop-time", "1", "--vars", &signals.join(",")])
-        .args(["--every-step", "--output"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{model}: {}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let vars = signals.join(",");
+    let run = simulate_msl(model, &["--stop-time", "1", "--vars", &vars], &out);
+    assert_ran(model, &run);
     compare(&folder.join("DifferenceAmplifier.csv"), &out, &signals).unwrap();
     let _ = std::fs::remove_dir_all(&tmp);
 }
