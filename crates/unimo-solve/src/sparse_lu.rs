@@ -627,6 +627,45 @@ mod tests {
         }
     }
 
+    /// The portable build of the kernels and the AVX2 one (where the CPU has it) give the
+    /// same factors and solutions, bit for bit, real and complex; the portable one is
+    /// otherwise never run on an AVX2 machine.
+    #[test]
+    fn the_portable_and_the_avx2_kernels_agree_bit_for_bit() {
+        fn run<T: LuScalar>(
+            pattern: &SparsityPattern,
+            values: &[T],
+            b: &[T],
+            avx2: bool,
+        ) -> Vec<T> {
+            let mut lu = StaticLu::<T>::analyze(pattern, 0.0).unwrap();
+            lu.avx2 = avx2 && has_avx2();
+            lu.factor(values).unwrap();
+            let mut x = b.to_vec();
+            lu.solve(&mut x);
+            lu.factors.iter().copied().chain(x).collect()
+        }
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for n in [7, 16] {
+            let (pattern, entries) = grid(n, 10.0);
+            let values = values_of(&pattern, &entries);
+            let b: Vec<f64> = (0..pattern.size())
+                .map(|i| (i as f64 * 0.37).sin())
+                .collect();
+            let (portable, wide) = (
+                run(&pattern, &values, &b, false),
+                run(&pattern, &values, &b, true),
+            );
+            assert_eq!(bits(&portable), bits(&wide), "{n}: real");
+            let complex: Vec<c64> = values.iter().map(|&v| c64::new(v, 0.5 * v)).collect();
+            let cb: Vec<c64> = b.iter().map(|&v| c64::new(v, -v)).collect();
+            let split = |v: Vec<c64>| v.iter().flat_map(|z| [z.re, z.im]).collect::<Vec<_>>();
+            let portable = split(run(&pattern, &complex, &cb, false));
+            let wide = split(run(&pattern, &complex, &cb, true));
+            assert_eq!(bits(&portable), bits(&wide), "{n}: complex");
+        }
+    }
+
     #[test]
     fn a_small_pivot_is_refused() {
         let (pattern, mut entries) = grid(4, 10.0);
