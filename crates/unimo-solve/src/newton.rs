@@ -300,11 +300,12 @@ fn linear_refinement(
     Refinement::Corrected
 }
 
-/// The largest `|dx_k| / (atol + rtol |x_k|)`: a step in the integrator's error weights.
+/// The largest `|dx_k| / (atol + rtol |x_k|)`: a step in the integrator's error weights
+/// (a weight of zero, `atol = 0` at `x_k = 0`, counts as the smallest positive number).
 fn weighted_max(x: &[f64], dx: &[f64], tol: &NewtonTolerance) -> f64 {
     x.iter()
         .zip(dx)
-        .map(|(x, dx)| dx.abs() / (tol.absolute + tol.relative * x.abs()))
+        .map(|(x, dx)| dx.abs() / (tol.absolute + tol.relative * x.abs()).max(f64::MIN_POSITIVE))
         .fold(0.0, f64::max)
 }
 
