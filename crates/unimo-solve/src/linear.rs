@@ -16,7 +16,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Conj, Mat, MatMut, Par};
 
 use crate::options::LinearSolverChoice;
-use crate::scheduled_lu::{Schedule, ScheduledLu, Work};
+use crate::scheduled_lu::{Pair, Schedule, ScheduledLu, Work};
 use crate::small_lu::SmallLu;
 use crate::sparse_lu::{StaticLu, MIN_WORK_PER_ENTRY};
 use crate::system::{JacobianMatrix, SparsityPattern, System};
@@ -272,12 +272,12 @@ impl<T: LuScalar> ShiftedLu<T> {
         if size >= crate::options::SPARSE_AUTO_THRESHOLD.max(SMALL_DENSE_LIMIT) {
             return None;
         }
-        let schedule = Schedule::analyze(jacobian_pattern);
+        let schedule = Schedule::shared(jacobian_pattern);
         let cost = |w: Work| (w.factor + w.solve) as f64;
         if cost(schedule.work) > fraction * cost(Work::dense(size)) {
             return None;
         }
-        Some(Self::on_schedule(Arc::new(schedule)))
+        Some(Self::on_schedule(schedule))
     }
 
     fn on_schedule(schedule: Arc<Schedule>) -> Self {
@@ -394,6 +394,100 @@ impl<T: LuScalar> ShiftedLu<T> {
             Backend::Dense(dense) => dense.solve(rhs),
             Backend::Sparse(sparse) => sparse.solve(rhs),
         }
+    }
+}
+
+/// Radau5's real and complex LU of one Jacobian: on one schedule they are factored and
+/// solved in one walk ([`scheduled_lu::Pair`], the same bits as two walks); otherwise each
+/// on its own.
+pub(crate) struct LuPair {
+    pub real: ShiftedLu<f64>,
+    pub complex: ShiftedLu<c64>,
+}
+
+impl<T: LuScalar> ShiftedLu<T> {
+    /// The scheduled LU holds the last factorization.
+    fn scheduled_factored(&mut self) {
+        if let Backend::Scheduled(s) = &mut self.backend {
+            s.on_fallback = false;
+        }
+    }
+
+    /// Whether the scheduled LU (not its fallback) holds the last factorization.
+    fn scheduled_holds_factors(&self) -> bool {
+        matches!(&self.backend, Backend::Scheduled(s) if !s.on_fallback)
+    }
+}
+
+impl LuPair {
+    /// The real LU for `system` under `choice` and its complex sibling.
+    pub fn new(system: &dyn System, choice: LinearSolverChoice) -> Self {
+        let real: ShiftedLu<f64> = iteration_lu(system, choice);
+        let complex = real.sibling();
+        LuPair { real, complex }
+    }
+
+    /// Both scheduled, neither on its fallback, on one schedule.
+    fn scheduled(&mut self) -> Option<Pair<'_>> {
+        match (&mut self.real.backend, &mut self.complex.backend) {
+            (Backend::Scheduled(real), Backend::Scheduled(complex))
+                if real.refusals < MAX_REFUSALS && complex.refusals < MAX_REFUSALS =>
+            {
+                let pair = Pair {
+                    real: &mut real.scheduled,
+                    complex: &mut complex.scheduled,
+                };
+                pair.shares_schedule().then_some(pair)
+            }
+            _ => None,
+        }
+    }
+
+    /// Factors `shift_re M - J` and `shift_cx M - J`; false when either is singular (the
+    /// complex one is not factored when the real one is).
+    pub fn factor(
+        &mut self,
+        jacobian: &JacobianMatrix,
+        differential: &[bool],
+        (shift_re, shift_cx): (f64, c64),
+    ) -> bool {
+        let started = fine_timing().then(Instant::now);
+        let real = ShiftedMatrix {
+            jacobian,
+            differential,
+            shift: shift_re,
+        };
+        let complex = ShiftedMatrix {
+            jacobian,
+            differential,
+            shift: shift_cx,
+        };
+        let fused = self
+            .scheduled()
+            .is_some_and(|mut pair| pair.factor_shifted(real, complex).is_ok());
+        let factored = if fused {
+            self.real.scheduled_factored();
+            self.complex.scheduled_factored();
+            true
+        } else {
+            self.real.factor_untimed(real).is_ok() && self.complex.factor_untimed(complex).is_ok()
+        };
+        add_linear_algebra_time(started);
+        factored
+    }
+
+    /// Solves with both last factorizations: `b` with the real one, `c` with the complex.
+    pub fn solve(&mut self, b: &mut [f64], c: &mut [c64]) {
+        let started = fine_timing().then(Instant::now);
+        let both = self.real.scheduled_holds_factors() && self.complex.scheduled_holds_factors();
+        match self.scheduled().filter(|_| both) {
+            Some(mut pair) => pair.solve(b, c),
+            None => {
+                self.real.solve_untimed(b);
+                self.complex.solve_untimed(c);
+            }
+        }
+        add_linear_algebra_time(started);
     }
 }
 
@@ -670,6 +764,56 @@ mod tests {
             let m = |i: usize, j: usize| if i == j && differential[i] { 5.0 } else { 0.0 };
             let value: f64 = (0..4).map(|j| (m(i, j) - jacobian.get(i, j)) * x[j]).sum();
             assert!((value - expected).abs() < 1e-14, "row {i}: {value}");
+        }
+    }
+
+    /// Radau5's pair: the one walk gives the bits of two apart, and a matrix whose diagonal
+    /// pivot the schedule refuses (a zero one) is factored with partial pivoting.
+    #[test]
+    fn the_lu_pair_walks_once_and_falls_back_where_a_pivot_is_refused() {
+        let pattern = SparsityPattern::dense(2);
+        let mut jacobian = JacobianMatrix::dense(2);
+        for (i, j, v) in [(0, 0, 0.0), (1, 0, 1.0), (0, 1, 1.0), (1, 1, 0.0)] {
+            jacobian.set(i, j, v);
+        }
+        let shifts = (5.0, c64::new(4.0, 3.0));
+        let (b, c) = ([1.0, 2.0], [c64::new(1.0, -1.0), c64::new(2.0, 0.5)]);
+        for (differential, refused) in [([true; 2], false), ([false; 2], true)] {
+            let real = ShiftedLu::<f64>::scheduled(&pattern, 1.0).expect("scheduled");
+            let mut pair = LuPair {
+                complex: real.sibling(),
+                real,
+            };
+            assert!(pair.factor(&jacobian, &differential, shifts));
+            assert_eq!(pair.real.scheduled_holds_factors(), !refused);
+            assert_eq!(pair.complex.scheduled_holds_factors(), !refused);
+            let (mut x, mut y) = (b, c);
+            pair.solve(&mut x, &mut y);
+            // (shift M - J) y = c, row by row.
+            for i in 0..2 {
+                let m = |j: usize| {
+                    if i == j && differential[i] {
+                        shifts.1
+                    } else {
+                        c64::new(0.0, 0.0)
+                    }
+                };
+                let row: c64 = (0..2)
+                    .map(|j| (m(j) - c64::from(jacobian.get(i, j))) * y[j])
+                    .sum();
+                assert!((row - c[i]).norm() < 1e-14, "row {i}");
+            }
+            // Apart, on fresh LUs: the same bits.
+            let mut real = ShiftedLu::<f64>::scheduled(&pattern, 1.0).unwrap();
+            let mut complex: ShiftedLu<c64> = real.sibling();
+            real.factor(&jacobian, &differential, shifts.0).unwrap();
+            complex.factor(&jacobian, &differential, shifts.1).unwrap();
+            let (mut x_apart, mut y_apart) = (b, c);
+            real.solve(&mut x_apart);
+            complex.solve(&mut y_apart);
+            assert_eq!(x.map(f64::to_bits), x_apart.map(f64::to_bits));
+            assert_eq!(y.map(|z| z.re.to_bits()), y_apart.map(|z| z.re.to_bits()));
+            assert_eq!(y.map(|z| z.im.to_bits()), y_apart.map(|z| z.im.to_bits()));
         }
     }
 

@@ -38,7 +38,7 @@ use crate::integrator::{
     common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
 };
 use crate::jacobian::JacobianEvaluator;
-use crate::linear::{iteration_lu, use_sparse, LinearSolverKind, ShiftedLu};
+use crate::linear::{use_sparse, LinearSolverKind, LuPair};
 use crate::norm::{weighted_rms, worst_components, Tolerances};
 use crate::options::{Method, SPARSE_AUTO_THRESHOLD};
 use crate::stats::Stats;
@@ -178,8 +178,8 @@ pub struct Radau5 {
     jacobian_valid: bool,
     /// The Jacobian was evaluated at the current `(t, x)`.
     jacobian_fresh: bool,
-    real_lu: ShiftedLu<f64>,
-    complex_lu: ShiftedLu<c64>,
+    /// The real and the complex iteration matrix's LU.
+    lu: LuPair,
     factored_for: Option<f64>,
     /// [`eigenvalues`], computed once (two cube roots: a few percent of a small step).
     eigenvalues: (f64, f64, f64),
@@ -188,6 +188,7 @@ pub struct Radau5 {
     stage_state: Vec<f64>,
     complex_rhs: Vec<c64>,
     scale: Vec<f64>,
+    inverse_scale: Vec<f64>,
     error_vector: Vec<f64>,
     theta: f64,
     /// `θ / (1 - θ)` of the last Newton iteration that measured `θ`: with it, an iteration
@@ -259,8 +260,7 @@ impl Radau5 {
         };
         let size = setup.size;
         let sparse = use_sparse(system, setup.options.linear_solver);
-        let real_lu: ShiftedLu<f64> = iteration_lu(system, setup.options.linear_solver);
-        let complex_lu = real_lu.sibling();
+        let lu = LuPair::new(system, setup.options.linear_solver);
         let zeros = || vec![0.0; size];
         let mut integrator = Radau5 {
             jacobian: JacobianEvaluator::new(system, sparse && system.sparsity().is_some()),
@@ -269,8 +269,7 @@ impl Radau5 {
             step_size: None,
             jacobian_valid: false,
             jacobian_fresh: false,
-            real_lu,
-            complex_lu,
+            lu,
             factored_for: None,
             eigenvalues: eigenvalues(),
             z: std::array::from_fn(|_| zeros()),
@@ -278,6 +277,7 @@ impl Radau5 {
             stage_state: zeros(),
             complex_rhs: vec![c64::new(0.0, 0.0); size],
             scale: zeros(),
+            inverse_scale: zeros(),
             error_vector: zeros(),
             theta: ReusePolicy::for_size(size).theta,
             contraction_factor: 1.0,
@@ -349,6 +349,9 @@ impl Radau5 {
             .tolerances
             .scales_of(&self.start.x, &mut self.scale);
         Tolerances::guard_zero_scales(&mut self.scale);
+        for (inverse, &s) in self.inverse_scale.iter_mut().zip(&self.scale) {
+            *inverse = 1.0 / s;
+        }
     }
 
     /// Evaluates the Jacobian at the current point if it is missing or stale.
@@ -381,12 +384,8 @@ impl Radau5 {
         self.stats.lu_factorizations += 1;
         let matrix = self.jacobian.matrix();
         let differential = &self.setup.differential;
-        let real_ok = self.real_lu.factor(matrix, differential, gamma / h).is_ok();
-        let complex_ok = real_ok
-            && self
-                .complex_lu
-                .factor(matrix, differential, c64::new(alpha / h, beta / h))
-                .is_ok();
+        let shifts = (gamma / h, c64::new(alpha / h, beta / h));
+        let complex_ok = self.lu.factor(matrix, differential, shifts);
         self.factored_for = if complex_ok { Some(h) } else { None };
         self.refactored = true;
         complex_ok
@@ -458,8 +457,7 @@ impl Radau5 {
             z0[i] = r1;
             *complex = c64::new(r2, r3);
         }
-        self.real_lu.solve(z0);
-        self.complex_lu.solve(&mut self.complex_rhs);
+        self.lu.solve(z0, &mut self.complex_rhs);
         for ((re, im), complex) in z1.iter_mut().zip(z2.iter_mut()).zip(&self.complex_rhs) {
             *re = complex.re;
             *im = complex.im;
@@ -474,8 +472,8 @@ impl Radau5 {
         }
         let sum: f64 = (0..size)
             .map(|i| {
-                let s = self.scale[i];
-                (self.z[0][i] / s).powi(2) + (self.z[1][i] / s).powi(2) + (self.z[2][i] / s).powi(2)
+                let s = self.inverse_scale[i];
+                (self.z[0][i] * s).powi(2) + (self.z[1][i] * s).powi(2) + (self.z[2][i] * s).powi(2)
             })
             .sum();
         (sum / (3 * size) as f64).sqrt()
@@ -579,7 +577,7 @@ impl Radau5 {
             mass_terms[i] = mass_term;
             self.error_vector[i] = mass_term + self.start.f[i];
         }
-        self.real_lu.solve(&mut self.error_vector);
+        self.lu.real.solve(&mut self.error_vector);
         let error = weighted_rms(&self.error_vector, &self.scale).max(1e-10);
         if error < 1.0 || !(self.first_step || self.last_rejected) {
             return error;
@@ -605,7 +603,7 @@ impl Radau5 {
         for (error, (&f, &mass_term)) in self.error_vector.iter_mut().zip(refreshed) {
             *error = f + mass_term;
         }
-        self.real_lu.solve(&mut self.error_vector);
+        self.lu.real.solve(&mut self.error_vector);
         weighted_rms(&self.error_vector, &self.scale).max(1e-10)
     }
 
@@ -637,10 +635,10 @@ impl Radau5 {
             let (z1, z2, z3) = (self.z[0][i], self.z[1][i], self.z[2][i]);
             self.start.x[i] += z3;
             cont0[i] = self.start.x[i];
-            cont1[i] = (z2 - z3) / C2M1;
-            let ak = (z1 - z2) / C1MC2;
-            let acont3 = (ak - z1 / C1) / C2;
-            cont2[i] = (ak - cont1[i]) / C1M1;
+            cont1[i] = (z2 - z3) * (1.0 / C2M1);
+            let ak = (z1 - z2) * (1.0 / C1MC2);
+            let acont3 = (ak - z1 * (1.0 / C1)) * (1.0 / C2);
+            cont2[i] = (ak - cont1[i]) * (1.0 / C1M1);
             cont3[i] = cont2[i] - acont3;
         }
         self.dense.start = self.start.t;
@@ -725,7 +723,7 @@ impl Integrator for Radau5 {
     common_accessors!(Method::Radau5, |s| s.start.t, &s.start.x);
 
     fn linear_solver(&self) -> Option<LinearSolverKind> {
-        Some(self.real_lu.kind())
+        Some(self.lu.real.kind())
     }
 
     crate::integrator::one_step_method!(3);

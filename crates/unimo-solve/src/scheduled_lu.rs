@@ -13,7 +13,8 @@
 use crate::linear::{LuScalar, ShiftedMatrix};
 use crate::sparse_lu::{PivotRefused, PIVOT_TOLERANCE};
 use crate::system::SparsityPattern;
-use std::sync::Arc;
+use faer::c64;
+use std::sync::{Arc, Mutex};
 
 /// The analysis: the pivot order, the filled pattern's positions and the elimination's
 /// schedule. It does not depend on the scalars, so a real and a complex LU of one pattern
@@ -136,7 +137,49 @@ fn markowitz_order(pattern: &SparsityPattern) -> (Vec<usize>, Vec<bool>) {
     (order, filled)
 }
 
+/// How many patterns' analyses [`Schedule::shared`] keeps.
+const SHARED_SCHEDULES: usize = 8;
+
+/// The analyses of the patterns seen last, the most recent at the end. A sweep, a
+/// benchmark or an FMU simulates one model many times, and its pattern is analysed once.
+static SCHEDULES: Mutex<Vec<(SparsityPattern, Arc<Schedule>)>> = Mutex::new(Vec::new());
+
 impl Schedule {
+    /// The analysis of `pattern`: that of an equal pattern analysed before in this process
+    /// (one of the last [`SHARED_SCHEDULES`]), else a new one, kept for the next run.
+    /// The analysis depends on the pattern only, not on values or tolerances.
+    pub fn shared(pattern: &SparsityPattern) -> Arc<Schedule> {
+        let lock = || {
+            SCHEDULES
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+        };
+        {
+            let mut schedules = lock();
+            if let Some(at) = schedules.iter().position(|(seen, _)| seen == pattern) {
+                let entry = schedules.remove(at);
+                let schedule = entry.1.clone();
+                schedules.push(entry);
+                return schedule;
+            }
+        }
+        let schedule = Arc::new(Schedule::analyze(pattern));
+        let mut schedules = lock();
+        if schedules.len() >= SHARED_SCHEDULES {
+            schedules.remove(0);
+        }
+        schedules.push((pattern.clone(), schedule.clone()));
+        schedule
+    }
+
+    /// Step `k`'s positions below its pivot and right of it.
+    #[inline(always)]
+    fn step(&self, k: usize) -> (&[u32], &[u32]) {
+        let lower = self.lower_starts[k] as usize..self.lower_starts[k + 1] as usize;
+        let upper = self.upper_starts[k] as usize..self.upper_starts[k + 1] as usize;
+        (&self.lower_positions[lower], &self.upper_positions[upper])
+    }
+
     /// Analyses the Jacobian pattern `pattern` (the diagonal is added).
     pub fn analyze(pattern: &SparsityPattern) -> Schedule {
         let n = pattern.size();
@@ -248,22 +291,8 @@ impl<T: LuScalar> ScheduledLu<T> {
         let values = &mut self.values;
         let mut targets = schedule.targets.iter();
         for k in 0..schedule.pivots.len() {
-            let lower = &schedule.lower_positions
-                [schedule.lower_starts[k] as usize..schedule.lower_starts[k + 1] as usize];
-            let upper = &schedule.upper_positions
-                [schedule.upper_starts[k] as usize..schedule.upper_starts[k + 1] as usize];
-            let pivot = values[schedule.pivots[k] as usize];
-            let largest = lower
-                .iter()
-                .map(|&p| values[p as usize].pivot_size())
-                .fold(0.0, f64::max);
-            let inverse = T::from(1.0) / pivot;
-            if !pivot.is_usable_pivot()
-                || !inverse.is_usable_pivot()
-                || pivot.pivot_size() < PIVOT_TOLERANCE * largest
-            {
-                return Err(PivotRefused);
-            }
+            let (lower, upper) = schedule.step(k);
+            let inverse = usable_inverse(values, schedule.pivots[k] as usize, lower)?;
             self.inverse_pivots[k] = inverse;
             for &p in lower {
                 let l = values[p as usize] * inverse;
@@ -305,13 +334,132 @@ impl<T: LuScalar> ScheduledLu<T> {
     }
 }
 
+/// Radau5's pair: a real and a complex matrix on one schedule, factored and solved in one
+/// walk of it. Each scalar gets exactly the operations, in the order, of
+/// [`ScheduledLu::factor`] and [`ScheduledLu::solve`] (the results are bit for bit those of
+/// the two walks); the walk reads each index once for both, and the two matrices'
+/// dependency chains overlap.
+pub(crate) struct Pair<'a> {
+    pub real: &'a mut ScheduledLu<f64>,
+    pub complex: &'a mut ScheduledLu<c64>,
+}
+
+impl Pair<'_> {
+    /// Whether both are on one schedule (else the caller walks each on its own).
+    pub fn shares_schedule(&self) -> bool {
+        Arc::ptr_eq(&self.real.schedule, &self.complex.schedule)
+    }
+
+    /// Writes both matrices and factors them; on a refusal of either, neither factorization
+    /// is usable and the caller factors each on its own.
+    pub fn factor_shifted(
+        &mut self,
+        real: ShiftedMatrix<'_, f64>,
+        complex: ShiftedMatrix<'_, c64>,
+    ) -> Result<(), PivotRefused> {
+        debug_assert!(self.shares_schedule());
+        let schedule = &*self.real.schedule;
+        let (re, cx) = (&mut self.real.values, &mut self.complex.values);
+        re.fill(0.0);
+        cx.fill(c64::new(0.0, 0.0));
+        for &(i, j, p) in &schedule.entries {
+            let value = real.jacobian.get(i as usize, j as usize);
+            re[p as usize] = 0.0 - value;
+            let value = complex.jacobian.get(i as usize, j as usize);
+            cx[p as usize] = c64::from(0.0) - c64::from(value);
+        }
+        let diagonal = &schedule.diagonal;
+        real.for_each_shift(|i, shift| re[diagonal[i] as usize] += shift);
+        complex.for_each_shift(|i, shift| cx[diagonal[i] as usize] += shift);
+        self.factor()
+    }
+
+    fn factor(&mut self) -> Result<(), PivotRefused> {
+        let schedule = &*self.real.schedule;
+        let (re, cx) = (&mut self.real.values, &mut self.complex.values);
+        let mut targets = schedule.targets.iter();
+        for k in 0..schedule.pivots.len() {
+            let (lower, upper) = schedule.step(k);
+            let at = schedule.pivots[k] as usize;
+            let inverse_re = usable_inverse(re, at, lower)?;
+            let inverse_cx = usable_inverse(cx, at, lower)?;
+            self.real.inverse_pivots[k] = inverse_re;
+            self.complex.inverse_pivots[k] = inverse_cx;
+            for &p in lower {
+                let p = p as usize;
+                let l_re = re[p] * inverse_re;
+                let l_cx = cx[p] * inverse_cx;
+                re[p] = l_re;
+                cx[p] = l_cx;
+                for (&q, &target) in upper.iter().zip(targets.by_ref()) {
+                    let (q, target) = (q as usize, target as usize);
+                    let (u_re, u_cx) = (re[q], cx[q]);
+                    re[target] -= l_re * u_re;
+                    cx[target] -= l_cx * u_cx;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves `A_re x = b` and `A_cx y = c` in place with the last factorizations.
+    pub fn solve(&mut self, b: &mut [f64], c: &mut [c64]) {
+        debug_assert!(self.shares_schedule());
+        let schedule = &*self.real.schedule;
+        let (y, z) = (&mut self.real.scratch, &mut self.complex.scratch);
+        for (k, &old) in schedule.old_of_new.iter().enumerate() {
+            y[k] = b[old as usize];
+            z[k] = c[old as usize];
+        }
+        let (re, cx) = (&self.real.values, &self.complex.values);
+        for &(r, p, k) in &schedule.forward {
+            let (r, p, k) = (r as usize, p as usize, k as usize);
+            let (yk, zk) = (y[k], z[k]);
+            y[r] -= re[p] * yk;
+            z[r] -= cx[p] * zk;
+        }
+        for k in (0..y.len()).rev() {
+            let range = schedule.upper_starts[k] as usize..schedule.upper_starts[k + 1] as usize;
+            let (mut s, mut t) = (y[k], z[k]);
+            for &(q, col) in &schedule.backward[range] {
+                let (q, col) = (q as usize, col as usize);
+                s -= re[q] * y[col];
+                t -= cx[q] * z[col];
+            }
+            y[k] = s * self.real.inverse_pivots[k];
+            z[k] = t * self.complex.inverse_pivots[k];
+        }
+        for (k, &old) in schedule.old_of_new.iter().enumerate() {
+            b[old as usize] = y[k];
+            c[old as usize] = z[k];
+        }
+    }
+}
+
+/// The inverse of step `k`'s pivot at `values[at]`, if the pivot is usable (the test of
+/// [`ScheduledLu::factor`]).
+#[inline(always)]
+fn usable_inverse<T: LuScalar>(values: &[T], at: usize, lower: &[u32]) -> Result<T, PivotRefused> {
+    let pivot = values[at];
+    let largest = lower
+        .iter()
+        .map(|&p| values[p as usize].pivot_size())
+        .fold(0.0, f64::max);
+    let inverse = T::from(1.0) / pivot;
+    if !pivot.is_usable_pivot()
+        || !inverse.is_usable_pivot()
+        || pivot.pivot_size() < PIVOT_TOLERANCE * largest
+    {
+        return Err(PivotRefused);
+    }
+    Ok(inverse)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::small_lu::SmallLu;
     use crate::system::JacobianMatrix;
-
-    use faer::c64;
 
     fn shifted<'a, T>(
         jacobian: &'a JacobianMatrix,
@@ -336,6 +484,23 @@ mod tests {
     fn arrow(n: usize) -> SparsityPattern {
         let entries = (0..n).flat_map(|i| [(0, i), (i, 0), (i, i)]);
         SparsityPattern::from_entries(n, entries).unwrap()
+    }
+
+    #[test]
+    fn equal_patterns_share_one_analysis_and_other_patterns_do_not() {
+        // Sizes no other test uses, so that tests running in parallel do not evict these.
+        let (first, again) = (Schedule::shared(&arrow(37)), Schedule::shared(&arrow(37)));
+        assert!(Arc::ptr_eq(&first, &again));
+        let other = Schedule::shared(&arrow(38));
+        assert!(!Arc::ptr_eq(&first, &other));
+        assert_eq!(other.work, Schedule::analyze(&arrow(38)).work);
+        // The cache is bounded: after enough other patterns the first is analysed anew.
+        for n in 0..SHARED_SCHEDULES {
+            Schedule::shared(&arrow(40 + n));
+        }
+        let evicted = Schedule::shared(&arrow(37));
+        assert!(!Arc::ptr_eq(&first, &evicted));
+        assert_eq!(evicted.work, first.work);
     }
 
     #[test]
@@ -415,6 +580,71 @@ mod tests {
                 "row {i}"
             );
         }
+    }
+
+    /// The pair's one walk gives the factors and solutions of the two walks, bit for bit,
+    /// and refuses what either walk refuses.
+    #[test]
+    fn the_pair_walk_gives_the_bits_of_two_walks() {
+        let n = 15;
+        let pattern = SparsityPattern::from_entries(
+            n,
+            (0..n).flat_map(|i| [(i, (i * 4 + 1) % n), ((i * 6) % n, i), ((i + 2) % n, i)]),
+        )
+        .unwrap();
+        let jacobian = jacobian_on(&pattern, 5);
+        let differential = vec![true; n];
+        let (re_shift, cx_shift) = (60.0, c64::new(45.0, -30.0));
+        let (mut real, _) = analyze::<f64>(&pattern);
+        let mut complex = ScheduledLu::<c64>::new(real.schedule.clone());
+        let (mut paired_real, mut paired_complex) = (real.clone(), complex.clone());
+        real.factor_shifted(shifted(&jacobian, &differential, re_shift))
+            .unwrap();
+        complex
+            .factor_shifted(shifted(&jacobian, &differential, cx_shift))
+            .unwrap();
+        let mut pair = Pair {
+            real: &mut paired_real,
+            complex: &mut paired_complex,
+        };
+        assert!(pair.shares_schedule());
+        pair.factor_shifted(
+            shifted(&jacobian, &differential, re_shift),
+            shifted(&jacobian, &differential, cx_shift),
+        )
+        .unwrap();
+        let b: Vec<f64> = (0..n).map(|i| 0.7 - 0.2 * i as f64).collect();
+        let c: Vec<c64> = b.iter().map(|&v| c64::new(v, 1.0 - v)).collect();
+        let (mut x, mut y, mut px, mut py) = (b.clone(), c.clone(), b, c);
+        real.solve(&mut x);
+        complex.solve(&mut y);
+        pair.solve(&mut px, &mut py);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let complex_bits = |v: &[c64]| v.iter().flat_map(|z| [z.re, z.im]).collect::<Vec<_>>();
+        assert_eq!(bits(&x), bits(&px));
+        assert_eq!(bits(&complex_bits(&y)), bits(&complex_bits(&py)));
+        assert_eq!(bits(&real.values), bits(&paired_real.values));
+        assert_eq!(
+            bits(&complex_bits(&complex.values)),
+            bits(&complex_bits(&paired_complex.values))
+        );
+        // A shift that leaves a zero pivot in the real matrix only: the pair refuses.
+        let mut singular = JacobianMatrix::dense(2);
+        for (i, j, v) in [(0, 0, 1.0), (1, 0, -1.0), (0, 1, -1.0), (1, 1, 3.0)] {
+            assert!(singular.set(i, j, v));
+        }
+        let two = SparsityPattern::dense(2);
+        let (mut real, _) = analyze::<f64>(&two);
+        let mut complex = ScheduledLu::<c64>::new(real.schedule.clone());
+        let mut pair = Pair {
+            real: &mut real,
+            complex: &mut complex,
+        };
+        let refused = pair.factor_shifted(
+            shifted(&singular, &[true, true], 1.0),
+            shifted(&singular, &[true, true], c64::new(1.0, 1.0)),
+        );
+        assert_eq!(refused, Err(PivotRefused));
     }
 
     /// A zero diagonal pivot, and one far below the entries of its column, are refused.

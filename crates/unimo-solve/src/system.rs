@@ -91,24 +91,43 @@ impl SparsityPattern {
         size: usize,
         entries: impl IntoIterator<Item = (usize, usize)>,
     ) -> Result<Self, SolveError> {
-        let mut columns: Vec<Vec<usize>> = vec![Vec::new(); size];
-        for (row, column) in entries {
+        // A counting sort by column (no vector a column), then each column's rows sorted
+        // and deduplicated in place.
+        let entries: Vec<(usize, usize)> = entries.into_iter().collect();
+        let mut column_starts = vec![0usize; size + 1];
+        for &(row, column) in &entries {
             if row >= size || column >= size {
                 return Err(SolveError::invalid(format!(
                     "sparsity entry ({row}, {column}) outside a {size}x{size} matrix"
                 )));
             }
-            columns[column].push(row);
+            column_starts[column + 1] += 1;
         }
-        let mut column_starts = Vec::with_capacity(size + 1);
-        let mut row_indices = Vec::new();
-        column_starts.push(0);
-        for mut rows in columns {
-            rows.sort_unstable();
-            rows.dedup();
-            row_indices.extend(rows);
-            column_starts.push(row_indices.len());
+        for column in 0..size {
+            column_starts[column + 1] += column_starts[column];
         }
+        let mut next = column_starts.clone();
+        let mut rows = vec![0usize; entries.len()];
+        for &(row, column) in &entries {
+            rows[next[column]] = row;
+            next[column] += 1;
+        }
+        let mut row_indices = Vec::with_capacity(entries.len());
+        let mut start = 0;
+        for column in 0..size {
+            let column_rows = &mut rows[start..column_starts[column + 1]];
+            start = column_starts[column + 1];
+            column_rows.sort_unstable();
+            column_starts[column] = row_indices.len();
+            let mut last = None;
+            for &row in column_rows.iter() {
+                if last != Some(row) {
+                    row_indices.push(row);
+                    last = Some(row);
+                }
+            }
+        }
+        column_starts[size] = row_indices.len();
         Ok(SparsityPattern {
             size,
             column_starts,
@@ -343,5 +362,26 @@ impl JacobianMatrix {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SparsityPattern;
+
+    #[test]
+    fn entries_in_any_order_with_duplicates_give_sorted_columns() {
+        let entries = [(2, 0), (0, 0), (2, 0), (1, 2), (0, 2), (3, 3), (1, 2)];
+        let pattern = SparsityPattern::from_entries(4, entries).unwrap();
+        assert_eq!(pattern.column_starts(), &[0, 2, 2, 4, 5]);
+        assert_eq!(pattern.row_indices(), &[0, 2, 0, 1, 3]);
+        assert_eq!(pattern.position(1, 2), Some(3));
+        assert_eq!(pattern.position(1, 1), None);
+        assert!(SparsityPattern::from_entries(2, [(0, 2)]).is_err());
+        let empty = SparsityPattern::from_entries(3, []).unwrap();
+        assert_eq!(
+            (empty.column_starts(), empty.nonzeros()),
+            (&[0, 0, 0, 0][..], 0)
+        );
     }
 }
