@@ -151,104 +151,36 @@ fn python(script: &str, args: &[&str], more: &[&str]) -> String {
 const TIGHT_SIMULATE: &[&str] = &["--tolerance", "1e-10"];
 const TIGHT_ME: &[&str] = &["rtol=1e-9"];
 
-const BALL: Case = Case {
-    stem: "ball",
-    source: Source::File("models/BouncingBall.mo"),
-    vars: "h,v",
-};
+/// The exported models (`fmi_cases.txt`: a name, a source and the variables compared a
+/// line).
+const CASES: &str = include_str!("fmi_cases.txt");
 
-const VAN_DER_POL: Case = Case {
-    stem: "vdp",
-    source: Source::File("models/VanDerPol.mo"),
-    vars: "y1,y2",
-};
-
-/// Paper A, example 2: the ellipsoid switching between sliding and rolling (its
-/// `terminate()` at t = 20 ends both runs).
-const SLIDE_ROLL: Case = Case {
-    stem: "slideroll",
-    source: Source::File("models/SlideRollSwitch.mo"),
-    vars: "FlySlideRollBody.r[1],FlySlideRollBody.r[2],FlySlideRollBody.v[1],\
-           FlySlideRollBody.omega[2],FlySlideRollBody.omega[3],ConstraintSurfaces.State",
-};
-
-const FIRST: Case = Case {
-    stem: "first",
-    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.First"),
-    vars: "damper.phi_rel,damper.w_rel,inertia3.phi,inertia3.w",
-};
-
-const OSCILLATOR: Case = Case {
-    stem: "oscillator",
-    source: Source::Msl("Modelica.Mechanics.Translational.Examples.Oscillator"),
-    vars: "damper1.s_rel,damper1.v_rel,mass1.s,mass1.v",
-};
-
-/// `Modelica.Blocks.Tables.CombiTable1D` inside each clutch (an external object and
-/// external functions in the FMU's flat model), friction with stuck/sliding modes.
-const COUPLED_CLUTCHES: Case = Case {
-    stem: "clutches",
-    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.CoupledClutches"),
-    vars: "clutch1.w_rel,clutch2.w_rel,clutch3.w_rel,J1.w,J4.w",
-};
-
-/// Stick-slip friction (clutch and brake with stuck, forward and backward modes):
-/// stuck at `w_rel = 0`, a held relation's function sits at its zero, and the importer
-/// must see it leave on the other side.
-const FRICTION: Case = Case {
-    stem: "friction",
-    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.Friction"),
-    vars: "clutch.phi_rel,clutch.w_rel,inertia3.phi,inertia3.w,spring.phi_rel,spring.w_rel,\
-           brake.mode,clutch.mode",
-};
-
-/// A lossy gear stuck at t = 0 that starts to turn backwards at once.
-const LOSSY_GEAR: Case = Case {
-    stem: "lossygear",
-    source: Source::Msl("Modelica.Mechanics.Rotational.Examples.LossyGearDemo1"),
-    vars: "Inertia2.phi,Inertia2.w,gear.mode",
-};
-
-/// Sampled means: a limiter's relation `u < uMin` with `u = 0` and `uMin = 1e-16`
-/// stays at its zero across the first sample instant without crossing it.
-const HARMONIC_DISTORTION: Case = Case {
-    stem: "thd",
-    source: Source::Msl("Modelica.Blocks.Examples.TotalHarmonicDistortion"),
-    vars: "thd1.y,thdRMS.y,thd1.valid",
-};
-
-/// The MSL's random number generators (external "C" functions unimo implements, an
-/// `Integer state[nState]` output sized by an input, seeds hashed from instance names)
-/// sampled at fixed instants, the first at the start time.
-const UNIFORM_NOISE: Case = Case {
-    stem: "noise",
-    source: Source::Msl("Modelica.Blocks.Examples.Noise.UniformNoise"),
-    vars: "uniformNoise1.y,uniformNoise2.y,uniformNoise2_y",
-};
-
-/// Paper B: a ball bouncing on a box through the collision world (penalty contact).
-const COLLISION_BALL: Case = Case {
-    stem: "collisionball",
-    source: Source::File("models/CollisionBouncingBall.mo"),
-    vars: "ball.r[3],ball.v[3]",
-};
-
-/// Paper B: sixteen balls on a table, impulses at impacts.
-const BILLIARDS: Case = Case {
-    stem: "billiards",
-    source: Source::File("models/Billiards.mo"),
-    vars: "cue.r[1],cue.v[1],b1.r[1],b1.v[1],b1.r[2],b1.v[2],b4.r[1],b4.v[2]",
-};
+/// The case named `stem` in `fmi_cases.txt`.
+fn case(stem: &str) -> Case<'static> {
+    let line = CASES
+        .lines()
+        .filter(|line| !line.starts_with('#'))
+        .find(|line| line.split_whitespace().next() == Some(stem))
+        .unwrap_or_else(|| panic!("no case `{stem}` in tests/fmi_cases.txt"));
+    let [stem, source, vars] = line.split_whitespace().collect::<Vec<_>>()[..] else {
+        panic!("tests/fmi_cases.txt: `{line}` is not `name source variables`");
+    };
+    let source = match source.strip_prefix("msl:") {
+        Some(model) => Source::Msl(model),
+        None => Source::File(source),
+    };
+    Case { stem, source, vars }
+}
 
 #[test]
 fn bouncing_ball_fmus_agree_with_unimo_simulate() {
     if !fmpy_available() {
         return;
     }
-    agree(&BALL, ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 3e-5);
-    agree(&BALL, ("3", "me"), TIGHT_SIMULATE, TIGHT_ME, 3e-5);
-    agree(&BALL, ("2", "cs"), &[], &[], 1e-9);
-    agree(&BALL, ("3", "cs"), &[], &[], 1e-9);
+    agree(&case("ball"), ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 3e-5);
+    agree(&case("ball"), ("3", "me"), TIGHT_SIMULATE, TIGHT_ME, 3e-5);
+    agree(&case("ball"), ("2", "cs"), &[], &[], 1e-9);
+    agree(&case("ball"), ("3", "cs"), &[], &[], 1e-9);
 }
 
 #[test]
@@ -260,14 +192,14 @@ fn van_der_pol_fmus_agree_with_unimo_simulate() {
     // stops at the first relaxation jump below rtol 1e-8 (mxstep).
     let simulate: &[&str] = &["--tolerance", "1e-10", "-p", "eps=1e-3"];
     agree(
-        &VAN_DER_POL,
+        &case("vdp"),
         ("2", "me"),
         simulate,
         &["rtol=1e-9", "eps=1e-3"],
         3e-4,
     );
     agree(
-        &VAN_DER_POL,
+        &case("vdp"),
         ("3", "cs"),
         simulate,
         &["rtol=1e-10", "eps=1e-3"],
@@ -287,13 +219,13 @@ fn paper_a_slide_roll_switch_fmus_agree_with_unimo_simulate() {
     // times and the largest error is 5.8e-6.
     let stop = &["--stop-time", "20"];
     agree(
-        &SLIDE_ROLL,
+        &case("slideroll"),
         ("2", "me"),
         stop,
         &["stop=20", "rtol=1e-9"],
         6e-5,
     );
-    agree(&SLIDE_ROLL, ("3", "cs"), stop, &["stop=20"], 2e-5);
+    agree(&case("slideroll"), ("3", "cs"), stop, &["stop=20"], 2e-5);
 }
 
 #[test]
@@ -305,14 +237,20 @@ fn msl_example_fmus_agree_with_unimo_simulate() {
         root().join("../shared/msl/Modelica/package.mo").is_file(),
         "the MSL must be at ../shared/msl (as for tests/msl.rs)"
     );
-    agree(&FIRST, ("3", "me"), TIGHT_SIMULATE, TIGHT_ME, 6e-5);
-    agree(&FIRST, ("2", "cs"), &[], &[], 6e-4);
-    agree(&OSCILLATOR, ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 1e-5);
-    agree(&OSCILLATOR, ("3", "cs"), &[], &[], 5e-4);
+    agree(&case("first"), ("3", "me"), TIGHT_SIMULATE, TIGHT_ME, 6e-5);
+    agree(&case("first"), ("2", "cs"), &[], &[], 6e-4);
+    agree(
+        &case("oscillator"),
+        ("2", "me"),
+        TIGHT_SIMULATE,
+        TIGHT_ME,
+        1e-5,
+    );
+    agree(&case("oscillator"), ("3", "cs"), &[], &[], 5e-4);
     // A parameter of a component (`spring1.c`, the flat model's `'spring1.c'`) set
     // through the FMU: E2004 while the dotted name was split inside its quotes.
     agree(
-        &OSCILLATOR,
+        &case("oscillator"),
         ("2", "me"),
         &["--tolerance", "1e-10", "-p", "spring1.c=1"],
         &["rtol=1e-9", "spring1.c=1"],
@@ -328,16 +266,16 @@ fn msl_fmus_with_tables_and_random_numbers_agree_with_unimo_simulate() {
     // Model Exchange: measured 3.7e-8 (1.4e-4 while a stuck clutch's indicator read
     // zero instead of its held side, so CVode missed it starting to slip).
     agree(
-        &COUPLED_CLUTCHES,
+        &case("clutches"),
         ("2", "me"),
         TIGHT_SIMULATE,
         TIGHT_ME,
         4e-7,
     );
-    agree(&COUPLED_CLUTCHES, ("3", "cs"), &[], &[], 5e-5);
+    agree(&case("clutches"), ("3", "cs"), &[], &[], 5e-5);
     // The noise is sampled, not integrated: both kinds agree exactly.
-    agree(&UNIFORM_NOISE, ("3", "me"), &[], &[], 1e-12);
-    agree(&UNIFORM_NOISE, ("2", "cs"), &[], &[], 1e-12);
+    agree(&case("noise"), ("3", "me"), &[], &[], 1e-12);
+    agree(&case("noise"), ("2", "cs"), &[], &[], 1e-12);
 }
 
 /// Model Exchange of stuck modes and relations sitting at their zero (each failed or
@@ -349,15 +287,21 @@ fn msl_fmus_with_stuck_friction_and_relations_at_zero_agree_with_unimo_simulate(
     if !fmpy_available() {
         return;
     }
-    agree(&FRICTION, ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 2e-6);
-    agree(&LOSSY_GEAR, ("3", "me"), TIGHT_SIMULATE, TIGHT_ME, 1e-9);
     agree(
-        &HARMONIC_DISTORTION,
+        &case("friction"),
         ("2", "me"),
         TIGHT_SIMULATE,
         TIGHT_ME,
-        6e-8,
+        2e-6,
     );
+    agree(
+        &case("lossygear"),
+        ("3", "me"),
+        TIGHT_SIMULATE,
+        TIGHT_ME,
+        1e-9,
+    );
+    agree(&case("thd"), ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 6e-8);
 }
 
 #[test]
@@ -369,10 +313,22 @@ fn collision_world_fmus_agree_with_unimo_simulate() {
     // 1e-6 the communication points change our steps through each impact enough to
     // differ by 7e-3 in v[3], where unimo itself at 1e-6 is 1.2e-3 off its 1e-10 run).
     let tight8: (&[&str], &[&str]) = (&["--tolerance", "1e-8"], &["rtol=1e-8"]);
-    agree(&COLLISION_BALL, ("2", "me"), TIGHT_SIMULATE, TIGHT_ME, 2e-3);
-    agree(&COLLISION_BALL, ("3", "cs"), tight8.0, tight8.1, 5e-4);
-    agree(&BILLIARDS, ("3", "me"), tight8.0, tight8.1, 2e-5);
-    agree(&BILLIARDS, ("2", "cs"), tight8.0, tight8.1, 1e-7);
+    agree(
+        &case("collisionball"),
+        ("2", "me"),
+        TIGHT_SIMULATE,
+        TIGHT_ME,
+        2e-3,
+    );
+    agree(
+        &case("collisionball"),
+        ("3", "cs"),
+        tight8.0,
+        tight8.1,
+        5e-4,
+    );
+    agree(&case("billiards"), ("3", "me"), tight8.0, tight8.1, 2e-5);
+    agree(&case("billiards"), ("2", "cs"), tight8.0, tight8.1, 1e-7);
 }
 
 #[test]
@@ -383,7 +339,7 @@ fn calls_in_the_wrong_order_fail_cleanly_and_instances_are_independent() {
     // Files of their own: the other tests write theirs at the same time.
     let ball = Case {
         stem: "api-ball",
-        ..BALL
+        ..case("ball")
     };
     let cs2 = export(&ball, "2", "cs");
     let me3 = export(&ball, "3", "me");

@@ -3,7 +3,9 @@
 //! (`contacts` vs `contacts_general`, `time_of_impact` vs `time_of_impact_general`).
 
 use unimo_geometry::query::{contacts_general, time_of_impact_general};
-use unimo_geometry::{contacts, time_of_impact, Moving, Placement, Scratch, Shape, ShapeKind};
+use unimo_geometry::{
+    contacts, time_of_impact, ContactQuery, Moving, Placement, Scratch, Shape, ShapeKind,
+};
 
 fn main() {
     divan::main();
@@ -32,12 +34,8 @@ fn pair(plane: bool) -> (Shape, Placement, Shape, Placement) {
 }
 
 /// `contacts` or `contacts_general`.
-type ContactQuery = fn(
-    &Shape,
-    &Placement,
-    &Shape,
-    &Placement,
-    f64,
+type ContactsFn = fn(
+    ContactQuery<'_>,
     &mut Scratch,
     &mut Vec<unimo_geometry::ContactPoint>,
 ) -> Result<usize, unimo_geometry::Unsupported>;
@@ -45,20 +43,19 @@ type ContactQuery = fn(
 /// `time_of_impact` or `time_of_impact_general`.
 type SweepQuery = fn(Moving<'_>, Moving<'_>, f64) -> Option<f64>;
 
-fn contact(b: divan::Bencher, case: &str, query: ContactQuery) {
+fn contact(b: divan::Bencher, case: &str, query: ContactsFn) {
     let (sa, pa, sb, pb) = pair(case == "sphere-plane");
     let (mut scratch, mut out) = (Scratch::default(), Vec::new());
     b.bench_local(|| {
         out.clear();
-        query(
-            &sa,
-            divan::black_box(&pa),
-            &sb,
-            &pb,
-            1e-3,
-            &mut scratch,
-            &mut out,
-        )
+        let pair = ContactQuery {
+            a: &sa,
+            pa: divan::black_box(&pa),
+            b: &sb,
+            pb: &pb,
+            prediction: 1e-3,
+        };
+        query(pair, &mut scratch, &mut out)
     });
 }
 

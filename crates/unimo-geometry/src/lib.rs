@@ -10,6 +10,7 @@ pub mod shape;
 
 pub use broadphase::{AllPairs, Broadphase, SweepAndPrune};
 pub use query::{
-    aabb, closest, contacts, time_of_impact, Aabb, ContactPoint, Moving, Scratch, Unsupported,
+    aabb, closest, contacts, time_of_impact, Aabb, ContactPoint, ContactQuery, Moving, Scratch,
+    Unsupported,
 };
 pub use shape::{Placement, Shape, ShapeError, ShapeKind, V3};

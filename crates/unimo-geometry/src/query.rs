@@ -72,25 +72,32 @@ pub struct Scratch {
     manifolds: Vec<ContactManifold<(), ()>>,
 }
 
+/// The distance below which the closest points of two placed shapes A and B are
+/// contact points, and the shapes.
+#[derive(Clone, Copy)]
+pub struct ContactQuery<'a> {
+    pub prediction: f64,
+    pub a: &'a Shape,
+    pub pa: &'a Placement,
+    pub b: &'a Shape,
+    pub pb: &'a Placement,
+}
+
 /// Appends to `out` the contact points of A and B closer than `prediction` (every
 /// point of every manifold: a box on a box gets its face, a cylinder lying on a box its
 /// line). Returns how many were added.
 pub fn contacts(
-    a: &Shape,
-    pa: &Placement,
-    b: &Shape,
-    pb: &Placement,
-    prediction: f64,
+    query: ContactQuery<'_>,
     scratch: &mut Scratch,
     out: &mut Vec<ContactPoint>,
 ) -> Result<usize, Unsupported> {
-    let Some(c) = sphere_contact(a, pa, b, pb) else {
-        return contacts_general(a, pa, b, pb, prediction, scratch, out);
+    let Some(c) = sphere_contact(&query) else {
+        return contacts_general(query, scratch, out);
     };
     // Spheres against spheres and planes in closed form: no general convex query.
-    check_placement(pa)?;
-    check_placement(pb)?;
-    if c.dist > prediction {
+    check_placement(query.pa)?;
+    check_placement(query.pb)?;
+    if c.dist > query.prediction {
         return Ok(0);
     }
     out.push(c);
@@ -99,7 +106,8 @@ pub fn contacts(
 
 /// The closed-form contact of a sphere with a sphere or a half-space (either order),
 /// `None` for any other pair. The sphere's centre is its body origin.
-fn sphere_contact(a: &Shape, pa: &Placement, b: &Shape, pb: &Placement) -> Option<ContactPoint> {
+fn sphere_contact(query: &ContactQuery<'_>) -> Option<ContactPoint> {
+    let ContactQuery { a, pa, b, pb, .. } = *query;
     match (&a.kind, &b.kind) {
         (ShapeKind::Sphere { radius: ra }, ShapeKind::Sphere { radius: rb }) => {
             Some(sphere_sphere(pa.r, *ra, pb.r, *rb))
@@ -158,14 +166,17 @@ pub fn sphere_plane(c: V3, radius: f64, plane: &Placement) -> ContactPoint {
 /// map), for every pair, spheres included: the path a pair takes without the closed
 /// forms (benchmarks compare the two).
 pub fn contacts_general(
-    a: &Shape,
-    pa: &Placement,
-    b: &Shape,
-    pb: &Placement,
-    prediction: f64,
+    query: ContactQuery<'_>,
     scratch: &mut Scratch,
     out: &mut Vec<ContactPoint>,
 ) -> Result<usize, Unsupported> {
+    let ContactQuery {
+        a,
+        pa,
+        b,
+        pb,
+        prediction,
+    } = query;
     check_placement(pa)?;
     check_placement(pb)?;
     let before = out.len();
@@ -456,7 +467,14 @@ pub fn closest(
     prediction: f64,
 ) -> Result<Option<ContactPoint>, Unsupported> {
     let mut out = Vec::new();
-    contacts(a, pa, b, pb, prediction, &mut Scratch::default(), &mut out)?;
+    let query = ContactQuery {
+        a,
+        pa,
+        b,
+        pb,
+        prediction,
+    };
+    contacts(query, &mut Scratch::default(), &mut out)?;
     Ok(out.into_iter().min_by(|x, y| x.dist.total_cmp(&y.dist)))
 }
 
@@ -704,16 +722,14 @@ mod tests {
             half: [1.0, 1.0, 0.05],
         });
         let mut out = Vec::new();
-        contacts(
-            &cyl,
-            &pc,
-            &table,
-            &Placement::at([0.0, 0.0, -0.05]),
-            0.0,
-            &mut Scratch::default(),
-            &mut out,
-        )
-        .unwrap();
+        let query = ContactQuery {
+            a: &cyl,
+            pa: &pc,
+            b: &table,
+            pb: &Placement::at([0.0, 0.0, -0.05]),
+            prediction: 0.0,
+        };
+        contacts(query, &mut Scratch::default(), &mut out).unwrap();
         assert!(
             out.len() >= 2,
             "line contact needs two points or more: {out:?}"
@@ -910,8 +926,15 @@ mod tests {
             for (x, px, y, py) in [(&a, &pa, &b, &pb), (&b, &pb, &a, &pa)] {
                 fast.clear();
                 general.clear();
-                contacts(x, px, y, py, 10.0, &mut scratch, &mut fast).unwrap();
-                contacts_general(x, px, y, py, 10.0, &mut scratch, &mut general).unwrap();
+                let query = ContactQuery {
+                    a: x,
+                    pa: px,
+                    b: y,
+                    pb: py,
+                    prediction: 10.0,
+                };
+                contacts(query, &mut scratch, &mut fast).unwrap();
+                contacts_general(query, &mut scratch, &mut general).unwrap();
                 assert_eq!(fast.len(), general.len(), "case {case}");
                 for (f, g) in fast.iter().zip(&general) {
                     assert!((f.dist - g.dist).abs() <= 1e-12, "case {case}: {f:?} {g:?}");

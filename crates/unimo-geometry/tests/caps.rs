@@ -3,7 +3,7 @@
 //! parallel. The normal and the depths must not depend on the last digits of a
 //! position.
 
-use unimo_geometry::{contacts, Placement, Scratch, Shape, ShapeKind};
+use unimo_geometry::{contacts, ContactQuery, Placement, Scratch, Shape, ShapeKind};
 
 #[test]
 fn parallel_caps_give_the_axis_and_the_exact_depth_whatever_the_last_digits() {
@@ -30,7 +30,14 @@ fn parallel_caps_give_the_axis_and_the_exact_depth_whatever_the_last_digits() {
             },
         );
         let mut out = Vec::new();
-        contacts(&disc, &pa, &disc, &pb, 1e-3, &mut scratch, &mut out).unwrap();
+        let query = ContactQuery {
+            a: &disc,
+            pa: &pa,
+            b: &disc,
+            pb: &pb,
+            prediction: 1e-3,
+        };
+        contacts(query, &mut scratch, &mut out).unwrap();
         assert!(
             out.len() >= 3,
             "a face contact has at least 3 points: {out:?}"

@@ -22,8 +22,8 @@ use unimo_codegen::tape::Reg;
 use unimo_dae::collision_args::{CollisionBodyArgs, LawCode, ShapeCode};
 use unimo_geometry::laws::{self, Damping, Friction};
 use unimo_geometry::{
-    aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, Moving, Placement, Scratch,
-    Shape, ShapeKind, SweepAndPrune,
+    aabb, contacts, time_of_impact, AllPairs, Broadphase, ContactPoint, ContactQuery, Moving,
+    Placement, Scratch, Shape, ShapeKind, SweepAndPrune,
 };
 
 /// Counters for reports.
@@ -582,16 +582,14 @@ impl CollisionState {
         prediction: f64,
     ) -> Result<(), CollisionFailure> {
         self.points.clear();
-        contacts(
-            &self.shapes[a],
-            &self.placements[a],
-            &self.shapes[b],
-            &self.placements[b],
+        let query = ContactQuery {
+            a: &self.shapes[a],
+            pa: &self.placements[a],
+            b: &self.shapes[b],
+            pb: &self.placements[b],
             prediction,
-            &mut self.scratch,
-            &mut self.points,
-        )
-        .map_err(|e| CollisionFailure {
+        };
+        contacts(query, &mut self.scratch, &mut self.points).map_err(|e| CollisionFailure {
             body: format!("{} and {}", m.bodies[a].name, m.bodies[b].name),
             reason: e.0,
         })?;

@@ -12,7 +12,7 @@ use std::time::Instant;
 use unimo_codegen::model::CompiledModel;
 use unimo_dae::expr::RelOp;
 use unimo_solve::dense::{abs_det, pick_columns};
-use unimo_solve::{Direction, EvalError, Method, Solver, System};
+use unimo_solve::{Direction, EvalError, Invariants, Method, Solver, System};
 
 mod crossings;
 mod delays;
@@ -507,18 +507,12 @@ impl System for Ode<'_> {
 
     /// The model's `Unimo.invariant`s after a pass of the plan at `(t, x)`; active
     /// while their if-equation branches are taken (relations read without events).
-    fn invariants(
-        &mut self,
-        t: f64,
-        x: &[f64],
-        out: &mut [f64],
-        active: &mut [bool],
-    ) -> Result<(), EvalError> {
+    fn invariants(&mut self, t: f64, x: &[f64], out: &mut Invariants) -> Result<(), EvalError> {
         self.load(t, x)?;
         self.m.invariant_tape.run(&mut self.regs, &mut self.ev);
         for (k, &(g, on)) in self.m.invariants.iter().enumerate() {
-            out[k] = self.regs[g as usize];
-            active[k] = self.regs[on as usize] != 0.0;
+            out.values[k] = self.regs[g as usize];
+            out.active[k] = self.regs[on as usize] != 0.0;
         }
         Ok(())
     }

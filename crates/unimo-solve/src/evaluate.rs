@@ -6,31 +6,34 @@ use crate::error::EvalError;
 use crate::stats::Stats;
 use crate::system::System;
 
-/// `f(t, x)` into `out`, counted, with non-finite values turned into an error.
-pub(crate) fn rhs_checked(
-    system: &mut dyn System,
-    t: f64,
-    x: &[f64],
-    out: &mut [f64],
-    stats: &mut Stats,
-) -> Result<(), EvalError> {
-    stats.rhs_evals += 1;
-    system.rhs(t, x, out)?;
-    first_non_finite(out, "f")
+/// A counted, checked call of one of the system's functions: `$name(system, t, x, out,
+/// stats)` calls `system.$method(t, x, out)`, counts it in `stats.$counter` and reports a
+/// NaN or infinite value of `out` as an error that names it `$symbol[i]`.
+macro_rules! checked_call {
+    ($(#[$doc:meta])* $name:ident, $method:ident, $counter:ident, $symbol:literal) => {
+        $(#[$doc])*
+        pub(crate) fn $name(
+            system: &mut dyn System,
+            t: f64,
+            x: &[f64],
+            out: &mut [f64],
+            stats: &mut Stats,
+        ) -> Result<(), EvalError> {
+            stats.$counter += 1;
+            system.$method(t, x, out)?;
+            first_non_finite(out, $symbol)
+        }
+    };
 }
 
-/// `g(t, x)` into `out`, counted, with non-finite values turned into an error.
-pub(crate) fn roots_checked(
-    system: &mut dyn System,
-    t: f64,
-    x: &[f64],
-    out: &mut [f64],
-    stats: &mut Stats,
-) -> Result<(), EvalError> {
-    stats.root_evals += 1;
-    system.roots(t, x, out)?;
-    first_non_finite(out, "g")
-}
+checked_call!(
+    /// `f(t, x)` into `out`, counted, with non-finite values turned into an error.
+    rhs_checked, rhs, rhs_evals, "f"
+);
+checked_call!(
+    /// `g(t, x)` into `out`, counted, with non-finite values turned into an error.
+    roots_checked, roots, root_evals, "g"
+);
 
 fn first_non_finite(values: &[f64], name: &str) -> Result<(), EvalError> {
     match values.iter().position(|v| !v.is_finite()) {

@@ -108,4 +108,4 @@ pub use radau5::{Radau5, Radau5DenseOutput};
 pub use roots::{group_window, Direction};
 pub use solver::{Solver, StopReason};
 pub use stats::Stats;
-pub use system::{JacobianMatrix, SparsityPattern, System};
+pub use system::{Invariants, JacobianMatrix, SparsityPattern, System};

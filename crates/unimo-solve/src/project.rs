@@ -17,7 +17,7 @@
 
 use crate::dense::lu_solve;
 use crate::error::EvalError;
-use crate::system::System;
+use crate::system::{Invariants, System};
 
 /// Gauss–Newton iterations per projection at most.
 const MAX_ITERATIONS: usize = 8;
@@ -44,8 +44,8 @@ pub struct ProjectionStats {
 /// The projection's state between calls: the Jacobian it may reuse and scratch space.
 #[derive(Debug, Clone, Default)]
 pub struct Projector {
-    values: Vec<f64>,
-    active: Vec<bool>,
+    /// The invariants at the state being projected.
+    now: Invariants,
     /// Active rows now; `jacobian_rows`: those the Jacobian was made for.
     rows: Vec<usize>,
     jacobian_rows: Vec<usize>,
@@ -63,8 +63,8 @@ pub struct Projector {
     /// The active invariants before the last step (the secant update).
     old: Vec<f64>,
     perturbed: Vec<f64>,
-    values_perturbed: Vec<f64>,
-    active_perturbed: Vec<bool>,
+    /// The invariants at `perturbed`.
+    at_perturbed: Invariants,
     pub stats: ProjectionStats,
 }
 
@@ -90,17 +90,16 @@ impl Projector {
             return Ok(false);
         }
         let n = x.len();
-        self.values.resize(m, 0.0);
-        self.active.resize(m, false);
+        self.now.resize(m);
         self.evaluate(system, t, x)?;
         self.rows.clear();
         self.rows
-            .extend((0..m).filter(|&i| self.active[i] && self.values[i] != 0.0));
+            .extend((0..m).filter(|&i| self.now.active[i] && self.now.values[i] != 0.0));
         if self.rows.is_empty() {
             return Ok(false);
         }
         self.rows.clear();
-        self.rows.extend((0..m).filter(|&i| self.active[i]));
+        self.rows.extend((0..m).filter(|&i| self.now.active[i]));
         if self.rows != self.jacobian_rows {
             self.jacobian_valid = false;
             self.columns.clear();
@@ -138,7 +137,8 @@ impl Projector {
                 *v += d;
             }
             self.old.clear();
-            self.old.extend(self.rows.iter().map(|&i| self.values[i]));
+            self.old
+                .extend(self.rows.iter().map(|&i| self.now.values[i]));
             self.evaluate(system, t, x)?;
             let new = self.residual();
             if new >= residual {
@@ -187,7 +187,7 @@ impl Projector {
         for (r, &i) in self.rows.iter().enumerate() {
             let row = &mut self.jacobian[r * n..(r + 1) * n];
             let predicted: f64 = self.columns.iter().map(|&j| row[j] * self.step[j]).sum();
-            let miss = (self.values[i] - self.old[r] - predicted) / norm2;
+            let miss = (self.now.values[i] - self.old[r] - predicted) / norm2;
             for &j in &self.columns {
                 row[j] += miss * self.step[j];
             }
@@ -204,7 +204,7 @@ impl Projector {
                 .iter()
                 .map(|&j| (self.jacobian[r * n + j] * x[j]).abs())
                 .sum();
-            self.values[i].abs() <= ROUNDING_UNITS_C * f64::EPSILON * size
+            self.now.values[i].abs() <= ROUNDING_UNITS_C * f64::EPSILON * size
         })
     }
 
@@ -212,14 +212,14 @@ impl Projector {
     fn residual(&self) -> f64 {
         self.rows
             .iter()
-            .map(|&i| self.values[i].abs())
+            .map(|&i| self.now.values[i].abs())
             .fold(0.0, f64::max)
     }
 
     fn evaluate(&mut self, system: &mut dyn System, t: f64, x: &[f64]) -> Result<(), EvalError> {
         self.stats.evaluations += 1;
-        system.invariants(t, x, &mut self.values, &mut self.active)?;
-        match self.values.iter().find(|v| !v.is_finite()) {
+        system.invariants(t, x, &mut self.now)?;
+        match self.now.values.iter().find(|v| !v.is_finite()) {
             Some(v) => Err(EvalError::domain(format!("an invariant is {v}"))),
             None => Ok(()),
         }
@@ -234,7 +234,7 @@ impl Projector {
         t: f64,
         x: &[f64],
     ) -> Result<(), EvalError> {
-        let (n, m) = (x.len(), self.values.len());
+        let (n, m) = (x.len(), self.now.values.len());
         let rows = self.rows.len();
         let full = self.columns.is_empty();
         if full {
@@ -244,8 +244,7 @@ impl Projector {
         self.jacobian.resize(rows * n, 0.0);
         self.perturbed.clear();
         self.perturbed.extend_from_slice(x);
-        self.values_perturbed.resize(m, 0.0);
-        self.active_perturbed.resize(m, false);
+        self.at_perturbed.resize(m);
         self.stats.jacobians += 1;
         for &j in &self.columns {
             let h = f64::EPSILON.sqrt() * x[j].abs().max(self.weights[j].sqrt() * 1e3);
@@ -253,15 +252,10 @@ impl Projector {
             self.perturbed[j] = x[j] + h;
             let h = self.perturbed[j] - x[j];
             self.stats.evaluations += 1;
-            system.invariants(
-                t,
-                &self.perturbed,
-                &mut self.values_perturbed,
-                &mut self.active_perturbed,
-            )?;
+            system.invariants(t, &self.perturbed, &mut self.at_perturbed)?;
             self.perturbed[j] = x[j];
             for (r, &i) in self.rows.iter().enumerate() {
-                self.jacobian[r * n + j] = (self.values_perturbed[i] - self.values[i]) / h;
+                self.jacobian[r * n + j] = (self.at_perturbed.values[i] - self.now.values[i]) / h;
             }
         }
         if full {
@@ -291,7 +285,8 @@ impl Projector {
             }
         }
         self.rhs.clear();
-        self.rhs.extend(self.rows.iter().map(|&i| self.values[i]));
+        self.rhs
+            .extend(self.rows.iter().map(|&i| self.now.values[i]));
         self.perm.resize(rows, 0);
         if !lu_solve(rows, &mut self.matrix, &mut self.rhs, &mut self.perm) {
             return false;
@@ -336,11 +331,10 @@ mod tests {
             &mut self,
             _t: f64,
             x: &[f64],
-            out: &mut [f64],
-            active: &mut [bool],
+            out: &mut Invariants,
         ) -> Result<(), EvalError> {
-            out[0] = x[0] * x[0] + x[1] * x[1] - 1.0;
-            active[0] = x[2] > 0.0;
+            out.values[0] = x[0] * x[0] + x[1] * x[1] - 1.0;
+            out.active[0] = x[2] > 0.0;
             Ok(())
         }
     }

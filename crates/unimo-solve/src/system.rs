@@ -61,17 +61,26 @@ pub trait System {
         0
     }
 
-    /// Evaluates the invariants `c(t, x)` into `out` and whether each holds now (is
-    /// active) into `active` (both of length `n_invariants()`).
-    fn invariants(
-        &mut self,
-        t: f64,
-        x: &[f64],
-        out: &mut [f64],
-        active: &mut [bool],
-    ) -> Result<(), EvalError> {
-        let _ = (t, x, out, active);
+    /// Evaluates the invariants `c(t, x)` into `out.values` and whether each holds now
+    /// (is active) into `out.active` (both of length `n_invariants()`).
+    fn invariants(&mut self, t: f64, x: &[f64], out: &mut Invariants) -> Result<(), EvalError> {
+        let _ = (t, x, out);
         Ok(())
+    }
+}
+
+/// The values of a system's invariants `c(t, x)` and whether each is active (holds now).
+#[derive(Debug, Clone, Default)]
+pub struct Invariants {
+    pub values: Vec<f64>,
+    pub active: Vec<bool>,
+}
+
+impl Invariants {
+    /// Room for `m` invariants.
+    pub(crate) fn resize(&mut self, m: usize) {
+        self.values.resize(m, 0.0);
+        self.active.resize(m, false);
     }
 }
 
