@@ -196,7 +196,11 @@ fn the_right_hand_side_function_computes_the_interpreters_bits() {
                             (events(event_mode, sticky), events(event_mode, sticky));
                         let xs: Vec<f64> = c.states.iter().map(|&s| ra[s as usize]).collect();
                         let mut out = vec![0.0; results.len()];
-                        assert!(call.call(0.25, &xs, &mut out, &mut ra, &mut ea));
+                        assert!(call.fits(&ra, &ea));
+                        // SAFETY: `fits` holds on `ra` and `ea`.
+                        let done =
+                            unsafe { call.call_fitted(0.25, &xs, &mut out, &mut ra, &mut ea) };
+                        assert!(done);
                         tape.interpret(&mut rb, &mut eb);
                         for (k, &r) in results.iter().enumerate() {
                             assert!(

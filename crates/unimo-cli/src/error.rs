@@ -38,6 +38,35 @@ fn similar_names(names: &[String]) -> String {
     }
 }
 
+/// What an override names that is not a setting (E0005).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Unsettable {
+    #[default]
+    Constant,
+    Variable,
+    Final,
+}
+
+impl Unsettable {
+    /// The message after the name.
+    fn message(self) -> &'static str {
+        match self {
+            Unsettable::Constant => "is a constant",
+            Unsettable::Variable => "is a variable, not a parameter",
+            Unsettable::Final => "is `final`: no modifier may change it (spec 7.2.6)",
+        }
+    }
+
+    /// What to do instead.
+    fn help(self) -> &'static str {
+        match self {
+            Unsettable::Constant => "only parameters can be overridden",
+            Unsettable::Variable => "change its start value in the model instead",
+            Unsettable::Final => "remove `final` in the model to make it a setting",
+        }
+    }
+}
+
 unimo_source::coded_errors! {
     /// What the command line and the API refuse: files, the choice of the model, parameter
     /// overrides, options, outputs, and `animate`'s scene.
@@ -96,27 +125,13 @@ unimo_source::coded_errors! {
         #[error("{why}")]
         OverrideValue { why: String, span: Span, declared: Span } = CliCode::OverrideValue,
         |d| d.at(span, "wrong value").with_label(declared, "declared here"),
-        /// E0005: an override of a constant.
-        #[error("`{name}` is a constant")]
-        SetsConstant { name: String, span: Span, declared: Span } = CliCode::NotSettable,
+        /// E0005: an override of a constant, a variable or a `final` parameter.
+        #[error("`{name}` {}", .why.message())]
+        NotSettable { name: String, why: Unsettable, span: Span, declared: Span } = CliCode::NotSettable,
         |d| d
             .at(span, "cannot be changed")
             .with_label(declared, "declared here")
-            .with_help("only parameters can be overridden"),
-        /// E0005: an override of a variable.
-        #[error("`{name}` is a variable, not a parameter")]
-        SetsVariable { name: String, span: Span, declared: Span } = CliCode::NotSettable,
-        |d| d
-            .at(span, "cannot be changed")
-            .with_label(declared, "declared here")
-            .with_help("change its start value in the model instead"),
-        /// E0005: an override of a `final` parameter.
-        #[error("`{name}` is `final`: no modifier may change it (spec 7.2.6)")]
-        SetsFinal { name: String, span: Span, declared: Span } = CliCode::NotSettable,
-        |d| d
-            .at(span, "cannot be changed")
-            .with_label(declared, "declared here")
-            .with_help("remove `final` in the model to make it a setting"),
+            .with_help(why.help()),
         /// E0006: an override (a `-p` flag or a line of the override file) without `=`.
         #[error("`{text}` is not `NAME=VALUE`")]
         NotNameValue { text: String, span: Span } = CliCode::NotNameValue,

@@ -4,7 +4,7 @@
 //! flattening again. Problems are coded `E00xx` diagnostics pointing into the command
 //! line or the override file.
 
-use crate::error::CliError;
+use crate::error::{CliError, Unsettable};
 use std::path::{Path, PathBuf};
 use unimo_flat::flat::{FlatModel, FlatType, FlatVar, Variability};
 use unimo_source::{Diagnostic, FileId, SourceMap, Span};
@@ -233,31 +233,18 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
         }
         .into());
     };
-    let (name, span, declared) = (w.name.clone(), w.name_span, var.origin);
-    match var.variability {
-        Variability::Parameter => {}
-        Variability::Constant => {
-            return Err(CliError::SetsConstant {
-                name,
-                span,
-                declared,
-            }
-            .into())
-        }
-        _ => {
-            return Err(CliError::SetsVariable {
-                name,
-                span,
-                declared,
-            }
-            .into())
-        }
-    }
-    if var.is_final {
-        return Err(CliError::SetsFinal {
-            name,
-            span,
-            declared,
+    let why = match var.variability {
+        Variability::Parameter if var.is_final => Some(Unsettable::Final),
+        Variability::Parameter => None,
+        Variability::Constant => Some(Unsettable::Constant),
+        _ => Some(Unsettable::Variable),
+    };
+    if let Some(why) = why {
+        return Err(CliError::NotSettable {
+            name: w.name.clone(),
+            why,
+            span: w.name_span,
+            declared: var.origin,
         }
         .into());
     }
@@ -265,7 +252,7 @@ fn check(w: &Written, flat: &FlatModel) -> Result<(String, Expr), Diagnostic> {
         CliError::OverrideValue {
             why,
             span: w.value_span,
-            declared,
+            declared: var.origin,
         }
     })?;
     Ok((w.name.clone(), value))

@@ -61,7 +61,7 @@ fn call_tape(native: &NativeTape, registers: &mut [f64], ev: &mut EventState) {
 ///
 /// The code leaves the time and the states in the register file but not the plan's
 /// values at them (`unimo_codegen::native::NativeRhs`): a caller that reads the plan's
-/// values from the register file after [`RhsCall::call`] runs the plan first.
+/// values from the register file after [`RhsCall::call_fitted`] runs the plan first.
 #[derive(Clone, Copy)]
 pub struct RhsCall<'m> {
     function: NativeRhsFn,
@@ -100,23 +100,9 @@ impl<'m> RhsCall<'m> {
 
     /// Evaluates the right-hand side at `(t, x)` into `out` on `registers` and `ev`
     /// (those of the model `self` was made from); false, doing nothing, when `x` and
-    /// `out` do not hold one value per state or the register file or relation state is
-    /// smaller than the code assumes.
-    #[inline]
-    pub fn call(
-        &self,
-        t: f64,
-        x: &[f64],
-        out: &mut [f64],
-        registers: &mut [f64],
-        ev: &mut EventState,
-    ) -> bool {
-        // SAFETY: `fits` is checked first.
-        self.fits(registers, ev) && unsafe { self.call_fitted(t, x, out, registers, ev) }
-    }
-
-    /// [`RhsCall::call`] without checking [`RhsCall::fits`]: for a caller that checked
-    /// it once on a register file and relation state that cannot have shrunk since.
+    /// `out` do not hold one value per state. The caller checks [`RhsCall::fits`] first:
+    /// just before, or once on a register file and relation state that cannot have
+    /// shrunk since.
     ///
     /// # Safety
     /// `self.fits(registers, ev)` holds.

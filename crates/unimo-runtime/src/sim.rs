@@ -414,9 +414,13 @@ impl System for Ode<'_> {
         let n = self.m.states.len();
         // The whole right-hand side in one native call (a plan of one explicit step).
         let started = unimo_solve::fine_timing().then(Instant::now);
-        let native = self.native.as_ref().is_some_and(|native| {
-            native.call(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev)
-        });
+        let native = match &self.native {
+            // SAFETY: `fits` holds on these registers and this event state.
+            Some(native) if native.fits(&self.regs, &self.ev) => unsafe {
+                native.call_fitted(t, &x[..n], &mut out[..n], &mut self.regs, &mut self.ev)
+            },
+            _ => false,
+        };
         if native {
             self.evaluations += 1;
             self.plan_stale = true;

@@ -15,7 +15,7 @@ use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
 use crate::integrator::{
-    common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
+    common_accessors, eval_failure, Aim, Initial, Integrator, ProblemSetup, StepStart,
 };
 use crate::norm::{weighted_rms, Tolerances};
 use crate::options::Method;
@@ -278,13 +278,12 @@ impl Integrator for Dopri5 {
 }
 
 impl Dopri5 {
-    /// [`Integrator::step`] trying `h` first.
-    fn step_from(
-        &mut self,
-        system: &mut dyn System,
-        t_limit: f64,
-        mut h: f64,
-    ) -> Result<(), SolveError> {
+    /// [`Integrator::step`] toward `aim.limit`, trying `aim.h` first.
+    fn step_from(&mut self, system: &mut dyn System, aim: Aim) -> Result<(), SolveError> {
+        let Aim {
+            limit: t_limit,
+            mut h,
+        } = aim;
         let exponent = 0.2 - BETA * 0.75;
         let mut failures = 0usize;
         loop {

@@ -113,12 +113,19 @@ macro_rules! common_accessors {
 }
 pub(crate) use common_accessors;
 
+/// A step's aim: the time it does not pass and the step size tried first.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Aim {
+    pub limit: f64,
+    pub h: f64,
+}
+
 /// [`Integrator::step`], [`Integrator::reset`] and [`Integrator::set_projected_state`]
 /// of a one-step method, one definition for Dormand–Prince and Radau5: `$order` is the
 /// order of its local error (for a first step's estimate). The method keeps a
 /// [`StepStart`] `start`, its next step size `step_size` (`None` after a restart without
-/// a given initial step), and provides `step_from(system, t_limit, h)` (one accepted
-/// step toward `t_limit`, trying `h` first), `restart(system, t, x)` and
+/// a given initial step), and provides `step_from(system, aim)` (one accepted
+/// step toward `aim.limit`, trying `aim.h` first), `restart(system, t, x)` and
 /// `project_dense_output(x)`. A projection moves the next step's start to the projected
 /// state, with `f` evaluated again; the step size and the controller's memory are kept,
 /// and when the dense output ends there it gets the method's correction (before `start`
@@ -134,7 +141,7 @@ macro_rules! one_step_method {
                 t_limit,
                 stats,
             )? {
-                Some(h) => self.step_from(system, t_limit, h),
+                Some(h) => self.step_from(system, $crate::integrator::Aim { limit: t_limit, h }),
                 None => Ok(()),
             }
         }

@@ -35,7 +35,7 @@ use crate::dense_output::{step_fraction, DenseOutput};
 use crate::error::{EvalError, SolveError};
 use crate::evaluate::rhs_checked;
 use crate::integrator::{
-    common_accessors, eval_failure, Initial, Integrator, ProblemSetup, StepStart,
+    common_accessors, eval_failure, Aim, Initial, Integrator, ProblemSetup, StepStart,
 };
 use crate::jacobian::JacobianEvaluator;
 use crate::linear::{use_sparse, LinearSolverKind, LuPair};
@@ -757,13 +757,12 @@ impl Integrator for Radau5 {
 }
 
 impl Radau5 {
-    /// [`Integrator::step`] trying `h` first.
-    fn step_from(
-        &mut self,
-        system: &mut dyn System,
-        t_limit: f64,
-        mut h: f64,
-    ) -> Result<(), SolveError> {
+    /// [`Integrator::step`] toward `aim.limit`, trying `aim.h` first.
+    fn step_from(&mut self, system: &mut dyn System, aim: Aim) -> Result<(), SolveError> {
+        let Aim {
+            limit: t_limit,
+            mut h,
+        } = aim;
         let (mut failures, mut singular) = (0usize, 0usize);
         loop {
             h = step_above_floor(

@@ -11,16 +11,40 @@ use crate::tree::ClassId;
 use unimo_source::Span;
 use unimo_syntax::ast::*;
 
-impl Instantiator<'_, '_> {
-    /// Instantiates the elements and equations of `class` at `prefix`.
-    pub(super) fn class_body(
-        &mut self,
+/// A class body to instantiate: the class, the instance's prefix and modification, the
+/// variability its component imposes, and whether it is the top-level model or one of
+/// its connectors (whose variables are the model's interface).
+#[derive(Clone, Copy)]
+pub(super) struct Body<'a> {
+    pub class: ClassId,
+    pub prefix: &'a [RefPart],
+    pub m: &'a Mod,
+    pub variability: Option<Variability>,
+    pub top: bool,
+}
+
+impl<'a> Body<'a> {
+    pub fn new(
         class: ClassId,
-        prefix: &[RefPart],
-        m: &Mod,
+        prefix: &'a [RefPart],
+        m: &'a Mod,
         variability: Option<Variability>,
         top: bool,
-    ) {
+    ) -> Self {
+        Body {
+            class,
+            prefix,
+            m,
+            variability,
+            top,
+        }
+    }
+}
+
+impl Instantiator<'_, '_> {
+    /// Instantiates the elements and equations of `body.class` at `body.prefix`.
+    pub(super) fn class_body(&mut self, body: Body<'_>) {
+        let class = body.class;
         // A class inside itself (a record with a component of its own type): legal
         // only while conditions stop the recursion, which they do within a few levels;
         // past MAX_SELF_NESTING it would grow exponentially until memory runs out.
@@ -46,7 +70,7 @@ impl Instantiator<'_, '_> {
         // The `inner` components of the instance, those of its bases included, are
         // visible to the `outer` ones below it until the instance is done.
         let inners_before = self.inners.len();
-        self.class_body_inner(class, prefix, m, variability, top, true);
+        self.class_body_inner(body, true);
         self.inners.truncate(inners_before);
         self.ancestors.pop();
         let found = self.duplicate_found.pop().unwrap_or(true);
@@ -60,15 +84,14 @@ impl Instantiator<'_, '_> {
     }
 
     /// `check_mods`: whether modified names are checked here (not again in bases).
-    fn class_body_inner(
-        &mut self,
-        class: ClassId,
-        prefix: &[RefPart],
-        m: &Mod,
-        variability: Option<Variability>,
-        top: bool,
-        check_mods: bool,
-    ) {
+    fn class_body_inner(&mut self, body: Body<'_>, check_mods: bool) {
+        let Body {
+            class,
+            prefix,
+            m,
+            variability,
+            top,
+        } = body;
         if self.stopped {
             return;
         }
@@ -86,7 +109,11 @@ impl Instantiator<'_, '_> {
             // A short class used as a model: instantiate its base with its modifiers.
             if let Some((Kind::Class(c), m2)) = self.resolve_type(Found::Class(class), m) {
                 if c != class {
-                    self.class_body(c, prefix, &m2, variability, top);
+                    self.class_body(Body {
+                        class: c,
+                        m: &m2,
+                        ..body
+                    });
                 }
             }
             self.depth -= 1;
@@ -111,7 +138,7 @@ impl Instantiator<'_, '_> {
                 .push((prefix_key.clone(), class, m.clone(), scope.clone()));
         }
         let base_mods = (m, &own_redeclares);
-        self.inherited_elements(class, &def, &scope, base_mods, variability, top);
+        self.inherited_elements(body, &def, &scope, base_mods);
         if has_bases {
             self.pending_own.pop();
         }
@@ -155,14 +182,12 @@ impl Instantiator<'_, '_> {
     /// extension `model extends A(m)` first inherits the original `A`.
     fn inherited_elements(
         &mut self,
-        class: ClassId,
+        body: Body<'_>,
         def: &ClassDef,
         scope: &Scope,
         (m, own_redeclares): (&Mod, &Mod),
-        variability: Option<Variability>,
-        top: bool,
     ) {
-        let prefix = &scope.prefix[..];
+        let class = body.class;
         let ClassBody::Long { composition, .. } = &def.body else {
             return;
         };
@@ -172,7 +197,12 @@ impl Instantiator<'_, '_> {
         {
             if let Some(original) = self.tree.extended_original(class) {
                 let base_mod = base_modifier(m, own_redeclares, ext.modification.as_ref(), scope);
-                self.class_body_inner(original, prefix, &base_mod, variability, top, false);
+                let base = Body {
+                    class: original,
+                    m: &base_mod,
+                    ..body
+                };
+                self.class_body_inner(base, false);
             }
         }
         // Inherited elements first, each base with the extends modifier under ours.
@@ -183,7 +213,12 @@ impl Instantiator<'_, '_> {
                     Some(Found::Class(b)) => {
                         let base_mod =
                             base_modifier(m, own_redeclares, x.modification.as_ref(), scope);
-                        self.class_body_inner(b, prefix, &base_mod, variability, top, false);
+                        let base = Body {
+                            class: b,
+                            m: &base_mod,
+                            ..body
+                        };
+                        self.class_body_inner(base, false);
                     }
                     Some(Found::Builtin("ExternalObject")) => {} // an external object class
                     Some(Found::Builtin(_)) => {

@@ -1,6 +1,7 @@
 //! Instantiation of one component declaration: its type resolved, its modifiers
 //! merged, array components expanded, and the variables of predefined types created.
 
+use super::class_body::Body;
 use super::{
     annotation_is_true, duplicate, index_tuples, instance_key, int_expr, part, Instantiator, Kind,
     ATTRIBUTES,
@@ -154,7 +155,7 @@ impl Instantiator<'_, '_> {
             if !record {
                 self.note_visual(c, super::instance_key(&path));
             }
-            self.class_body(c, &path, &merged, variability, top);
+            self.class_body(Body::new(c, &path, &merged, variability, top));
         } else {
             let elements = (record, per_element);
             self.structured_elements(c, &path, &merged, &dims, elements, variability, top, d.span);
@@ -225,7 +226,7 @@ impl Instantiator<'_, '_> {
             } else {
                 self.note_visual(c, instance_key(&p));
             }
-            self.class_body(c, &p, &element, variability, top);
+            self.class_body(Body::new(c, &p, &element, variability, top));
         }
     }
 

@@ -369,7 +369,7 @@ impl<'t, 'p> Instantiator<'t, 'p> {
             });
         }
         let top = std::mem::take(&mut self.top_modifiers);
-        self.class_body(class, &[], &top, None, true);
+        self.class_body(class_body::Body::new(class, &[], &top, None, true));
         let mut evaluated: Vec<String> = self.values.keys().cloned().collect();
         evaluated.sort();
         self.model.evaluated = evaluated;
